@@ -1,0 +1,67 @@
+-- Argument checks shared by the plpgsql API. Each raises a documented SQLSTATE naming the
+-- parameter it rejects.
+
+-- A model name becomes a schema name: a plain lower-case identifier, so users can type it
+-- unquoted, and nothing that could smuggle SQL into the dynamic DDL.
+CREATE FUNCTION streetgen._require_model_name(name text)
+  RETURNS void
+  LANGUAGE plpgsql STABLE PARALLEL SAFE
+  SET search_path FROM CURRENT
+  AS $$
+BEGIN
+  IF name IS NULL THEN
+    RAISE EXCEPTION 'model name must not be null' USING ERRCODE = 'null_value_not_allowed';
+  END IF;
+  IF name !~ '^[a-z_][a-z0-9_]*$' OR octet_length(name) > 63 THEN
+    RAISE EXCEPTION 'invalid model name: %', quote_literal(name)
+      USING ERRCODE = 'invalid_name',
+            DETAIL = 'A model name is a lower-case SQL identifier: a letter or _, then letters, digits or _, at most 63 bytes.',
+            HINT = 'For example streetgen.create_model(''paris_11e'', 32631).';
+  END IF;
+  IF name IN ('public', 'streetgen', 'information_schema', 'topology', 'tiger', 'tiger_data')
+     OR name LIKE 'pg\_%'
+     OR EXISTS (SELECT 1 FROM pg_extension e JOIN pg_namespace n ON n.oid = e.extnamespace WHERE n.nspname = name)
+     OR EXISTS (SELECT 1 FROM pg_get_keywords() k WHERE k.word = name AND k.catcode IN ('R', 'T')) THEN
+    RAISE EXCEPTION 'model name % is reserved', quote_literal(name)
+      USING ERRCODE = 'reserved_name',
+            DETAIL = 'It names a system or extension schema, or is an SQL reserved word.';
+  END IF;
+END
+$$;
+
+-- Widths, radii and speeds are in metres: a model's CRS must be projected in metres. SRID 0
+-- means local coordinates and is taken to be in metres (the growth examples use it).
+CREATE FUNCTION streetgen._require_metric_srid(srid integer, parameter text)
+  RETURNS void
+  LANGUAGE plpgsql STABLE PARALLEL SAFE
+  SET search_path FROM CURRENT
+  AS $$
+DECLARE
+  proj text;
+BEGIN
+  IF srid IS NULL THEN
+    RAISE EXCEPTION '% must not be null', parameter USING ERRCODE = 'null_value_not_allowed';
+  END IF;
+  IF srid = 0 THEN
+    RETURN;
+  END IF;
+  SELECT s.proj4text INTO proj FROM spatial_ref_sys s WHERE s.srid = _require_metric_srid.srid;
+  IF NOT FOUND THEN
+    RAISE EXCEPTION '% % is not a known SRID', parameter, srid
+      USING ERRCODE = 'invalid_parameter_value',
+            DETAIL = 'It is not in spatial_ref_sys.';
+  END IF;
+  IF proj ~ '\+proj=(longlat|latlong|lonlat|latlon|geocent)' THEN
+    RAISE EXCEPTION '% % is a geographic CRS, not a projected one in metres', parameter, srid
+      USING ERRCODE = 'invalid_parameter_value',
+            DETAIL = 'streetgen measures widths, radii and lengths in metres.',
+            HINT = 'Use a projected CRS, e.g. the UTM zone given by streetgen.utm_srid(geom).';
+  END IF;
+  IF (proj ~ '\+units=' AND proj !~ '\+units=m(\s|$)') OR proj ~ '\+to_meter=' THEN
+    RAISE EXCEPTION '% % is not in metres', parameter, srid
+      USING ERRCODE = 'invalid_parameter_value',
+            DETAIL = format('Its definition is: %s', proj),
+            HINT = 'Use a projected CRS in metres, e.g. the UTM zone given by streetgen.utm_srid(geom).';
+  END IF;
+END
+$$;

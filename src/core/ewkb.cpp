@@ -1,0 +1,56 @@
+#include "core/ewkb.hpp"
+
+#include <memory>
+#include <string>
+
+#include "core/error.hpp"
+
+namespace streetgen::core {
+namespace {
+
+struct ReaderDeleter {
+  GEOSContextHandle_t handle;
+  void operator()(GEOSWKBReader* r) const noexcept { GEOSWKBReader_destroy_r(handle, r); }
+};
+struct WriterDeleter {
+  GEOSContextHandle_t handle;
+  void operator()(GEOSWKBWriter* w) const noexcept { GEOSWKBWriter_destroy_r(handle, w); }
+};
+struct BufferDeleter {
+  GEOSContextHandle_t handle;
+  void operator()(unsigned char* b) const noexcept { GEOSFree_r(handle, b); }
+};
+
+}  // namespace
+
+SridGeometry read_ewkb(GeosContext& ctx, const std::uint8_t* data, std::size_t size, const char* parameter) {
+  std::unique_ptr<GEOSWKBReader, ReaderDeleter> reader(GEOSWKBReader_create_r(ctx.handle()),
+                                                       ReaderDeleter{ctx.handle()});
+  if (!reader) ctx.fail("WKB reader creation");
+  GEOSGeometry* raw = GEOSWKBReader_read_r(ctx.handle(), reader.get(), data, size);
+  if (raw == nullptr) {
+    std::string why = ctx.last_error();
+    ctx.clear_error();
+    throw Error(ErrorKind::bad_data, std::string(parameter) + " is not valid EWKB", "GEOS said: " + why + ".");
+  }
+  SridGeometry out{GeomPtr(raw, GeomDeleter{ctx.handle()}), 0};
+  out.srid = GEOSGetSRID_r(ctx.handle(), raw);
+  return out;
+}
+
+Bytes write_ewkb(GeosContext& ctx, GEOSGeometry* geom, int srid) {
+  std::unique_ptr<GEOSWKBWriter, WriterDeleter> writer(GEOSWKBWriter_create_r(ctx.handle()),
+                                                       WriterDeleter{ctx.handle()});
+  if (!writer) ctx.fail("WKB writer creation");
+  GEOSWKBWriter_setOutputDimension_r(ctx.handle(), writer.get(), 2);
+  GEOSWKBWriter_setByteOrder_r(ctx.handle(), writer.get(), GEOS_WKB_NDR);
+  GEOSWKBWriter_setIncludeSRID_r(ctx.handle(), writer.get(), srid != 0 ? 1 : 0);
+  GEOSSetSRID_r(ctx.handle(), geom, srid);
+  std::size_t size = 0;
+  std::unique_ptr<unsigned char, BufferDeleter> buffer(GEOSWKBWriter_write_r(ctx.handle(), writer.get(), geom, &size),
+                                                       BufferDeleter{ctx.handle()});
+  if (!buffer) ctx.fail("WKB writing");
+  return Bytes(buffer.get(), buffer.get() + size);
+}
+
+}  // namespace streetgen::core
