@@ -160,7 +160,7 @@ BEGIN
   road_class := cls.highway;
   estimated := '{}';
 
-  reverse_geometry := oneway_tag IN ('-1', 'reverse');
+  reverse_geometry := coalesce(oneway_tag IN ('-1', 'reverse'), false);
   oneway := CASE
     WHEN oneway_tag IN ('yes', 'true', '1', '-1', 'reverse') THEN true
     WHEN oneway_tag IN ('no', 'false', '0', 'reversible', 'alternating') THEN false
@@ -250,7 +250,8 @@ BEGIN
   centre := ST_Transform(ST_Centroid(ST_Envelope(geom)), 4326);
   lon := ST_X(centre);
   lat := ST_Y(centre);
-  IF NOT (lon BETWEEN -180 AND 180) OR NOT (lat BETWEEN -80 AND 84) THEN
+  -- NULL when the centre is empty, as for NaN coordinates.
+  IF lon IS NULL OR lat IS NULL OR NOT (lon BETWEEN -180 AND 180) OR NOT (lat BETWEEN -80 AND 84) THEN
     RAISE EXCEPTION 'no UTM zone at longitude %, latitude %', lon, lat
       USING ERRCODE = 'invalid_parameter_value',
             DETAIL = 'UTM covers latitudes 80 S to 84 N; the coordinates may be non-finite or out of range.';
@@ -268,7 +269,8 @@ $$;
 COMMENT ON FUNCTION streetgen.utm_srid(geometry) IS 'EPSG code of the WGS 84 UTM zone at the centre of geom''s bounding box';
 
 -- Loads staged OSM ways into MODEL's axis table. STAGING is any table or view with columns
--- osm_id bigint, tags jsonb, geom geometry (LineStrings in any SRID; other types are skipped).
+-- source text (e.g. 'osm:way/42'), tags jsonb, geom geometry (LineStrings in any SRID with a
+-- known transformation; other geometry types are counted as degenerate).
 -- Keeps driveable ways, maps tags with osm_axis_attributes, transforms to the model's SRID.
 CREATE FUNCTION streetgen.load_osm_ways(model text, staging regclass,
     OUT loaded bigint, OUT not_driveable bigint, OUT degenerate bigint)
@@ -288,7 +290,7 @@ BEGIN
     INTO staged, driveable;
   EXECUTE format($q$
     WITH candidate AS (
-      SELECT s.osm_id, s.tags, ST_Transform(s.geom, %2$s) AS geom, streetgen.osm_axis_attributes(s.tags) AS a
+      SELECT s.source, s.tags, ST_Transform(s.geom, %2$s) AS geom, streetgen.osm_axis_attributes(s.tags) AS a
         FROM %3$s AS s
        WHERE streetgen.osm_is_driveable(s.tags)
          AND ST_GeometryType(s.geom) = 'ST_LineString'
@@ -298,7 +300,7 @@ BEGIN
     SELECT CASE WHEN (c.a).reverse_geometry THEN ST_Reverse(c.geom) ELSE c.geom END,
            (c.a).roadway_width, (c.a).lanes, (c.a).speed_kmh, (c.a).road_class, (c.a).oneway,
            (c.a).sidewalk_width, (c.a).layer, (c.a).structure,
-           'osm:way/' || c.osm_id, c.tags, (c.a).estimated
+           c.source, c.tags, (c.a).estimated
       FROM candidate AS c
      WHERE NOT ST_IsEmpty(c.geom) AND ST_Length(c.geom) > 0 AND ST_Length(c.geom) < 'Infinity'::double precision
   $q$, model, model_srid, staging);
@@ -308,4 +310,4 @@ BEGIN
 END
 $$;
 COMMENT ON FUNCTION streetgen.load_osm_ways(text, regclass) IS
-  'Loads staged OSM ways (osm_id, tags, geom) into a model''s axes; returns counts loaded, not driveable, degenerate';
+  'Loads staged OSM ways (source, tags, geom) into a model''s axes; returns counts loaded, not driveable, degenerate';

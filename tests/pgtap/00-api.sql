@@ -1,0 +1,75 @@
+-- The public API, as shipped: every function's signature, result, volatility and strictness,
+-- and the habits every function must keep (search_path pinned, no SECURITY DEFINER, comments).
+BEGIN;
+SELECT * FROM no_plan();
+
+CREATE TEMP VIEW streetgen_functions AS
+SELECT p.oid::regprocedure::text AS signature,
+       pg_get_function_result(p.oid) AS result,
+       p.provolatile AS volatility,
+       p.proisstrict AS strict,
+       p.prosecdef AS security_definer,
+       l.lanname AS language,
+       p.proconfig AS config,
+       obj_description(p.oid, 'pg_proc') AS comment
+  FROM pg_proc p
+  JOIN pg_language l ON l.oid = p.prolang
+  JOIN pg_depend d ON d.classid = 'pg_proc'::regclass AND d.objid = p.oid AND d.deptype = 'e'
+  JOIN pg_extension e ON e.oid = d.refobjid AND e.extname = 'streetgen';
+
+SELECT set_eq(
+  'SELECT signature, result, volatility::text, strict FROM streetgen_functions',
+  $$VALUES
+    ('streetgen._streetgen_version()', 'record', 'i', true),
+    ('streetgen.version()', 'record', 's', false),
+    ('streetgen._require_model_name(text)', 'void', 's', false),
+    ('streetgen._require_metric_srid(integer,text)', 'void', 's', false),
+    ('streetgen._lock_model_name(text)', 'void', 'v', false),
+    ('streetgen.create_model(text,integer)', 'void', 'v', false),
+    ('streetgen.drop_model(text)', 'void', 'v', false),
+    ('streetgen.model_srid(text)', 'integer', 's', false),
+    ('streetgen._streetgen_roadway_borders(bytea,double precision)', 'SETOF record', 'i', false),
+    ('streetgen.roadway_borders(geometry,double precision)', 'SETOF record', 's', false),
+    ('streetgen.osm_parse_length(text)', 'double precision', 'i', false),
+    ('streetgen.osm_parse_speed(text)', 'double precision', 'i', false),
+    ('streetgen.osm_parse_lanes(text)', 'smallint', 'i', false),
+    ('streetgen.osm_is_driveable(jsonb)', 'boolean', 's', false),
+    ('streetgen.osm_axis_attributes(jsonb)', 'record', 's', false),
+    ('streetgen.utm_srid(geometry)', 'integer', 's', false),
+    ('streetgen.load_osm_ways(text,regclass)', 'record', 'v', false)
+  $$,
+  'the extension ships exactly the documented functions, with these results and volatilities');
+
+-- OUT parameters are part of the contract too.
+SELECT is(pg_get_function_result('streetgen.version()'::regprocedure), 'record', 'version() returns a record');
+CREATE FUNCTION pg_temp.argument_names(f regprocedure) RETURNS text LANGUAGE sql AS $$
+  SELECT array_to_string(proargnames, ',') COLLATE "C" FROM pg_proc WHERE oid = f
+$$;
+SELECT is(pg_temp.argument_names('streetgen.version()'), 'extension,geos,cgal,postgis,postgresql', 'version() columns');
+SELECT is(pg_temp.argument_names('streetgen.roadway_borders(geometry,double precision)'), 'axis,roadway_width,side,geom',
+          'roadway_borders(axis, roadway_width) -> (side, geom)');
+SELECT is(pg_temp.argument_names('streetgen.load_osm_ways(text,regclass)'), 'model,staging,loaded,not_driveable,degenerate',
+          'load_osm_ways(model, staging) -> (loaded, not_driveable, degenerate)');
+SELECT is(pg_temp.argument_names('streetgen.create_model(text,integer)'), 'name,srid', 'create_model(name, srid)');
+
+SELECT is_empty(
+  'SELECT signature FROM streetgen_functions WHERE security_definer',
+  'no function is SECURITY DEFINER');
+SELECT is_empty(
+  $$SELECT signature FROM streetgen_functions
+     WHERE language <> 'c'
+       AND NOT EXISTS (SELECT 1 FROM unnest(config) c
+                        WHERE c LIKE 'search_path=pg_catalog, streetgen, %, pg_temp')$$,
+  'every SQL-level function pins search_path to pg_catalog, streetgen, postgis, pg_temp');
+SELECT is_empty(
+  $$SELECT signature FROM streetgen_functions WHERE signature NOT LIKE 'streetgen.\_%' AND comment IS NULL$$,
+  'every public function has a comment');
+SELECT is_empty(
+  $$SELECT c.relname FROM pg_class c
+      JOIN pg_depend d ON d.classid = 'pg_class'::regclass AND d.objid = c.oid AND d.deptype = 'e'
+      JOIN pg_extension e ON e.oid = d.refobjid AND e.extname = 'streetgen'
+     WHERE c.relkind = 'r' AND obj_description(c.oid, 'pg_class') IS NULL$$,
+  'every extension table has a comment');
+
+SELECT * FROM finish();
+ROLLBACK;

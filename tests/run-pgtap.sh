@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# pgTAP layer: every file of tests/pgtap runs in its own transaction, rolled back.
+source "$(dirname "$0")/lib.sh"
+mark=$(log_mark)
+fresh_db streetgen_pgtap pgtap streetgen
+status=0
+pg_prove -d streetgen_pgtap --ext .sql "$SRC"/tests/pgtap/*.sql || status=$?
+assert_no_crash_since "$mark" || status=1
+exit $status
