@@ -282,18 +282,28 @@ DECLARE
   model_srid integer := streetgen.model_srid(model);
   staged bigint;
   driveable bigint;
+  without_srid bigint;
 BEGIN
   IF staging IS NULL THEN
     RAISE EXCEPTION 'staging must not be null' USING ERRCODE = 'null_value_not_allowed';
   END IF;
-  EXECUTE format('SELECT count(*), count(*) FILTER (WHERE streetgen.osm_is_driveable(tags)) FROM %s', staging)
-    INTO staged, driveable;
+  EXECUTE format('SELECT count(*), count(*) FILTER (WHERE streetgen.osm_is_driveable(tags)),
+                         count(*) FILTER (WHERE ST_SRID(geom) = 0) FROM %s', staging)
+    INTO staged, driveable, without_srid;
+  IF without_srid > 0 THEN
+    RAISE EXCEPTION 'staging table % has % geometries without SRID', staging, without_srid
+      USING ERRCODE = 'invalid_parameter_value',
+            HINT = 'Staged geometries need an SRID to be transformed to the model''s (osm2pgsql and ogr2ogr stage in 4326).';
+  END IF;
   EXECUTE format($q$
     WITH candidate AS (
       SELECT s.source, s.tags, ST_Transform(s.geom, %2$s) AS geom, streetgen.osm_axis_attributes(s.tags) AS a
         FROM %3$s AS s
        WHERE streetgen.osm_is_driveable(s.tags)
          AND ST_GeometryType(s.geom) = 'ST_LineString'
+         -- NaN/Inf coordinates and zero-length lines are degenerate; filter them before the
+         -- transformation, which would fail on them.
+         AND ST_Length(s.geom) > 0 AND ST_Length(s.geom) < 'Infinity'::double precision
     )
     INSERT INTO %1$I.axis (geom, roadway_width, lanes, speed_kmh, road_class, oneway, sidewalk_width,
                            layer, structure, source, tags, estimated)
@@ -307,6 +317,14 @@ BEGIN
   GET DIAGNOSTICS loaded = ROW_COUNT;
   not_driveable := staged - driveable;
   degenerate := driveable - loaded;
+EXCEPTION WHEN internal_error THEN
+  -- PostGIS reports coordinates outside the source CRS's domain as an internal error.
+  IF SQLERRM LIKE 'transform:%' THEN
+    RAISE EXCEPTION 'staged geometries of % cannot be transformed to SRID %', staging, model_srid
+      USING ERRCODE = 'invalid_parameter_value', DETAIL = format('PostGIS said: %s', SQLERRM),
+            HINT = 'Check the SRID and coordinate ranges of the staged geometries.';
+  END IF;
+  RAISE;
 END
 $$;
 COMMENT ON FUNCTION streetgen.load_osm_ways(text, regclass) IS

@@ -87,5 +87,26 @@ SELECT hasnt_schema('city', 'the schema is gone');
 SELECT is_empty($$SELECT 1 FROM streetgen.model WHERE name = 'city'$$, 'the registry row is gone');
 SELECT lives_ok($$SELECT streetgen.create_model('city', 32632)$$, 'the name can be reused after a drop');
 
+-- Ordinary users: create_model runs with the caller's rights; nobody can drop, or unregister,
+-- someone else's model.
+CREATE ROLE streetgen_alice;
+CREATE ROLE streetgen_bob;
+SELECT format('GRANT CREATE ON DATABASE %I TO streetgen_alice, streetgen_bob', current_database()) \gexec
+SET LOCAL ROLE streetgen_alice;
+SELECT lives_ok($$SELECT streetgen.create_model('alices', 32631)$$, 'an ordinary user creates a model');
+SELECT is((SELECT nspowner::regrole::text FROM pg_namespace WHERE nspname = 'alices'), 'streetgen_alice', 'and owns its schema');
+SELECT lives_ok($$INSERT INTO alices.axis (geom, roadway_width, speed_kmh) VALUES ('SRID=32631;LINESTRING(0 0, 1 0)', 5, 30)$$,
+                'and writes its axes');
+RESET ROLE;
+SET LOCAL ROLE streetgen_bob;
+SELECT throws_ok($$SELECT streetgen.drop_model('alices')$$, '42501', NULL, 'another user cannot drop it');
+SELECT throws_ok($$INSERT INTO streetgen.model (name, srid, created_by) VALUES ('fake', 32631, 'streetgen_alice')$$, '42501', NULL,
+                 'nor register a model in someone else''s name');
+SELECT is((SELECT count(*) FROM streetgen.model WHERE name = 'alices'), 1::bigint, 'the model is still registered');
+DELETE FROM streetgen.model WHERE name = 'alices';
+RESET ROLE;
+SELECT is((SELECT count(*) FROM streetgen.model WHERE name = 'alices'), 1::bigint, 'a direct DELETE by another user removes nothing');
+SELECT has_schema('alices', 'and the schema is intact');
+
 SELECT * FROM finish();
 ROLLBACK;

@@ -111,6 +111,21 @@ SELECT throws_ok($$SELECT * FROM streetgen.load_osm_ways('nope', 'staging')$$, '
 SELECT throws_ok($$SELECT * FROM streetgen.load_osm_ways(NULL, 'staging')$$, '22004', NULL, 'load with a NULL model');
 SELECT throws_ok($$SELECT * FROM streetgen.load_osm_ways('staged', NULL)$$, '22004', NULL, 'load with a NULL staging table');
 SELECT throws_ok($$SELECT * FROM streetgen.load_osm_ways('staged', 'no_such_table')$$, '42P01', NULL, 'load from a missing table');
+CREATE TEMP TABLE staging_no_srid (source text, tags jsonb, geom geometry);
+INSERT INTO staging_no_srid VALUES ('osm:way/9', '{"highway": "residential"}', 'LINESTRING(2.37 48.86, 2.371 48.86)');
+SELECT throws_ok($$SELECT * FROM streetgen.load_osm_ways('staged', 'staging_no_srid')$$, '22023', NULL, 'staged geometries without SRID');
+CREATE TEMP TABLE staging_bad_geom (source text, tags jsonb, geom geometry);
+INSERT INTO staging_bad_geom VALUES
+  ('osm:way/10', '{"highway": "residential"}', ST_SetSRID(ST_MakeLine(ST_MakePoint(2.37, 48.86), ST_MakePoint('NaN', 48.86)), 4326)),
+  ('osm:way/11', '{"highway": "residential"}', 'SRID=4326;LINESTRING EMPTY'),
+  ('osm:way/12', '{"highway": "residential"}', NULL);
+SELECT results_eq($$SELECT loaded, not_driveable, degenerate FROM streetgen.load_osm_ways('staged', 'staging_bad_geom')$$,
+                  $$VALUES (0::bigint, 0::bigint, 3::bigint)$$,
+                  'NaN, empty and missing staged geometries are counted as degenerate, not loaded');
+CREATE TEMP TABLE staging_out_of_range (source text, tags jsonb, geom geometry);
+INSERT INTO staging_out_of_range VALUES ('osm:way/13', '{"highway": "residential"}', 'SRID=4326;LINESTRING(2.37 48.86, 2.37 95)');
+SELECT throws_ok($$SELECT * FROM streetgen.load_osm_ways('staged', 'staging_out_of_range')$$, '22023', NULL,
+                 'a latitude of 95 degrees cannot be transformed: a clear 22023, not an internal error');
 
 SELECT * FROM finish();
 ROLLBACK;
