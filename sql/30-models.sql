@@ -38,6 +38,15 @@ CREATE FUNCTION streetgen.create_model(name text, srid integer)
   AS $$
 BEGIN
   PERFORM streetgen._require_model_name(name);
+  -- Schemas a model must not take over (dropping the model would drop them).
+  IF name IN ('public', 'streetgen', 'information_schema', 'topology', 'tiger', 'tiger_data')
+     OR name LIKE 'pg\_%'
+     OR EXISTS (SELECT 1 FROM pg_extension e JOIN pg_namespace n ON n.oid = e.extnamespace WHERE n.nspname = name)
+     OR EXISTS (SELECT 1 FROM pg_get_keywords() k WHERE k.word = name AND k.catcode IN ('R', 'T')) THEN
+    RAISE EXCEPTION 'model name % is reserved', quote_literal(name)
+      USING ERRCODE = 'reserved_name',
+            DETAIL = 'It names a system or extension schema, or is an SQL reserved word.';
+  END IF;
   PERFORM streetgen._require_metric_srid(srid, 'srid');
   PERFORM streetgen._lock_model_name(name);
   IF EXISTS (SELECT 1 FROM streetgen.model m WHERE m.name = create_model.name) THEN
@@ -96,12 +105,7 @@ CREATE FUNCTION streetgen.drop_model(name text)
   SET search_path FROM CURRENT
   AS $$
 BEGIN
-  IF name IS NULL THEN
-    RAISE EXCEPTION 'model name must not be null' USING ERRCODE = 'null_value_not_allowed';
-  END IF;
-  IF name !~ '^[a-z_][a-z0-9_]*$' THEN
-    RAISE EXCEPTION 'invalid model name: %', quote_literal(name) USING ERRCODE = 'invalid_name';
-  END IF;
+  PERFORM streetgen._require_model_name(name);
   PERFORM streetgen._lock_model_name(name);
   IF NOT EXISTS (SELECT 1 FROM streetgen.model m WHERE m.name = drop_model.name) THEN
     RAISE EXCEPTION 'model "%" does not exist', name
@@ -124,9 +128,7 @@ CREATE FUNCTION streetgen.model_srid(name text)
 DECLARE
   result integer;
 BEGIN
-  IF name IS NULL THEN
-    RAISE EXCEPTION 'model name must not be null' USING ERRCODE = 'null_value_not_allowed';
-  END IF;
+  PERFORM streetgen._require_model_name(name);
   SELECT m.srid INTO result FROM streetgen.model m WHERE m.name = model_srid.name;
   IF NOT FOUND THEN
     RAISE EXCEPTION 'model "%" does not exist', name USING ERRCODE = 'undefined_object';
