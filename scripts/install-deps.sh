@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config git ca-certificates
   postgresql-15 postgresql-server-dev-15 postgresql-15-postgis-3 postgresql-15-pgtap libtap-parser-sourcehandler-pgtap-perl
   libgeos-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
-  libgtest-dev
+  libgtest-dev valgrind
   osm2pgsql osmium-tool gdal-bin
   python3
 )
