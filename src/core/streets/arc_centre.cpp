@@ -1,0 +1,123 @@
+// CGAL translation unit (CGAL headers compile slowly: keep them here).
+#include "core/streets/arc_centre.hpp"
+
+#include <CGAL/Exact_circular_kernel_2.h>
+#include <CGAL/intersections.h>
+
+#include <cmath>
+#include <iterator>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "core/interrupts.hpp"
+
+namespace streetgen::core {
+namespace {
+
+using Kernel = CGAL::Exact_circular_kernel_2;
+using KPoint = Kernel::Point_2;
+using KLine = Kernel::Line_2;
+using KCircle = Kernel::Circle_2;
+using ArcPoint = Kernel::Circular_arc_point_2;
+
+// A piece of the locus {p : distance(p, polyline) = d} on one side of the polyline: the offset
+// of a segment, or the circle around an interior vertex (where the offset has a gap).
+struct Piece {
+  bool is_circle;
+  KLine line;      // offset segment's supporting line
+  KCircle circle;  // circle around a vertex
+};
+
+KPoint exact(Point p) { return KPoint(p.x, p.y); }
+
+// side = +1: left of the polyline, -1: right.
+std::vector<Piece> locus_pieces(const Polyline& line, double d, int side) {
+  std::vector<Piece> pieces;
+  for (std::size_t i = 1; i < line.size(); ++i) {
+    Point dir = unit(line[i] - line[i - 1]);
+    if (norm(dir) == 0.0) continue;
+    Point shift = (side * d) * left_normal(dir);
+    Point p0 = line[i - 1] + shift;
+    Point p1 = line[i] + shift;
+    pieces.push_back({false, KLine(exact(p0), exact(p1)), KCircle()});
+    if (i + 1 < line.size()) {
+      pieces.push_back({true, KLine(), KCircle(exact(line[i]), Kernel::FT(d) * Kernel::FT(d))});
+    }
+  }
+  return pieces;
+}
+
+template <class Variant>
+void collect_arc_points(const std::vector<Variant>& hits, std::vector<Point>& out) {
+  using Hit = std::pair<ArcPoint, unsigned>;
+  for (const auto& hit : hits) {
+    if (const Hit* h = boost::get<Hit>(&hit)) {
+      out.push_back({CGAL::to_double(h->first.x()), CGAL::to_double(h->first.y())});
+    }
+  }
+}
+
+void intersect(const Piece& p, const Piece& q, std::vector<Point>& out) {
+  if (!p.is_circle && !q.is_circle) {
+    auto result = CGAL::intersection(p.line, q.line);
+    if (result) {
+      if (const KPoint* pt = boost::get<KPoint>(&*result)) {
+        out.push_back({CGAL::to_double(pt->x()), CGAL::to_double(pt->y())});
+      }
+    }
+  } else if (p.is_circle && q.is_circle) {
+    std::vector<CGAL::CK2_Intersection_traits<Kernel, KCircle, KCircle>::type> hits;
+    CGAL::intersection(p.circle, q.circle, std::back_inserter(hits));
+    collect_arc_points(hits, out);
+  } else {
+    const KCircle& c = p.is_circle ? p.circle : q.circle;
+    const KLine& l = p.is_circle ? q.line : p.line;
+    std::vector<CGAL::CK2_Intersection_traits<Kernel, KCircle, KLine>::type> hits;
+    CGAL::intersection(c, l, std::back_inserter(hits));
+    collect_arc_points(hits, out);
+  }
+}
+
+// True if p is at distance d from `line` (within eps) and on the requested side of the nearest
+// part of it.
+bool on_locus(const Polyline& line, Point p, double d, int side, double eps) {
+  Projection pr = project(line, p);
+  if (std::abs(pr.distance - d) > eps) return false;
+  Point t = tangent_at(line, pr.abscissa);
+  // At a vertex the foot is shared by two segments; the side is that of the offset direction.
+  return side * cross(t, p - pr.point) > -eps * d;
+}
+
+}  // namespace
+
+std::optional<Point> arc_centre(const Polyline& a, double da, const Polyline& b, double db) {
+  if (a.size() < 2 || b.size() < 2) return std::nullopt;
+  std::vector<Piece> pa = locus_pieces(a, da, +1);
+  std::vector<Piece> pb = locus_pieces(b, db, -1);
+  Point node = a.front();
+  double eps = 1e-7 * std::max({1.0, da, db});
+  std::optional<Point> best;
+  double best_distance = std::numeric_limits<double>::infinity();
+  std::vector<Point> candidates;
+  InterruptPoller poller(256);
+  for (const Piece& p : pa) {
+    for (const Piece& q : pb) {
+      poller.tick();
+      candidates.clear();
+      intersect(p, q, candidates);
+      for (Point c : candidates) {
+        if (!std::isfinite(c.x) || !std::isfinite(c.y)) continue;
+        double dn = distance(c, node);
+        if (dn >= best_distance) continue;
+        if (on_locus(a, c, da, +1, eps) && on_locus(b, c, db, -1, eps)) {
+          best = c;
+          best_distance = dn;
+        }
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace streetgen::core

@@ -1,0 +1,646 @@
+#include "core/streets/street_surfaces.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "core/error.hpp"
+#include "core/interrupts.hpp"
+#include "core/streets/arc_centre.hpp"
+
+namespace streetgen::core {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kQuadrantSegments = 8;  // arc points per quarter circle, as PostGIS's ST_Buffer
+
+double angle_of(Point v) { return std::atan2(v.y, v.x); }
+
+// Counter-clockwise angle from direction u to direction v, in (0, 2 pi].
+double ccw_angle(Point u, Point v) {
+  double a = angle_of(v) - angle_of(u);
+  while (a <= 0.0) a += 2 * kPi;
+  while (a > 2 * kPi) a -= 2 * kPi;
+  return a;
+}
+
+// One end of an edge at a node, seen from the node: `outgoing` starts at the node.
+struct End {
+  std::size_t edge = 0;
+  bool at_end = false;
+  Polyline outgoing;
+  double half_width = 0.0;
+  double radius = 0.0;    // wanted, from its axis
+  double available = 0.0; // how far along it this node's junction may reach
+  double angle = 0.0;
+  double border = 0.0;    // abscissa of the border line on `outgoing`
+};
+
+// Points of the border at distance h on `side` (+1 left, -1 right) of `line`, between abscissas
+// from_s and to_s (either order), with mitred vertices (limited to 2h). The ends take the
+// tangent of the line itself, so an empty stretch still gives the border point.
+Polyline border_path(const Polyline& line, double from_s, double to_s, double h, int side) {
+  double lo = std::min(from_s, to_s);
+  double hi = std::max(from_s, to_s);
+  Polyline sub = substring(line, lo, hi);
+  Polyline out;
+  for (std::size_t i = 0; i < sub.size(); ++i) {
+    Point n;
+    if (i == 0) {
+      n = left_normal(tangent_at(line, lo));
+    } else if (i + 1 == sub.size()) {
+      n = left_normal(tangent_at(line, std::max(0.0, hi - 1e-9)));
+    } else {
+      Point before = unit(sub[i] - sub[i - 1]);
+      Point after = unit(sub[i + 1] - sub[i]);
+      n = unit(left_normal(before) + left_normal(after));
+      if (norm(n) == 0.0) n = left_normal(after);
+      double cos_half = dot(n, left_normal(after));
+      n = (cos_half > 0.5 ? 1.0 / cos_half : 2.0) * n;
+    }
+    out.push_back(sub[i] + (side * h) * n);
+  }
+  if (from_s > to_s) std::reverse(out.begin(), out.end());
+  return out;
+}
+
+Point border_point(const Polyline& line, double s, double h, int side) {
+  return point_at(line, s) + (side * h) * left_normal(tangent_at(line, s));
+}
+
+// Arc from `from` to `to` around `centre` the short way, segmentised; both ends included.
+Polyline arc_points(Point centre, Point from, Point to, double radius) {
+  double a0 = angle_of(from - centre);
+  double sweep = angle_of(to - centre) - a0;
+  while (sweep > kPi) sweep -= 2 * kPi;
+  while (sweep < -kPi) sweep += 2 * kPi;
+  int n = std::max(2, static_cast<int>(std::ceil(std::abs(sweep) / (kPi / 2) * kQuadrantSegments)));
+  Polyline out;
+  out.push_back(from);
+  for (int i = 1; i < n; ++i) {
+    double a = a0 + sweep * i / n;
+    out.push_back(centre + radius * Point{std::cos(a), std::sin(a)});
+  }
+  out.push_back(to);
+  return out;
+}
+
+Point arc_middle(Point centre, Point from, Point to, double radius) {
+  double a0 = angle_of(from - centre);
+  double sweep = angle_of(to - centre) - a0;
+  while (sweep > kPi) sweep -= 2 * kPi;
+  while (sweep < -kPi) sweep += 2 * kPi;
+  double a = a0 + sweep / 2;
+  return centre + radius * Point{std::cos(a), std::sin(a)};
+}
+
+GeomPtr make_line(GeosContext& ctx, const Polyline& pts) {
+  GEOSCoordSequence* seq = GEOSCoordSeq_create_r(ctx.handle(), static_cast<unsigned>(pts.size()), 2);
+  if (seq == nullptr) ctx.fail("coordinate sequence");
+  for (std::size_t i = 0; i < pts.size(); ++i) GEOSCoordSeq_setXY_r(ctx.handle(), seq, static_cast<unsigned>(i), pts[i].x, pts[i].y);
+  return own(ctx, GEOSGeom_createLineString_r(ctx.handle(), seq), "line construction");
+}
+
+GeomPtr make_polygon(GeosContext& ctx, Polyline ring) {
+  if (ring.empty()) return nullptr;
+  if (distance(ring.front(), ring.back()) > 0.0) ring.push_back(ring.front());
+  if (ring.size() < 4) return nullptr;
+  GEOSCoordSequence* seq = GEOSCoordSeq_create_r(ctx.handle(), static_cast<unsigned>(ring.size()), 2);
+  if (seq == nullptr) ctx.fail("coordinate sequence");
+  for (std::size_t i = 0; i < ring.size(); ++i) GEOSCoordSeq_setXY_r(ctx.handle(), seq, static_cast<unsigned>(i), ring[i].x, ring[i].y);
+  GEOSGeometry* shell = GEOSGeom_createLinearRing_r(ctx.handle(), seq);
+  if (shell == nullptr) ctx.fail("ring construction");
+  return own(ctx, GEOSGeom_createPolygon_r(ctx.handle(), shell, nullptr, 0), "polygon construction");
+}
+
+GeomPtr make_point(GeosContext& ctx, Point p) {
+  return own(ctx, GEOSGeom_createPointFromXY_r(ctx.handle(), p.x, p.y), "point construction");
+}
+
+double area_of(GeosContext& ctx, const GEOSGeometry* g) {
+  double a = 0.0;
+  if (GEOSArea_r(ctx.handle(), g, &a) == 0) ctx.fail("area");
+  return a;
+}
+
+// The polygon of `geom` (a polygon or a collection) that holds `node`, else the largest one.
+GeomPtr pick_polygon(GeosContext& ctx, const GEOSGeometry* geom, Point node) {
+  GeomPtr node_point = make_point(ctx, node);
+  std::vector<const GEOSGeometry*> polygons;
+  std::vector<const GEOSGeometry*> stack{geom};
+  while (!stack.empty()) {
+    const GEOSGeometry* g = stack.back();
+    stack.pop_back();
+    int type = GEOSGeomTypeId_r(ctx.handle(), g);
+    if (type == GEOS_POLYGON) {
+      if (GEOSisEmpty_r(ctx.handle(), g) == 0) polygons.push_back(g);
+    } else if (type == GEOS_MULTIPOLYGON || type == GEOS_GEOMETRYCOLLECTION) {
+      int n = GEOSGetNumGeometries_r(ctx.handle(), g);
+      for (int i = 0; i < n; ++i) stack.push_back(GEOSGetGeometryN_r(ctx.handle(), g, i));
+    }
+  }
+  const GEOSGeometry* best = nullptr;
+  double best_area = 0.0;
+  for (const GEOSGeometry* p : polygons) {
+    if (GEOSIntersects_r(ctx.handle(), p, node_point.get()) == 1) {
+      best = p;
+      break;
+    }
+    double a = area_of(ctx, p);
+    if (a > best_area) {
+      best = p;
+      best_area = a;
+    }
+  }
+  if (best == nullptr) return nullptr;
+  return own(ctx, GEOSGeom_clone_r(ctx.handle(), best), "clone");
+}
+
+void check_axis(const SurfaceAxis& axis) {
+  auto bad = [&](const std::string& what) {
+    throw_invalid_argument("axis " + std::to_string(axis.id) + ": " + what);
+  };
+  if (!(std::isfinite(axis.roadway_width) && axis.roadway_width > 0.0)) bad("roadway_width must be a finite number > 0");
+  if (!(std::isfinite(axis.speed_kmh) && axis.speed_kmh > 0.0)) bad("speed_kmh must be a finite number > 0");
+  if (axis.radius_override && !(std::isfinite(*axis.radius_override) && *axis.radius_override > 0.0)) {
+    bad("radius_override must be a finite number > 0");
+  }
+  for (const Point& p : axis.line) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) bad("has a non-finite coordinate");
+  }
+}
+
+class SurfaceBuilder {
+ public:
+  SurfaceBuilder(GeosContext& ctx, const std::vector<SurfaceAxis>& axes, const std::vector<CornerOverride>& overrides,
+                 const SurfaceSettings& settings)
+      : ctx_(ctx), axes_(axes), overrides_(overrides), s_(settings) {}
+
+  SurfaceResult run() {
+    std::vector<TopologyAxis> topo_axes;
+    topo_axes.reserve(axes_.size());
+    for (const SurfaceAxis& a : axes_) topo_axes.push_back({a.id, a.line, a.layer});
+    topo_ = build_topology(topo_axes, s_.snap_tolerance);
+    result_.issues = topo_.issues;
+
+    ends_of_node_.assign(topo_.nodes.size(), {});
+    for (std::size_t e = 0; e < topo_.edges.size(); ++e) {
+      if (topo_.edges[e].duplicate) continue;
+      ends_of_node_[topo_.edges[e].from_node].push_back(make_end(e, false));
+      ends_of_node_[topo_.edges[e].to_node].push_back(make_end(e, true));
+    }
+    border_.assign(topo_.edges.size(), {0.0, 0.0});
+    transition_.assign(topo_.nodes.size(), false);
+
+    // Corners and border lines first, then sections between the border lines, then the junction
+    // surfaces (whose repairs may need the sections around them).
+    InterruptPoller poller(64);
+    corners_of_node_.assign(topo_.nodes.size(), {});
+    for (std::size_t n = 0; n < topo_.nodes.size(); ++n) {
+      poller.tick();
+      build_node(n);
+    }
+    for (std::size_t e = 0; e < topo_.edges.size(); ++e) {
+      poller.tick();
+      build_section(e);
+    }
+    for (SectionResult& sec : result_.sections) {
+      if (sec.surface) section_surface_[{sec.axis_id, sec.part}] = sec.surface.get();
+    }
+    for (std::size_t n = 0; n < topo_.nodes.size(); ++n) {
+      poller.tick();
+      if (ends_of_node_[n].size() < 2) continue;
+      if (transition_[n]) {
+        build_transition_surface(n);
+      } else {
+        build_intersection(n);
+      }
+    }
+    for (auto& corners : corners_of_node_) {
+      for (CornerResult& c : corners) result_.corners.push_back(std::move(c));
+    }
+    return std::move(result_);
+  }
+
+ private:
+  double axis_radius(const SurfaceAxis& a) const {
+    return a.radius_override ? *a.radius_override : radius_for_speed(s_, a.speed_kmh);
+  }
+
+  End make_end(std::size_t e, bool at_end) {
+    const TopologyEdge& edge = topo_.edges[e];
+    const SurfaceAxis& axis = axes_[edge.axis_index];
+    End end;
+    end.edge = e;
+    end.at_end = at_end;
+    end.outgoing = at_end ? reversed(edge.line) : edge.line;
+    end.half_width = axis.roadway_width / 2;
+    end.radius = axis_radius(axis);
+    return end;
+  }
+
+  EdgeEnd key_of(const End& end) const {
+    const TopologyEdge& edge = topo_.edges[end.edge];
+    return {edge.axis_id, edge.part, end.at_end};
+  }
+
+  int degree_of(std::size_t node) const { return static_cast<int>(ends_of_node_[node].size()); }
+
+  std::optional<double> corner_override(std::int64_t node_id, const EdgeEnd& a, const EdgeEnd& b) const {
+    for (const CornerOverride& o : overrides_) {
+      if (o.node_id == node_id && o.a == a && o.b == b) return o.radius;
+    }
+    return std::nullopt;
+  }
+
+  struct Arc {
+    Point centre;
+    Point tangent_a, tangent_b;  // on the borders
+    double foot_a, foot_b;       // abscissas of the tangent points' feet on the axes
+  };
+
+  std::optional<Arc> arc_for(const End& a, const End& b, double radius) const {
+    Polyline oa = substring(a.outgoing, 0.0, a.available);
+    Polyline ob = substring(b.outgoing, 0.0, b.available);
+    std::optional<Point> c = arc_centre(oa, a.half_width + radius, ob, b.half_width + radius);
+    if (!c) return std::nullopt;
+    Projection pa = project(oa, *c);
+    Projection pb = project(ob, *c);
+    Arc arc;
+    arc.centre = *c;
+    arc.foot_a = pa.abscissa;
+    arc.foot_b = pb.abscissa;
+    arc.tangent_a = *c + (radius / std::max(pa.distance, 1e-12)) * (pa.point - *c);
+    arc.tangent_b = *c + (radius / std::max(pb.distance, 1e-12)) * (pb.point - *c);
+    return arc;
+  }
+
+  // The corner swept counter-clockwise from end a to end b at node n, with the paper's fallbacks.
+  CornerResult build_corner(std::size_t n, End& a, End& b) {
+    const TopologyNode& node = topo_.nodes[n];
+    CornerResult c;
+    c.node_id = node.id;
+    c.a = key_of(a);
+    c.b = key_of(b);
+    std::optional<double> forced = corner_override(node.id, c.a, c.b);
+    double wanted = forced ? *forced : std::min(a.radius, b.radius);
+    c.radius_wanted = wanted;
+    double radius = std::clamp(wanted, s_.min_radius, std::max(s_.min_radius, s_.max_radius));
+    if (forced) radius = std::max(*forced, 1e-3);
+
+    double sector = ccw_angle(tangent_at(a.outgoing, 0.0), tangent_at(b.outgoing, 0.0));
+    if (sector >= kPi - 1e-9) {
+      c.status = "convex";  // the outer side of a bend: the borders meet around the node, no curb arc
+      return c;
+    }
+
+    std::optional<Arc> arc = arc_for(a, b, radius);
+    std::string status = "ok";
+    if (!arc) {
+      // Too short an axis for this radius: the largest radius that fits (bisection; the
+      // tangent points move away from the node as the radius grows).
+      double lo = s_.min_radius;
+      std::optional<Arc> at_lo = arc_for(a, b, lo);
+      if (at_lo && radius > lo) {
+        double hi = radius;
+        for (int i = 0; i < 24 && hi - lo > 1e-3; ++i) {
+          double mid = 0.5 * (lo + hi);
+          std::optional<Arc> m = arc_for(a, b, mid);
+          if (m) {
+            lo = mid;
+            at_lo = m;
+          } else {
+            hi = mid;
+          }
+        }
+        arc = at_lo;
+        radius = lo;
+        status = "radius_reduced";
+      }
+    }
+    if (arc) {
+      double reach = distance(arc->centre, node.position) - radius;
+      double limit = s_.misplaced_factor * (std::max(a.half_width, b.half_width) + radius);
+      if (reach > limit && radius > s_.min_radius) {
+        std::optional<Arc> small = arc_for(a, b, s_.min_radius);
+        if (small) {
+          arc = small;
+          radius = s_.min_radius;
+          status = "min_radius";
+        }
+      }
+    }
+    if (arc) {
+      c.radius = radius;
+      c.status = status;
+      c.centre = arc->centre;
+      c.arc = {arc->tangent_a, arc_middle(arc->centre, arc->tangent_a, arc->tangent_b, radius), arc->tangent_b};
+      c.arc_points = arc_points(arc->centre, arc->tangent_a, arc->tangent_b, radius);
+      a.border = std::max(a.border, arc->foot_a);
+      b.border = std::max(b.border, arc->foot_b);
+      return c;
+    }
+    // No arc fits: the curb lines meet in a sharp corner (radius 0), if they meet at all.
+    std::optional<Arc> sharp = arc_for(a, b, 0.0);
+    if (sharp) {
+      c.radius = 0.0;
+      c.status = "sharp";
+      c.arc = {sharp->centre, sharp->centre, sharp->centre};
+      c.arc_points = {sharp->centre};
+      a.border = std::max(a.border, sharp->foot_a);
+      b.border = std::max(b.border, sharp->foot_b);
+      return c;
+    }
+    c.status = "no_corner";
+    return c;
+  }
+
+  bool is_width_transition(const std::vector<End>& ends) const {
+    if (ends.size() != 2) return false;
+    if (std::abs(ends[0].half_width - ends[1].half_width) < 0.005) return false;
+    double deflection = kPi - std::min(ccw_angle(tangent_at(ends[0].outgoing, 0.0), tangent_at(ends[1].outgoing, 0.0)),
+                                       ccw_angle(tangent_at(ends[1].outgoing, 0.0), tangent_at(ends[0].outgoing, 0.0)));
+    return deflection <= s_.max_transition_deflection_deg * kPi / 180.0;
+  }
+
+  void build_node(std::size_t n) {
+    const TopologyNode& node = topo_.nodes[n];
+    std::vector<End>& ends = ends_of_node_[n];
+    NodeResult nr;
+    nr.id = node.id;
+    nr.position = node.position;
+    nr.layer = node.layer;
+    nr.degree = static_cast<int>(ends.size());
+    std::set<std::int64_t> ids;
+    for (const End& e : ends) ids.insert(topo_.edges[e.edge].axis_id);
+    nr.axis_ids.assign(ids.begin(), ids.end());
+    result_.nodes.push_back(nr);
+    if (ends.empty()) return;
+
+    for (End& e : ends) {
+      const TopologyEdge& edge = topo_.edges[e.edge];
+      double len = length(edge.line);
+      std::size_t other = e.at_end ? edge.from_node : edge.to_node;
+      bool other_is_dead_end = other != n && degree_of(other) == 1;
+      e.available = other_is_dead_end ? len : len / 2;
+      double probe = std::min(e.available, std::max(2.0, e.half_width));
+      e.angle = angle_of(point_at(e.outgoing, probe) - node.position);
+      e.border = ends.size() >= 2 ? std::min(s_.min_border_distance, e.available) : 0.0;
+    }
+    std::sort(ends.begin(), ends.end(), [&](const End& x, const End& y) {
+      if (x.angle != y.angle) return x.angle < y.angle;
+      return std::make_tuple(topo_.edges[x.edge].axis_id, topo_.edges[x.edge].part, x.at_end) <
+             std::make_tuple(topo_.edges[y.edge].axis_id, topo_.edges[y.edge].part, y.at_end);
+    });
+    if (ends.size() == 1) {  // a dead end: the section runs to the end of the axis
+      record_border(ends[0]);
+      return;
+    }
+
+    if (is_width_transition(ends)) {
+      transition_[n] = true;
+      build_transition_borders(n, ends);
+      return;
+    }
+
+    std::vector<CornerResult>& corners = corners_of_node_[n];
+    for (std::size_t i = 0; i < ends.size(); ++i) {
+      corners.push_back(build_corner(n, ends[i], ends[(i + 1) % ends.size()]));
+    }
+    for (std::size_t i = 0; i < ends.size(); ++i) {
+      if (corners[i].status == "no_corner") {
+        // Two axes that never part within reach (meeting at 0 degrees, one inside the other):
+        // the junction takes both as far as it may, and their surfaces merge there.
+        ends[i].border = ends[i].available;
+        ends[(i + 1) % ends.size()].border = ends[(i + 1) % ends.size()].available;
+      }
+    }
+    for (End& e : ends) {
+      e.border = std::min(e.border, e.available);
+      record_border(e);
+    }
+  }
+
+  void record_border(const End& e) {
+    auto& b = border_[e.edge];
+    (e.at_end ? b.second : b.first) = e.border;
+  }
+
+  // Degree-2 node where only the width changes: a linear transition over a length that grows
+  // with the change (the paper's variable buffer), instead of curb arcs.
+  void build_transition_borders(std::size_t n, std::vector<End>& ends) {
+    const TopologyNode& node = topo_.nodes[n];
+    double change = std::abs(ends[0].half_width - ends[1].half_width) * 2;
+    double half_length = 0.5 * std::max(s_.min_transition_length, s_.transition_length_per_metre * change);
+    for (End& e : ends) {
+      e.border = std::min(half_length, e.available);
+      record_border(e);
+    }
+    for (std::size_t i = 0; i < 2; ++i) {
+      CornerResult c;
+      c.node_id = node.id;
+      c.a = key_of(ends[i]);
+      c.b = key_of(ends[1 - i]);
+      c.radius_wanted = std::min(ends[0].radius, ends[1].radius);
+      c.status = "transition";
+      corners_of_node_[n].push_back(std::move(c));
+    }
+  }
+
+  void build_transition_surface(std::size_t n) {
+    const std::vector<End>& ends = ends_of_node_[n];
+    // The path from end 0's border line through the node to end 1's border line, with the half
+    // width varying linearly along it.
+    Polyline path = reversed(substring(ends[0].outgoing, 0.0, ends[0].border));
+    Polyline second = substring(ends[1].outgoing, 0.0, ends[1].border);
+    path.insert(path.end(), second.begin() + 1, second.end());
+    path = without_repeated_points(path, 1e-9);
+    double total = length(path);
+    Polyline left, right;
+    double walked = 0.0;
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      if (i > 0) walked += distance(path[i - 1], path[i]);
+      double t = total > 0.0 ? walked / total : 0.0;
+      double h = ends[0].half_width + t * (ends[1].half_width - ends[0].half_width);
+      Point before = i > 0 ? unit(path[i] - path[i - 1]) : unit(path[1] - path[0]);
+      Point after = i + 1 < path.size() ? unit(path[i + 1] - path[i]) : before;
+      Point nrm = unit(left_normal(before) + left_normal(after));
+      if (norm(nrm) == 0.0) nrm = left_normal(after);
+      double cos_half = dot(nrm, left_normal(after));
+      double scale = cos_half > 0.5 ? 1.0 / cos_half : 2.0;
+      left.push_back(path[i] + (h * scale) * nrm);
+      right.push_back(path[i] - (h * scale) * nrm);
+    }
+    Polyline ring = left;
+    ring.insert(ring.end(), right.rbegin(), right.rend());
+    finish_intersection(n, make_polygon(ctx_, ring), "transition");
+  }
+
+  // The ring around the node: each end's border line, then the curb of each corner (along the
+  // border back to the arc, the arc, out along the next border), as the paper's surface model.
+  void build_intersection(std::size_t n) {
+    const TopologyNode& node = topo_.nodes[n];
+    const std::vector<End>& ends = ends_of_node_[n];
+    const std::vector<CornerResult>& corners = corners_of_node_[n];
+    bool merged = std::any_of(corners.begin(), corners.end(), [](const CornerResult& c) { return c.status == "no_corner"; });
+    if (merged) {
+      finish_intersection(n, nullptr, "merged");
+      return;
+    }
+    Polyline ring;
+    auto append = [&](const Polyline& pts) {
+      for (const Point& p : pts) {
+        if (ring.empty() || distance(ring.back(), p) > 1e-9) ring.push_back(p);
+      }
+    };
+    for (std::size_t i = 0; i < ends.size(); ++i) {
+      const End& a = ends[i];
+      const End& b = ends[(i + 1) % ends.size()];
+      const CornerResult& c = corners[i];
+      append({border_point(a.outgoing, a.border, a.half_width, -1), border_point(a.outgoing, a.border, a.half_width, +1)});
+      if (c.status == "convex") {
+        // Around the outside of the node: a's left border in, round the node, b's right border out.
+        append(border_path(a.outgoing, a.border, 0.0, a.half_width, +1));
+        Point from = border_point(a.outgoing, 0.0, a.half_width, +1);
+        Point to = border_point(b.outgoing, 0.0, b.half_width, -1);
+        double h = 0.5 * (a.half_width + b.half_width);
+        double a0 = angle_of(from - node.position);
+        double sweep = ccw_angle(from - node.position, to - node.position);
+        if (sweep > 2 * kPi - 1e-9) sweep = 0.0;  // straight on: the borders continue each other
+        int steps = static_cast<int>(std::ceil(sweep / (kPi / 2) * kQuadrantSegments));
+        for (int k = 1; k < steps; ++k) {
+          double ang = a0 + sweep * k / steps;
+          ring.push_back(node.position + h * Point{std::cos(ang), std::sin(ang)});
+        }
+        append(border_path(b.outgoing, 0.0, b.border, b.half_width, -1));
+      } else {
+        double foot_a = project(a.outgoing, c.arc_points.front()).abscissa;
+        double foot_b = project(b.outgoing, c.arc_points.back()).abscissa;
+        append(border_path(a.outgoing, a.border, std::min(foot_a, a.border), a.half_width, +1));
+        append(c.arc_points);
+        append(border_path(b.outgoing, std::min(foot_b, b.border), b.border, b.half_width, -1));
+      }
+    }
+    finish_intersection(n, make_polygon(ctx_, ring), "ok");
+  }
+
+  // Keeps a valid constructed polygon. Otherwise (invalid ring on messy data, merged axes) the
+  // fallback: the stubs of the axes up to their border lines, buffered, with the node's
+  // surroundings, minus the sections around the node: never a missing junction, never an
+  // overlap with a section.
+  void finish_intersection(std::size_t n, GeomPtr polygon, const char* status) {
+    const TopologyNode& node = topo_.nodes[n];
+    IntersectionResult ir;
+    ir.node_id = node.id;
+    ir.status = status;
+    if (polygon && GEOSisValid_r(ctx_.handle(), polygon.get()) == 1 && area_of(ctx_, polygon.get()) > 1e-9) {
+      ir.surface = std::move(polygon);
+    } else {
+      if (ir.status != "merged") ir.status = "fallback";
+      ir.surface = fallback_polygon(n);
+    }
+    result_.intersections.push_back(std::move(ir));
+  }
+
+  GeomPtr fallback_polygon(std::size_t n) {
+    const TopologyNode& node = topo_.nodes[n];
+    const std::vector<End>& ends = ends_of_node_[n];
+    std::vector<GeomPtr> parts;
+    double h_max = 0.0;
+    for (const End& e : ends) {
+      h_max = std::max(h_max, e.half_width);
+      if (e.border <= 1e-9) continue;
+      GeomPtr stub = make_line(ctx_, substring(e.outgoing, 0.0, e.border));
+      parts.push_back(own(ctx_,
+                          GEOSBufferWithStyle_r(ctx_.handle(), stub.get(), e.half_width, kQuadrantSegments,
+                                                GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_ROUND, 5.0),
+                          "stub buffer"));
+    }
+    GeomPtr centre = make_point(ctx_, node.position);
+    parts.push_back(own(ctx_, GEOSBuffer_r(ctx_.handle(), centre.get(), std::max(h_max, 0.25), kQuadrantSegments), "node buffer"));
+    std::vector<GEOSGeometry*> raw;
+    for (GeomPtr& p : parts) raw.push_back(p.release());
+    GeomPtr collection = own(ctx_,
+                             GEOSGeom_createCollection_r(ctx_.handle(), GEOS_GEOMETRYCOLLECTION, raw.data(),
+                                                         static_cast<unsigned>(raw.size())),
+                             "collection");
+    GeomPtr surface = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), collection.get()), "union");
+    // Minus the sections of the axes at this node.
+    for (const End& e : ends) {
+      const TopologyEdge& edge = topo_.edges[e.edge];
+      auto it = section_surface_.find({edge.axis_id, edge.part});
+      if (it == section_surface_.end()) continue;
+      if (GEOSIntersects_r(ctx_.handle(), surface.get(), it->second) != 1) continue;
+      surface = own(ctx_, GEOSDifference_r(ctx_.handle(), surface.get(), it->second), "difference");
+    }
+    GeomPtr part = pick_polygon(ctx_, surface.get(), node.position);
+    if (part && area_of(ctx_, part.get()) > 1e-9) return part;
+    return own(ctx_, GEOSBuffer_r(ctx_.handle(), centre.get(), 0.25, kQuadrantSegments), "node buffer");
+  }
+
+  void build_section(std::size_t e) {
+    const TopologyEdge& edge = topo_.edges[e];
+    const SurfaceAxis& axis = axes_[edge.axis_index];
+    SectionResult sr;
+    sr.axis_id = edge.axis_id;
+    sr.part = edge.part;
+    sr.from_node = topo_.nodes[edge.from_node].id;
+    sr.to_node = topo_.nodes[edge.to_node].id;
+    sr.centre_line = edge.line;
+    double len = length(edge.line);
+    sr.start_border = border_[e].first;
+    sr.end_border = len - border_[e].second;
+    if (edge.duplicate) {
+      sr.status = "duplicate";
+    } else if (sr.end_border - sr.start_border <= 1e-6) {
+      sr.status = "absorbed";
+    } else {
+      sr.status = "ok";
+      GeomPtr line = make_line(ctx_, substring(edge.line, sr.start_border, sr.end_border));
+      sr.surface = own(ctx_,
+                       GEOSBufferWithStyle_r(ctx_.handle(), line.get(), axis.roadway_width / 2, kQuadrantSegments,
+                                             GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_ROUND, 5.0),
+                       "section buffer");
+    }
+    result_.sections.push_back(std::move(sr));
+  }
+
+  GeosContext& ctx_;
+  const std::vector<SurfaceAxis>& axes_;
+  const std::vector<CornerOverride>& overrides_;
+  const SurfaceSettings& s_;
+  Topology topo_;
+  std::vector<std::vector<End>> ends_of_node_;
+  std::vector<std::pair<double, double>> border_;  // per edge: border abscissa at its start, at its end
+  std::vector<std::vector<CornerResult>> corners_of_node_;
+  std::vector<bool> transition_;
+  std::map<std::pair<std::int64_t, int>, const GEOSGeometry*> section_surface_;
+  SurfaceResult result_;
+};
+
+}  // namespace
+
+double radius_for_speed(const SurfaceSettings& settings, double speed_kmh) {
+  double v = settings.turn_speed_ratio * speed_kmh / 3.6;
+  double r = v * v / settings.lateral_acceleration;
+  return std::clamp(r, settings.min_radius, std::max(settings.min_radius, settings.max_radius));
+}
+
+SurfaceResult street_surfaces(GeosContext& ctx, const std::vector<SurfaceAxis>& axes,
+                              const std::vector<CornerOverride>& corner_overrides, const SurfaceSettings& settings) {
+  auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  if (!(std::isfinite(settings.snap_tolerance) && settings.snap_tolerance >= 0.0) || !positive(settings.min_radius) ||
+      !positive(settings.max_radius) || !positive(settings.turn_speed_ratio) || !positive(settings.lateral_acceleration) ||
+      !positive(settings.misplaced_factor) || !(std::isfinite(settings.min_border_distance) && settings.min_border_distance >= 0.0) ||
+      !positive(settings.transition_length_per_metre) || !(std::isfinite(settings.min_transition_length) && settings.min_transition_length >= 0.0)) {
+    throw_invalid_argument("street surface settings must be finite and positive");
+  }
+  for (const SurfaceAxis& a : axes) check_axis(a);
+  for (const CornerOverride& o : corner_overrides) {
+    if (!positive(o.radius)) throw_invalid_argument("corner radius overrides must be finite numbers > 0");
+  }
+  return SurfaceBuilder(ctx, axes, corner_overrides, settings).run();
+}
+
+}  // namespace streetgen::core

@@ -1,0 +1,113 @@
+// StreetGen street surfaces from road axes (Cura et al. 2015, steps 2-7): a radius per corner
+// from speed, arc centres on polylines, border points, section surfaces and intersection
+// surfaces, with the paper's fallbacks, plus linear transitions where only the width changes.
+#pragma once
+#include "core/no_postgres.hpp"
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/geos_context.hpp"
+#include "core/streets/polyline.hpp"
+#include "core/streets/topology.hpp"
+
+namespace streetgen::core {
+
+struct SurfaceSettings {
+  double snap_tolerance = 0.5;         // m: endpoints closer than this are one node
+  double turn_speed_ratio = 0.35;      // turning speed at a corner / speed on the street
+  double lateral_acceleration = 3.0;   // m/s^2, comfortable (about 0.3 g)
+  double min_radius = 0.15;            // m: the paper's fallback (a Paris lane separator stone)
+  double max_radius = 25.0;            // m
+  double misplaced_factor = 3.0;       // an arc farther than this x (half width + r) from the node is misplaced
+  double min_border_distance = 0.5;    // m: every junction reaches at least this far along its axes
+  double transition_length_per_metre = 5.0;  // m of transition per metre of width change
+  double min_transition_length = 5.0;        // m
+  double max_transition_deflection_deg = 30.0;  // width transitions only where the axis runs on
+};
+
+// Kinematic rule of thumb: a vehicle turns at turn_speed_ratio x the street speed with a lateral
+// acceleration a, so r = (ratio * v)^2 / a, clamped to [min_radius, max_radius]. With the
+// defaults: 30 km/h -> 2.8 m, 40 -> 5.0 m, 50 -> 7.9 m (the paper reads 3, 4.9, 7.6 m in Paris).
+double radius_for_speed(const SurfaceSettings& settings, double speed_kmh);
+
+struct SurfaceAxis {
+  std::int64_t id = 0;
+  Polyline line;
+  double roadway_width = 0.0;
+  double speed_kmh = 0.0;
+  int layer = 0;
+  std::optional<double> radius_override;
+};
+
+struct EdgeEnd {
+  std::int64_t axis_id = 0;
+  int part = 0;
+  bool at_end = false;  // false: the part's start
+};
+inline bool operator==(const EdgeEnd& a, const EdgeEnd& b) {
+  return a.axis_id == b.axis_id && a.part == b.part && a.at_end == b.at_end;
+}
+
+struct CornerOverride {
+  std::int64_t node_id = 0;
+  EdgeEnd a;
+  EdgeEnd b;
+  double radius = 0.0;
+};
+
+struct NodeResult {
+  std::int64_t id = 0;
+  Point position;
+  int layer = 0;
+  int degree = 0;
+  std::vector<std::int64_t> axis_ids;  // sorted, distinct
+};
+
+struct SectionResult {
+  std::int64_t axis_id = 0;
+  int part = 0;
+  std::int64_t from_node = 0;
+  std::int64_t to_node = 0;
+  Polyline centre_line;          // the whole part, node to node
+  double start_border = 0.0;     // abscissas of the border lines on centre_line
+  double end_border = 0.0;
+  GeomPtr surface;               // null when the junctions take the whole part
+  std::string status;            // ok, absorbed, duplicate
+};
+
+struct CornerResult {
+  std::int64_t node_id = 0;
+  EdgeEnd a;  // the corner is swept counter-clockwise from a to b
+  EdgeEnd b;
+  double radius_wanted = 0.0;
+  double radius = 0.0;         // used; 0 for a sharp corner
+  std::string status;          // ok, radius_reduced, min_radius, sharp, no_corner, convex, transition
+  std::optional<Point> centre;
+  std::array<Point, 3> arc{};  // start (on a's border), middle, end (on b's border): a circular arc
+  Polyline arc_points;         // the arc segmentised (or the sharp corner point)
+};
+
+struct IntersectionResult {
+  std::int64_t node_id = 0;
+  GeomPtr surface;
+  std::string status;  // ok, transition, repaired, fallback
+};
+
+struct SurfaceResult {
+  std::vector<NodeResult> nodes;
+  std::vector<SectionResult> sections;
+  std::vector<CornerResult> corners;
+  std::vector<IntersectionResult> intersections;
+  std::vector<TopologyIssue> issues;
+};
+
+// Checks the inputs (finite, positive widths and speeds; throws invalid_argument naming the axis)
+// and computes everything. Set-based: one call for a whole city.
+SurfaceResult street_surfaces(GeosContext& ctx, const std::vector<SurfaceAxis>& axes,
+                              const std::vector<CornerOverride>& corner_overrides, const SurfaceSettings& settings);
+
+}  // namespace streetgen::core

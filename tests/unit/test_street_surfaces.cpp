@@ -1,0 +1,218 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/streets/arc_centre.hpp"
+#include "core/streets/street_surfaces.hpp"
+
+using namespace streetgen::core;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+double area(GeosContext& ctx, const GEOSGeometry* g) {
+  double a = 0;
+  GEOSArea_r(ctx.handle(), g, &a);
+  return a;
+}
+
+double overlap_area(GeosContext& ctx, const GEOSGeometry* a, const GEOSGeometry* b) {
+  GeomPtr i = own(ctx, GEOSIntersection_r(ctx.handle(), a, b), "intersection");
+  return area(ctx, i.get());
+}
+
+SurfaceAxis axis(std::int64_t id, Polyline line, double width, double speed) {
+  SurfaceAxis a;
+  a.id = id;
+  a.line = std::move(line);
+  a.roadway_width = width;
+  a.speed_kmh = speed;
+  return a;
+}
+
+// Every output valid; no two surfaces overlap (beyond rounding).
+void expect_valid_and_disjoint(GeosContext& ctx, const SurfaceResult& r) {
+  std::vector<const GEOSGeometry*> all;
+  for (const auto& s : r.sections) {
+    if (s.surface) all.push_back(s.surface.get());
+  }
+  for (const auto& i : r.intersections) {
+    ASSERT_TRUE(i.surface) << "missing intersection surface";
+    all.push_back(i.surface.get());
+  }
+  for (const GEOSGeometry* g : all) EXPECT_EQ(GEOSisValid_r(ctx.handle(), g), 1);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    for (std::size_t j = i + 1; j < all.size(); ++j) EXPECT_LT(overlap_area(ctx, all[i], all[j]), 1e-6) << i << " " << j;
+  }
+}
+}  // namespace
+
+TEST(RadiusRule, MatchesThePapersRadiiForCitySpeeds) {
+  SurfaceSettings s;
+  EXPECT_NEAR(radius_for_speed(s, 30), 2.8, 0.1);
+  EXPECT_NEAR(radius_for_speed(s, 40), 5.0, 0.1);
+  EXPECT_NEAR(radius_for_speed(s, 50), 7.9, 0.1);
+  EXPECT_DOUBLE_EQ(radius_for_speed(s, 2), s.min_radius);
+  EXPECT_DOUBLE_EQ(radius_for_speed(s, 300), s.max_radius);
+}
+
+TEST(ArcCentre, RightAngleAndPolylines) {
+  auto c = arc_centre({{0, 0}, {50, 0}}, 5, {{0, 0}, {0, 50}}, 4);
+  ASSERT_TRUE(c);
+  EXPECT_NEAR(c->x, 4, 1e-9);
+  EXPECT_NEAR(c->y, 5, 1e-9);
+  // 180 degrees: parallel offsets, no centre.
+  EXPECT_FALSE(arc_centre({{0, 0}, {50, 0}}, 5, {{0, 0}, {-50, 0}}, 5));
+  // A reflex corner (swept the long way round) has none either.
+  EXPECT_FALSE(arc_centre({{0, 0}, {0, 50}}, 5, {{0, 0}, {50, 0}}, 5));
+  // Polyline: the centre found on the second segment is at the right distance from both.
+  Polyline a{{0, 0}, {4, 0}, {30, 15}};
+  Polyline b{{0, 0}, {-5, 40}};
+  auto p = arc_centre(a, 6, b, 6);
+  ASSERT_TRUE(p);
+  EXPECT_NEAR(project(a, *p).distance, 6, 1e-7);
+  EXPECT_NEAR(project(b, *p).distance, 6, 1e-7);
+}
+
+TEST(StreetSurfaces, CrossJunctionHasFourArcsAndTheExpectedArea) {
+  GeosContext ctx;
+  SurfaceSettings s;
+  std::vector<SurfaceAxis> axes{axis(1, {{-50, 0}, {50, 0}}, 10, 50), axis(2, {{0, -50}, {0, 50}}, 10, 50)};
+  SurfaceResult r = street_surfaces(ctx, axes, {}, s);
+  double radius = radius_for_speed(s, 50);
+  ASSERT_EQ(r.intersections.size(), 1u);
+  ASSERT_EQ(r.corners.size(), 4u);
+  for (const auto& c : r.corners) {
+    EXPECT_EQ(c.status, "ok");
+    EXPECT_NEAR(c.radius, radius, 1e-9);
+    ASSERT_TRUE(c.centre);
+    EXPECT_NEAR(std::abs(c.centre->x), 5 + radius, 1e-7);
+    EXPECT_NEAR(std::abs(c.centre->y), 5 + radius, 1e-7);
+    EXPECT_NEAR(distance(c.arc[1], *c.centre), radius, 1e-7);
+  }
+  // Square of side 10 + 2r minus four r x r corner squares, plus what of them lies outside the arcs
+  // (r^2 minus the quarter disc, segmentised with 8 chords per quarter circle).
+  double quarter = 8 * radius * radius / 2 * std::sin(kPi / 16);
+  double expected = std::pow(10 + 2 * radius, 2) - 4 * quarter;
+  EXPECT_NEAR(area(ctx, r.intersections[0].surface.get()), expected, 1e-6);
+  ASSERT_EQ(r.sections.size(), 4u);
+  for (const auto& sec : r.sections) {
+    EXPECT_EQ(sec.status, "ok");
+    EXPECT_NEAR(area(ctx, sec.surface.get()), 10 * (50 - 5 - radius), 1e-6);
+  }
+  expect_valid_and_disjoint(ctx, r);
+}
+
+TEST(StreetSurfaces, ShortAxisShrinksTheRadius) {
+  GeosContext ctx;
+  SurfaceSettings s;
+  // A 12 m stub between two junctions cannot hold 7.9 m arcs at both ends.
+  std::vector<SurfaceAxis> axes{axis(1, {{-60, 0}, {0, 0}}, 8, 50), axis(2, {{0, 0}, {12, 0}}, 8, 50),
+                                axis(3, {{12, 0}, {60, 0}}, 8, 50), axis(4, {{0, 0}, {0, 60}}, 8, 50),
+                                axis(5, {{12, 0}, {12, -60}}, 8, 50)};
+  SurfaceResult r = street_surfaces(ctx, axes, {}, s);
+  int reduced = 0;
+  for (const auto& c : r.corners) {
+    if (c.status == "radius_reduced") {
+      ++reduced;
+      EXPECT_LT(c.radius, c.radius_wanted);
+    }
+  }
+  EXPECT_GT(reduced, 0);
+  expect_valid_and_disjoint(ctx, r);
+}
+
+TEST(StreetSurfaces, AcuteAngleFallsBackAndStaysValid) {
+  GeosContext ctx;
+  SurfaceSettings s;
+  std::vector<SurfaceAxis> axes{axis(1, {{0, 0}, {80, 0}}, 8, 50), axis(2, {{0, 0}, {80, 6}}, 8, 50),
+                                axis(3, {{0, 0}, {-80, 0}}, 8, 50)};
+  SurfaceResult r = street_surfaces(ctx, axes, {}, s);
+  ASSERT_EQ(r.intersections.size(), 1u);
+  bool fallback = std::any_of(r.corners.begin(), r.corners.end(), [](const CornerResult& c) {
+    return c.status == "min_radius" || c.status == "sharp" || c.status == "radius_reduced" || c.status == "no_corner";
+  });
+  EXPECT_TRUE(fallback);
+  expect_valid_and_disjoint(ctx, r);
+}
+
+TEST(StreetSurfaces, WidthChangeAtADegreeTwoNodeIsALinearTransition) {
+  GeosContext ctx;
+  SurfaceSettings s;
+  std::vector<SurfaceAxis> axes{axis(1, {{-50, 0}, {0, 0}}, 6, 50), axis(2, {{0, 0}, {50, 0}}, 10, 50)};
+  SurfaceResult r = street_surfaces(ctx, axes, {}, s);
+  ASSERT_EQ(r.intersections.size(), 1u);
+  EXPECT_EQ(r.intersections[0].status, "transition");
+  // Length max(5, 5 m per m of change = 20 m): a trapezoid 20 m long from 6 to 10 m wide.
+  EXPECT_NEAR(area(ctx, r.intersections[0].surface.get()), 20 * 8, 1e-6);
+  for (const auto& c : r.corners) EXPECT_EQ(c.status, "transition");
+  expect_valid_and_disjoint(ctx, r);
+}
+
+TEST(StreetSurfaces, OverridesWin) {
+  GeosContext ctx;
+  SurfaceSettings s;
+  std::vector<SurfaceAxis> axes{axis(1, {{-50, 0}, {50, 0}}, 10, 50), axis(2, {{0, 0}, {0, 50}}, 10, 50)};
+  axes[1].radius_override = 2.0;
+  SurfaceResult r = street_surfaces(ctx, axes, {}, s);
+  for (const auto& c : r.corners) {
+    if (c.status == "ok") {
+      EXPECT_NEAR(c.radius, 2.0, 1e-9);
+    }
+  }
+  // A per-corner override beats the axis one.
+  const CornerResult* first = nullptr;
+  for (const auto& c : r.corners) {
+    if (c.status == "ok") first = &c;
+  }
+  ASSERT_NE(first, nullptr);
+  CornerOverride o{first->node_id, first->a, first->b, 4.5};
+  SurfaceResult r2 = street_surfaces(ctx, axes, {o}, s);
+  int overridden = 0;
+  for (const auto& c : r2.corners) {
+    if (c.a == o.a && c.b == o.b) {
+      EXPECT_NEAR(c.radius, 4.5, 1e-9);
+      ++overridden;
+    }
+  }
+  EXPECT_EQ(overridden, 1);
+}
+
+TEST(StreetSurfaces, BadInputIsRefusedWithTheAxisId) {
+  GeosContext ctx;
+  SurfaceSettings s;
+  for (double w : {0.0, -1.0, std::nan("")}) {
+    try {
+      street_surfaces(ctx, {axis(42, {{0, 0}, {10, 0}}, w, 30)}, {}, s);
+      FAIL() << "width " << w << " accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::invalid_argument);
+      EXPECT_NE(std::string(e.what()).find("42"), std::string::npos);
+    }
+  }
+  EXPECT_THROW(street_surfaces(ctx, {axis(1, {{0, 0}, {std::nan(""), 0}}, 5, 30)}, {}, s), Error);
+  SurfaceSettings bad = s;
+  bad.min_radius = -1;
+  EXPECT_THROW(street_surfaces(ctx, {}, {}, bad), Error);
+}
+
+TEST(StreetSurfaces, DegreeEightJunctionAndDeadEnds) {
+  GeosContext ctx;
+  SurfaceSettings s;
+  std::vector<SurfaceAxis> axes;
+  for (int k = 0; k < 8; ++k) {
+    double a = k * kPi / 4;
+    axes.push_back(axis(k + 1, {{0, 0}, {60 * std::cos(a), 60 * std::sin(a)}}, 7, 40));
+  }
+  SurfaceResult r = street_surfaces(ctx, axes, {}, s);
+  ASSERT_EQ(r.intersections.size(), 1u);  // dead ends have no junction surface
+  EXPECT_EQ(r.corners.size(), 8u);
+  for (const auto& n : r.nodes) {
+    if (n.degree == 8) {
+      EXPECT_EQ(n.axis_ids.size(), 8u);
+    }
+  }
+  expect_valid_and_disjoint(ctx, r);
+}
