@@ -8,7 +8,8 @@ curbs from OSM + ALKIS). Both are clipped to the same area and compared in UTM 3
 (EPSG:32633).
 
 Clip area (MODE):
-  auto        DIR/boundary.json if it exists, else 'hull' (default)
+  auto        DIR/boundary.json if it exists, else 'roads-hull' (default; the neukolln
+              case has no boundary.json)
   boundary    DIR/boundary.json (error if missing)
   hull        convex hull of all nodes of all <way>s of DIR/input.osm
   bbox        bounding box of the same nodes
@@ -17,7 +18,8 @@ Clip area (MODE):
   highway-hull convex hull of the nodes of all highway=* ways (footways too)
 Inputs in WGS84 (GeoJSON default). Prints one line:
   clip=<mode> area_iou=<x> truth_covered=<share of truth covered> produced_area_m2=<a>
-  truth_area_m2=<b> intersection_m2=<i> clip_area_m2=<c>
+  truth_area_m2=<b> produced_in_truth=<share of produced area on real carriageway>
+  intersection_m2=<i> clip_area_m2=<c>
 (produced_area_m2 and truth_area_m2 are inside the clip area).
 """
 import argparse
@@ -71,7 +73,7 @@ def osm_points(path, keep):
 def clip_area(mode, case):
     bpath = os.path.join(case, "boundary.json")
     if mode == "auto":
-        mode = "boundary" if os.path.exists(bpath) else "hull"
+        mode = "boundary" if os.path.exists(bpath) else "roads-hull"
     if mode == "boundary":
         d = json.load(open(bpath))
         feats = d["features"] if "features" in d else [d]
@@ -103,8 +105,10 @@ def main():
     union = produced.union(truth).area
     iou = inter / union if union > 0 else 0.0
     cov = inter / truth.area if truth.area > 0 else 0.0
+    prec = inter / produced.area if produced.area > 0 else 0.0
     print("clip=%s area_iou=%.4f truth_covered=%.4f produced_area_m2=%.0f truth_area_m2=%.0f "
-          "intersection_m2=%.0f clip_area_m2=%.0f" % (mode, iou, cov, produced.area, truth.area, inter, clip.area))
+          "produced_in_truth=%.4f intersection_m2=%.0f clip_area_m2=%.0f"
+          % (mode, iou, cov, produced.area, truth.area, prec, inter, clip.area))
 
 
 if __name__ == "__main__":
