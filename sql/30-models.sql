@@ -31,6 +31,84 @@ CREATE FUNCTION streetgen._lock_model_name(name text)
   SET search_path FROM CURRENT
   AS $$ SELECT pg_advisory_xact_lock(hashtext('streetgen.model'), hashtext(name)) $$;
 
+-- The generated tables of a model: settings, node, section, corner, intersection, issue. Every
+-- row is keyed so that regenerating the same axes gives the same keys, and points to the axes
+-- or nodes it came from (deleting an axis deletes its sections and corners).
+CREATE FUNCTION streetgen._create_output_tables(name text, srid integer)
+  RETURNS void
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  AS $$
+BEGIN
+  EXECUTE format($ddl$
+    CREATE TABLE %1$I.settings (LIKE streetgen.default_settings INCLUDING ALL);
+    INSERT INTO %1$I.settings SELECT * FROM streetgen.default_settings;
+    COMMENT ON TABLE %1$I.settings IS 'Street surface settings of this model (one row; see streetgen.default_settings)';
+
+    CREATE TABLE %1$I.node (
+      id bigint PRIMARY KEY,
+      geom geometry(Point, %2$s) NOT NULL,
+      degree integer NOT NULL,
+      layer smallint NOT NULL,
+      axis_ids bigint[] NOT NULL
+    );
+    CREATE INDEX node_geom_idx ON %1$I.node USING gist (geom);
+    COMMENT ON TABLE %1$I.node IS 'Junctions and dead ends of the axis network (id: stable hash of position and layer)';
+
+    CREATE TABLE %1$I.section (
+      axis_id bigint NOT NULL REFERENCES %1$I.axis (id) ON DELETE CASCADE,
+      part integer NOT NULL,
+      from_node bigint NOT NULL REFERENCES %1$I.node (id) ON DELETE CASCADE,
+      to_node bigint NOT NULL REFERENCES %1$I.node (id) ON DELETE CASCADE,
+      status text NOT NULL,
+      start_border double precision NOT NULL,
+      end_border double precision NOT NULL,
+      centre_line geometry(LineString, %2$s) NOT NULL,
+      geom geometry(Polygon, %2$s),
+      PRIMARY KEY (axis_id, part)
+    );
+    CREATE INDEX section_geom_idx ON %1$I.section USING gist (geom);
+    COMMENT ON TABLE %1$I.section IS 'Constant part of each axis part between its border lines (geom NULL when the junctions take it all)';
+
+    CREATE TABLE %1$I.corner (
+      node_id bigint NOT NULL REFERENCES %1$I.node (id) ON DELETE CASCADE,
+      axis_a bigint NOT NULL REFERENCES %1$I.axis (id) ON DELETE CASCADE,
+      part_a integer NOT NULL,
+      end_a boolean NOT NULL,
+      axis_b bigint NOT NULL REFERENCES %1$I.axis (id) ON DELETE CASCADE,
+      part_b integer NOT NULL,
+      end_b boolean NOT NULL,
+      status text NOT NULL,
+      radius_wanted double precision,
+      radius double precision,
+      radius_override double precision CHECK (radius_override > 0 AND radius_override <= 500),
+      centre geometry(Point, %2$s),
+      arc geometry(CircularString, %2$s),
+      arc_segmentized geometry(LineString, %2$s),
+      PRIMARY KEY (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b)
+    );
+    COMMENT ON TABLE %1$I.corner IS 'Curb corner between two consecutive axes around a node (counter-clockwise from a to b): arc, radius, status';
+    COMMENT ON COLUMN %1$I.corner.radius_override IS 'Set by you: the radius of this corner at the next generate (kept across runs)';
+
+    CREATE TABLE %1$I.intersection (
+      node_id bigint PRIMARY KEY REFERENCES %1$I.node (id) ON DELETE CASCADE,
+      status text NOT NULL,
+      axis_ids bigint[] NOT NULL,
+      geom geometry(Polygon, %2$s) NOT NULL
+    );
+    CREATE INDEX intersection_geom_idx ON %1$I.intersection USING gist (geom);
+    COMMENT ON TABLE %1$I.intersection IS 'Junction surface of each node of degree 2 or more';
+
+    CREATE TABLE %1$I.issue (
+      axis_id bigint REFERENCES %1$I.axis (id) ON DELETE CASCADE,
+      kind text NOT NULL,
+      detail text
+    );
+    COMMENT ON TABLE %1$I.issue IS 'What the last generate could not use as given (duplicate or degenerate axes, ...)';
+  $ddl$, name, srid);
+END
+$$;
+
 CREATE FUNCTION streetgen.create_model(name text, srid integer)
   RETURNS void
   LANGUAGE plpgsql VOLATILE
@@ -88,6 +166,7 @@ BEGIN
       CONSTRAINT axis_tags_object CHECK (jsonb_typeof(tags) = 'object')
     )$ddl$, name, srid);
   EXECUTE format('CREATE INDEX axis_geom_idx ON %I.axis USING gist (geom)', name);
+  PERFORM streetgen._create_output_tables(name, srid);
   EXECUTE format($c$COMMENT ON TABLE %I.axis IS
     'Road axes (input): centre lines with roadway width (m), lanes, speed (km/h), class, one-way, layer (bridges/tunnels), source'$c$, name);
   EXECUTE format($c$COMMENT ON COLUMN %I.axis.estimated IS

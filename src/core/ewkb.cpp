@@ -53,4 +53,30 @@ Bytes write_ewkb(GeosContext& ctx, GEOSGeometry* geom, int srid) {
   return Bytes(buffer.get(), buffer.get() + size);
 }
 
+Bytes write_ewkb_coordinates(WkbType type, const double* xy, std::size_t point_count, int srid) {
+  Bytes out;
+  auto put = [&out](const void* data, std::size_t n) {
+    const auto* bytes = static_cast<const std::uint8_t*>(data);
+    out.insert(out.end(), bytes, bytes + n);
+  };
+  static_assert(sizeof(double) == 8, "IEEE doubles expected");
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "write_ewkb_coordinates writes the host's byte order and marks it little-endian"
+#endif
+  std::uint8_t order = 1;
+  std::uint32_t code = static_cast<std::uint32_t>(type) | (srid != 0 ? 0x20000000u : 0u);
+  put(&order, 1);
+  put(&code, 4);
+  if (srid != 0) {
+    std::uint32_t s = static_cast<std::uint32_t>(srid);
+    put(&s, 4);
+  }
+  if (type != WkbType::point) {
+    std::uint32_t n = static_cast<std::uint32_t>(point_count);
+    put(&n, 4);
+  }
+  put(xy, 2 * point_count * sizeof(double));
+  return out;
+}
+
 }  // namespace streetgen::core

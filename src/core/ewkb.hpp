@@ -25,4 +25,9 @@ SridGeometry read_ewkb(GeosContext& ctx, const std::uint8_t* data, std::size_t s
 // Sets the SRID on `geom` (GEOS writers take it from the geometry).
 Bytes write_ewkb(GeosContext& ctx, GEOSGeometry* geom, int srid);
 
+// EWKB written straight from coordinates (no GEOS geometry in between): a Point, a LineString,
+// or a CircularString (which GEOS 3.11 cannot represent; PostGIS reads it as a true arc).
+enum class WkbType : std::uint32_t { point = 1, line_string = 2, circular_string = 8 };
+Bytes write_ewkb_coordinates(WkbType type, const double* xy, std::size_t point_count, int srid);
+
 }  // namespace streetgen::core

@@ -132,7 +132,8 @@ TEST(StreetSurfaces, AcuteAngleFallsBackAndStaysValid) {
   SurfaceResult r = street_surfaces(ctx, axes, {}, s);
   ASSERT_EQ(r.intersections.size(), 1u);
   bool fallback = std::any_of(r.corners.begin(), r.corners.end(), [](const CornerResult& c) {
-    return c.status == "min_radius" || c.status == "sharp" || c.status == "radius_reduced" || c.status == "no_corner";
+    return c.status == "min_radius" || c.status == "sharp" || c.status == "radius_reduced" || c.status == "clamped" ||
+           c.status == "no_corner";
   });
   EXPECT_TRUE(fallback);
   expect_valid_and_disjoint(ctx, r);

@@ -14,6 +14,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kQuadrantSegments = 8;  // arc points per quarter circle, as PostGIS's ST_Buffer
+constexpr double kSamePoint = 1e-6;   // m
 
 double angle_of(Point v) { return std::atan2(v.y, v.x); }
 
@@ -104,7 +105,11 @@ GeomPtr make_line(GeosContext& ctx, const Polyline& pts) {
 
 GeomPtr make_polygon(GeosContext& ctx, Polyline ring) {
   if (ring.empty()) return nullptr;
-  if (distance(ring.front(), ring.back()) > 0.0) ring.push_back(ring.front());
+  if (distance(ring.front(), ring.back()) > kSamePoint) {
+    ring.push_back(ring.front());
+  } else {
+    ring.back() = ring.front();
+  }
   if (ring.size() < 4) return nullptr;
   GEOSCoordSequence* seq = GEOSCoordSeq_create_r(ctx.handle(), static_cast<unsigned>(ring.size()), 2);
   if (seq == nullptr) ctx.fail("coordinate sequence");
@@ -352,7 +357,29 @@ class SurfaceBuilder {
       b.border = std::max(b.border, sharp->foot_b);
       return c;
     }
+    // The curb lines meet beyond the reach of this junction along an axis (very short axes,
+    // narrow angles): where the straight continuations of the first segments' borders meet;
+    // the junction takes the axes that far, or as far as it may ('clamped'). Two axes that
+    // never part (meeting at 0 degrees) are taken as far as the junction may ('no_corner').
+    Point ta = tangent_at(a.outgoing, 0.0);
+    Point tb = tangent_at(b.outgoing, 0.0);
+    double det = cross(ta, tb);
+    if (std::abs(det) > 1e-9) {
+      Point offset = (-b.half_width) * left_normal(tb) - a.half_width * left_normal(ta);
+      double along_a = cross(offset, tb) / det;
+      double along_b = cross(offset, ta) / det;
+      if (along_a >= 0.0 && along_b >= 0.0) {
+        c.status = "clamped";
+        a.border = std::max(a.border, std::min(along_a, a.available));
+        b.border = std::max(b.border, std::min(along_b, b.available));
+        return c;
+      }
+    }
     c.status = "no_corner";
+    if (sector < kPi / 2) {
+      a.border = a.available;
+      b.border = b.available;
+    }
     return c;
   }
 
@@ -407,14 +434,6 @@ class SurfaceBuilder {
     std::vector<CornerResult>& corners = corners_of_node_[n];
     for (std::size_t i = 0; i < ends.size(); ++i) {
       corners.push_back(build_corner(n, ends[i], ends[(i + 1) % ends.size()]));
-    }
-    for (std::size_t i = 0; i < ends.size(); ++i) {
-      if (corners[i].status == "no_corner") {
-        // Two axes that never part within reach (meeting at 0 degrees, one inside the other):
-        // the junction takes both as far as it may, and their surfaces merge there.
-        ends[i].border = ends[i].available;
-        ends[(i + 1) % ends.size()].border = ends[(i + 1) % ends.size()].available;
-      }
     }
     for (End& e : ends) {
       e.border = std::min(e.border, e.available);
@@ -483,15 +502,12 @@ class SurfaceBuilder {
     const TopologyNode& node = topo_.nodes[n];
     const std::vector<End>& ends = ends_of_node_[n];
     const std::vector<CornerResult>& corners = corners_of_node_[n];
-    bool merged = std::any_of(corners.begin(), corners.end(), [](const CornerResult& c) { return c.status == "no_corner"; });
-    if (merged) {
-      finish_intersection(n, nullptr, "merged");
-      return;
-    }
     Polyline ring;
+    // Points closer than a micrometre are one: GEOS sees a hair-thin back-and-forth as a
+    // self-intersection.
     auto append = [&](const Polyline& pts) {
       for (const Point& p : pts) {
-        if (ring.empty() || distance(ring.back(), p) > 1e-9) ring.push_back(p);
+        if (ring.empty() || distance(ring.back(), p) > kSamePoint) ring.push_back(p);
       }
     };
     for (std::size_t i = 0; i < ends.size(); ++i) {
@@ -514,19 +530,26 @@ class SurfaceBuilder {
           ring.push_back(node.position + h * Point{std::cos(ang), std::sin(ang)});
         }
         append(border_path(b.outgoing, 0.0, b.border, b.half_width, -1));
+      } else if (c.status == "clamped" || c.status == "no_corner") {
+        // Straight across to the next border line.
       } else {
+        // The arc's tangent points replace the border points at the feet: where a foot is at a
+        // bend of the axis the arc touches the rounded offset, not the normal of a segment.
         double foot_a = project(a.outgoing, c.arc_points.front()).abscissa;
         double foot_b = project(b.outgoing, c.arc_points.back()).abscissa;
-        append(border_path(a.outgoing, a.border, std::min(foot_a, a.border), a.half_width, +1));
+        Polyline in = border_path(a.outgoing, a.border, std::min(foot_a, a.border), a.half_width, +1);
+        in.pop_back();
+        Polyline out = border_path(b.outgoing, std::min(foot_b, b.border), b.border, b.half_width, -1);
+        out.erase(out.begin());
+        append(in);
         append(c.arc_points);
-        append(border_path(b.outgoing, std::min(foot_b, b.border), b.border, b.half_width, -1));
+        append(out);
       }
     }
     finish_intersection(n, make_polygon(ctx_, ring), "ok");
   }
 
-  // Keeps a valid constructed polygon. Otherwise (invalid ring on messy data, merged axes) the
-  // fallback: the stubs of the axes up to their border lines, buffered, with the node's
+  // Keeps a valid constructed polygon, or repairs it. Otherwise the fallback: the stubs of the axes up to their border lines, buffered, with the node's
   // surroundings, minus the sections around the node: never a missing junction, never an
   // overlap with a section.
   void finish_intersection(std::size_t n, GeomPtr polygon, const char* status) {
@@ -536,11 +559,47 @@ class SurfaceBuilder {
     ir.status = status;
     if (polygon && GEOSisValid_r(ctx_.handle(), polygon.get()) == 1 && area_of(ctx_, polygon.get()) > 1e-9) {
       ir.surface = std::move(polygon);
+    } else if (GeomPtr repaired = repair(polygon.get(), node.position)) {
+      ir.surface = std::move(repaired);
+      ir.status = "repaired";
     } else {
-      if (ir.status != "merged") ir.status = "fallback";
+      ir.status = "fallback";
       ir.surface = fallback_polygon(n);
     }
     result_.intersections.push_back(std::move(ir));
+  }
+
+  // A ring with small defects (spikes, a pinch where border and arc meet at a bend) made valid:
+  // the part holding the node, if it keeps nearly all of the ring's area. Null otherwise.
+  GeomPtr repair(const GEOSGeometry* polygon, Point node) {
+    if (polygon == nullptr) return nullptr;
+    double ring_area = std::abs(signed_area(polygon));
+    GEOSGeometry* fixed = GEOSMakeValid_r(ctx_.handle(), polygon);
+    if (fixed == nullptr) {
+      ctx_.clear_error();
+      return nullptr;
+    }
+    GeomPtr fixed_ptr(fixed, GeomDeleter{ctx_.handle()});
+    GeomPtr part = pick_polygon(ctx_, fixed_ptr.get(), node);
+    if (!part || ring_area <= 1e-9 || area_of(ctx_, part.get()) < 0.9 * ring_area) return nullptr;
+    return part;
+  }
+
+  // Shoelace area of a polygon's shell (what the ring meant, before any repair).
+  double signed_area(const GEOSGeometry* polygon) {
+    const GEOSGeometry* shell = GEOSGetExteriorRing_r(ctx_.handle(), polygon);
+    const GEOSCoordSequence* seq = shell ? GEOSGeom_getCoordSeq_r(ctx_.handle(), shell) : nullptr;
+    if (seq == nullptr) return 0.0;
+    unsigned int n = 0;
+    GEOSCoordSeq_getSize_r(ctx_.handle(), seq, &n);
+    double sum = 0.0;
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    for (unsigned int i = 0; i + 1 < n; ++i) {
+      GEOSCoordSeq_getXY_r(ctx_.handle(), seq, i, &x0, &y0);
+      GEOSCoordSeq_getXY_r(ctx_.handle(), seq, i + 1, &x1, &y1);
+      sum += x0 * y1 - x1 * y0;
+    }
+    return sum / 2;
   }
 
   GeomPtr fallback_polygon(std::size_t n) {

@@ -85,7 +85,10 @@ struct CornerResult {
   EdgeEnd b;
   double radius_wanted = 0.0;
   double radius = 0.0;         // used; 0 for a sharp corner
-  std::string status;          // ok, radius_reduced, min_radius, sharp, no_corner, convex, transition
+  // ok, radius_reduced (axis too short), min_radius (arc misplaced), sharp (no arc fits: curb
+  // lines meet at a point), clamped (they meet beyond the junction's reach), no_corner (they
+  // never meet), convex (outer side of a bend: no curb corner), transition (width change)
+  std::string status;
   std::optional<Point> centre;
   std::array<Point, 3> arc{};  // start (on a's border), middle, end (on b's border): a circular arc
   Polyline arc_points;         // the arc segmentised (or the sharp corner point)
@@ -94,7 +97,7 @@ struct CornerResult {
 struct IntersectionResult {
   std::int64_t node_id = 0;
   GeomPtr surface;
-  std::string status;  // ok, transition, repaired, fallback
+  std::string status;  // ok, transition, repaired (a small defect made valid), fallback
 };
 
 struct SurfaceResult {

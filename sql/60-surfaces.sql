@@ -1,0 +1,177 @@
+-- Street surfaces (StreetGen): one C call computes the whole network; SQL stores the result.
+
+CREATE FUNCTION streetgen._streetgen_street_surfaces(
+    ids bigint[], geoms bytea[], widths double precision[], speeds double precision[], layers integer[],
+    radius_overrides double precision[], settings double precision[],
+    override_nodes bigint[], override_keys bigint[], override_radii double precision[],
+    OUT kind text, OUT node_id bigint, OUT to_node bigint, OUT axis_id bigint, OUT part integer, OUT end_a boolean,
+    OUT axis_b bigint, OUT part_b integer, OUT end_b boolean, OUT status text, OUT detail text, OUT degree integer,
+    OUT layer integer, OUT radius double precision, OUT radius_wanted double precision,
+    OUT start_border double precision, OUT end_border double precision, OUT axis_ids bigint[],
+    OUT geom bytea, OUT geom2 bytea, OUT geom3 bytea)
+  RETURNS SETOF record
+  LANGUAGE c IMMUTABLE PARALLEL SAFE
+  COST 100000 ROWS 10000
+  AS 'MODULE_PATHNAME', '_streetgen_street_surfaces';
+
+-- Runs the engine on MODEL's axes, settings and corner overrides into temp table
+-- pg_temp._streetgen_out (dropped at commit).
+CREATE FUNCTION streetgen._compute_model(model text)
+  RETURNS void
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  AS $$
+BEGIN
+  IF to_regclass('pg_temp._streetgen_out') IS NOT NULL THEN
+    DROP TABLE pg_temp._streetgen_out;
+  END IF;
+  EXECUTE format($q$
+    CREATE TEMP TABLE _streetgen_out ON COMMIT DROP AS
+    SELECT o.*
+      FROM (SELECT array_agg(a.id ORDER BY a.id) AS ids,
+                   array_agg(ST_AsEWKB(a.geom) ORDER BY a.id) AS geoms,
+                   array_agg(a.roadway_width ORDER BY a.id) AS widths,
+                   array_agg(a.speed_kmh ORDER BY a.id) AS speeds,
+                   array_agg(a.layer::integer ORDER BY a.id) AS layers,
+                   array_agg(a.radius_override ORDER BY a.id) AS radii
+              FROM %1$I.axis a) AS x,
+           (SELECT streetgen._settings_vector(to_jsonb(s) - 'singleton') AS v FROM %1$I.settings s) AS st,
+           (SELECT array_agg(k ORDER BY c.node_id, c.axis_a, c.part_a, c.end_a, c.axis_b, c.part_b, c.end_b, i) AS keys
+              FROM %1$I.corner c, unnest(ARRAY[c.axis_a, c.part_a, c.end_a::int, c.axis_b, c.part_b, c.end_b::int])
+                                  WITH ORDINALITY AS u(k, i)
+             WHERE c.radius_override IS NOT NULL) AS ov_keys,
+           (SELECT array_agg(c.node_id ORDER BY c.node_id, c.axis_a, c.part_a, c.end_a, c.axis_b, c.part_b, c.end_b) AS nodes,
+                   array_agg(c.radius_override ORDER BY c.node_id, c.axis_a, c.part_a, c.end_a, c.axis_b, c.part_b, c.end_b) AS radii
+              FROM %1$I.corner c WHERE c.radius_override IS NOT NULL) AS ov,
+           streetgen._streetgen_street_surfaces(coalesce(x.ids, '{}'), coalesce(x.geoms, '{}'), coalesce(x.widths, '{}'),
+                                                coalesce(x.speeds, '{}'), coalesce(x.layers, '{}'), coalesce(x.radii, '{}'),
+                                                st.v, coalesce(ov.nodes, '{}'), coalesce(ov_keys.keys, '{}'),
+                                                coalesce(ov.radii, '{}')) AS o
+  $q$, model);
+END
+$$;
+
+CREATE FUNCTION streetgen.generate(model text, OUT kind text, OUT status text, OUT count bigint)
+  RETURNS SETOF record
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  AS $$
+DECLARE
+  srid integer := streetgen.model_srid(model);
+BEGIN
+  -- One whole-model recompute at a time per model.
+  PERFORM pg_advisory_xact_lock(hashtext('streetgen.generate'), hashtext(model));
+  PERFORM streetgen._compute_model(model);
+
+  -- Stale rows first (children, then nodes last, once nothing refers to them), then upserts
+  -- that leave unchanged rows alone; a corner's radius_override is the user's and is kept.
+  EXECUTE format($q$
+    DELETE FROM %1$I.corner c WHERE NOT EXISTS (
+      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'corner' AND o.node_id = c.node_id
+         AND o.axis_id = c.axis_a AND o.part = c.part_a AND o.end_a = c.end_a
+         AND o.axis_b = c.axis_b AND o.part_b = c.part_b AND o.end_b = c.end_b);
+    DELETE FROM %1$I.intersection i WHERE NOT EXISTS (
+      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'intersection' AND o.node_id = i.node_id);
+    DELETE FROM %1$I.section s WHERE NOT EXISTS (
+      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'section' AND o.axis_id = s.axis_id AND o.part = s.part);
+
+    INSERT INTO %1$I.node AS t (id, geom, degree, layer, axis_ids)
+    SELECT o.node_id, ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s), o.degree, o.layer, o.axis_ids
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'node'
+    ON CONFLICT (id) DO UPDATE SET geom = EXCLUDED.geom, degree = EXCLUDED.degree, layer = EXCLUDED.layer,
+                                   axis_ids = EXCLUDED.axis_ids
+     WHERE (t.geom, t.degree, t.layer, t.axis_ids) IS DISTINCT FROM
+           (EXCLUDED.geom, EXCLUDED.degree, EXCLUDED.layer, EXCLUDED.axis_ids);
+
+    INSERT INTO %1$I.section AS t (axis_id, part, from_node, to_node, status, start_border, end_border, centre_line, geom)
+    SELECT o.axis_id, o.part, o.node_id, o.to_node, o.status, o.start_border, o.end_border,
+           ST_SetSRID(ST_GeomFromEWKB(o.geom2), %2$s), ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s)
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'section'
+    ON CONFLICT (axis_id, part) DO UPDATE SET from_node = EXCLUDED.from_node, to_node = EXCLUDED.to_node,
+        status = EXCLUDED.status, start_border = EXCLUDED.start_border, end_border = EXCLUDED.end_border,
+        centre_line = EXCLUDED.centre_line, geom = EXCLUDED.geom
+     WHERE (t.from_node, t.to_node, t.status, t.start_border, t.end_border, t.centre_line, t.geom) IS DISTINCT FROM
+           (EXCLUDED.from_node, EXCLUDED.to_node, EXCLUDED.status, EXCLUDED.start_border, EXCLUDED.end_border,
+            EXCLUDED.centre_line, EXCLUDED.geom);
+
+    INSERT INTO %1$I.corner AS t (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b, status, radius_wanted, radius,
+                                 centre, arc, arc_segmentized)
+    SELECT o.node_id, o.axis_id, o.part, o.end_a, o.axis_b, o.part_b, o.end_b, o.status, o.radius_wanted, o.radius,
+           ST_SetSRID(ST_GeomFromEWKB(o.geom3), %2$s), ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s),
+           ST_SetSRID(ST_GeomFromEWKB(o.geom2), %2$s)
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'corner'
+    ON CONFLICT (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b) DO UPDATE SET status = EXCLUDED.status,
+        radius_wanted = EXCLUDED.radius_wanted, radius = EXCLUDED.radius, centre = EXCLUDED.centre, arc = EXCLUDED.arc,
+        arc_segmentized = EXCLUDED.arc_segmentized
+     WHERE (t.status, t.radius_wanted, t.radius, t.centre, t.arc, t.arc_segmentized) IS DISTINCT FROM
+           (EXCLUDED.status, EXCLUDED.radius_wanted, EXCLUDED.radius, EXCLUDED.centre, EXCLUDED.arc, EXCLUDED.arc_segmentized);
+
+    INSERT INTO %1$I.intersection AS t (node_id, status, axis_ids, geom)
+    SELECT o.node_id, o.status, n.axis_ids, ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s)
+      FROM pg_temp._streetgen_out o
+      JOIN pg_temp._streetgen_out n ON n.kind = 'node' AND n.node_id = o.node_id
+     WHERE o.kind = 'intersection'
+    ON CONFLICT (node_id) DO UPDATE SET status = EXCLUDED.status, axis_ids = EXCLUDED.axis_ids, geom = EXCLUDED.geom
+     WHERE (t.status, t.axis_ids, t.geom) IS DISTINCT FROM (EXCLUDED.status, EXCLUDED.axis_ids, EXCLUDED.geom);
+
+    DELETE FROM %1$I.node t WHERE NOT EXISTS (
+      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND o.node_id = t.id);
+
+    DELETE FROM %1$I.issue;
+    INSERT INTO %1$I.issue (axis_id, kind, detail)
+    SELECT o.axis_id, o.status, o.detail FROM pg_temp._streetgen_out o WHERE o.kind = 'issue';
+  $q$, model, srid);
+
+  RETURN QUERY SELECT o.kind, o.status, count(*) FROM pg_temp._streetgen_out o GROUP BY 1, 2 ORDER BY 1, 2;
+END
+$$;
+COMMENT ON FUNCTION streetgen.generate(text) IS
+  'Recomputes the street surfaces of a whole model and upserts node, section, corner, intersection (stable keys); returns counts by kind and status';
+
+-- Stateless: street surfaces of the axes a query returns, for any GIS client. The query must
+-- return id (bigint), geom (LineString, projected CRS in metres), roadway_width and speed_kmh;
+-- layer and radius_override are used when present. It runs with the caller's rights.
+CREATE FUNCTION streetgen.street_surfaces(axes text, settings jsonb DEFAULT '{}',
+    OUT kind text, OUT node_id bigint, OUT axis_id bigint, OUT part integer, OUT status text, OUT geom geometry)
+  RETURNS SETOF record
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  AS $$
+DECLARE
+  columns text[];
+  srid integer;
+  vector double precision[] := streetgen._settings_vector(settings);
+BEGIN
+  IF axes IS NULL THEN
+    RAISE EXCEPTION 'axes must not be null' USING ERRCODE = 'null_value_not_allowed';
+  END IF;
+  EXECUTE format('CREATE OR REPLACE TEMP VIEW _streetgen_axes AS %s', axes);
+  SELECT array_agg(a.attname::text) INTO columns
+    FROM pg_attribute a WHERE a.attrelid = 'pg_temp._streetgen_axes'::regclass AND a.attnum > 0;
+  IF NOT columns @> ARRAY['id', 'geom', 'roadway_width', 'speed_kmh'] THEN
+    RAISE EXCEPTION 'the axes query must return columns id, geom, roadway_width and speed_kmh'
+      USING ERRCODE = 'invalid_parameter_value', DETAIL = format('It returns: %s.', array_to_string(columns, ', '));
+  END IF;
+  SELECT ST_SRID(q.geom) INTO srid FROM pg_temp._streetgen_axes q LIMIT 1;
+  IF srid IS NOT NULL THEN
+    PERFORM streetgen._require_metric_srid(srid, 'axes SRID');
+  END IF;
+  RETURN QUERY EXECUTE format($q$
+    SELECT o.kind, o.node_id, o.axis_id, o.part, o.status,
+           ST_SetSRID(ST_GeomFromEWKB(coalesce(o.geom, o.geom3)), %1$s)
+      FROM (SELECT array_agg(q.id::bigint) AS ids, array_agg(ST_AsEWKB(q.geom)) AS geoms,
+                   array_agg(q.roadway_width::float8) AS widths, array_agg(q.speed_kmh::float8) AS speeds,
+                   array_agg(%2$s) AS layers, array_agg(%3$s) AS radii
+              FROM pg_temp._streetgen_axes q) AS x,
+           streetgen._streetgen_street_surfaces(coalesce(x.ids, '{}'), coalesce(x.geoms, '{}'), coalesce(x.widths, '{}'),
+                                                coalesce(x.speeds, '{}'), coalesce(x.layers, '{}'), coalesce(x.radii, '{}'),
+                                                $1, '{}', '{}', '{}') AS o
+  $q$, coalesce(srid, 0),
+       CASE WHEN 'layer' = ANY(columns) THEN 'q.layer::integer' ELSE '0' END,
+       CASE WHEN 'radius_override' = ANY(columns) THEN 'q.radius_override::float8' ELSE 'NULL::float8' END)
+  USING vector;
+  DROP VIEW pg_temp._streetgen_axes;
+END
+$$;
+COMMENT ON FUNCTION streetgen.street_surfaces(text, jsonb) IS
+  'Street surfaces (nodes, sections, corner arcs, intersections, issues) of the axes a query returns; nothing is stored';

@@ -1,0 +1,25 @@
+// Phase-1 helpers: PostgreSQL arrays into plain C arrays (palloc'd, so nothing C++ is alive
+// when they raise). Include after core headers: it includes PostgreSQL.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "pg/postgres_headers.hpp"
+
+namespace streetgen::pg {
+
+// A one-dimensional array argument, deconstructed. `values`/`nulls` live in the current memory
+// context. A NULL array counts as empty.
+struct ArrayArg {
+  Datum* values = nullptr;
+  bool* nulls = nullptr;
+  int count = 0;
+};
+
+ArrayArg array_arg(FunctionCallInfo fcinfo, int argno, Oid element_type, const char* parameter);
+
+// Raises 22023 naming the parameters when the two arrays differ in length.
+void require_same_length(const ArrayArg& a, const char* a_name, const ArrayArg& b, const char* b_name);
+
+}  // namespace streetgen::pg

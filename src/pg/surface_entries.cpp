@@ -1,0 +1,315 @@
+// The street surface SRF: axes in as parallel arrays (EWKB geometries), every output of the
+// StreetGen engine out as rows tagged by kind (node, section, corner, intersection, issue).
+// sql/60-surfaces.sql turns them into tables (generate) or geometries (street_surfaces).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/ewkb.hpp"
+#include "core/geometry_checks.hpp"
+#include "core/streets/street_surfaces.hpp"
+#include "pg/array_args.hpp"
+#include "pg/boundary.hpp"
+#include "pg/owned_result.hpp"
+
+extern "C" {
+#include "catalog/pg_type.h"
+#include "utils/array.h"
+}
+
+using namespace streetgen;
+
+namespace {
+
+constexpr int kSettingCount = 10;  // the order of SurfaceSettings' fields, see 60-surfaces.sql
+
+struct AxisArg {  // plain data, filled in phase 1
+  std::int64_t id;
+  const std::uint8_t* ewkb;
+  std::size_t ewkb_size;
+  double width;
+  double speed;
+  int layer;
+  bool has_radius;
+  double radius;
+};
+
+struct OutRow {
+  const char* kind;
+  std::optional<std::int64_t> node_id, to_node, axis_id, axis_b;
+  std::optional<int> part, part_b, degree, layer;
+  std::optional<bool> end_a, end_b;
+  std::string status, detail;
+  std::optional<double> radius, radius_wanted, start_border, end_border;
+  std::optional<std::vector<std::int64_t>> axis_ids;
+  core::Bytes geom, geom2, geom3;  // empty: NULL
+};
+constexpr int kColumns = 21;
+
+core::Bytes polyline_ewkb(core::WkbType type, const core::Polyline& line, int srid) {
+  std::vector<double> xy;
+  xy.reserve(line.size() * 2);
+  for (const core::Point& p : line) {
+    xy.push_back(p.x);
+    xy.push_back(p.y);
+  }
+  return core::write_ewkb_coordinates(type, xy.data(), line.size(), srid);
+}
+
+core::Polyline read_axis_line(core::GeosContext& geos, const AxisArg& arg, int& srid, bool first) {
+  std::string name = "geometry of axis " + std::to_string(arg.id);
+  core::SridGeometry g = core::read_ewkb(geos, arg.ewkb, arg.ewkb_size, name.c_str());
+  core::require_axis_line(geos, g.geom.get(), name.c_str());
+  if (first) {
+    srid = g.srid;
+  } else if (g.srid != srid) {
+    core::throw_invalid_argument("axes must share one SRID",
+                                 "Axis " + std::to_string(arg.id) + " has SRID " + std::to_string(g.srid) +
+                                     ", the first axis " + std::to_string(srid) + ".");
+  }
+  const GEOSCoordSequence* seq = GEOSGeom_getCoordSeq_r(geos.handle(), g.geom.get());
+  unsigned int n = 0;
+  GEOSCoordSeq_getSize_r(geos.handle(), seq, &n);
+  core::Polyline line(n);
+  for (unsigned int i = 0; i < n; ++i) GEOSCoordSeq_getXY_r(geos.handle(), seq, i, &line[i].x, &line[i].y);
+  return line;
+}
+
+std::vector<OutRow> to_rows(core::GeosContext& geos, core::SurfaceResult& r, int srid) {
+  std::vector<OutRow> rows;
+  rows.reserve(r.nodes.size() + r.sections.size() + r.corners.size() + r.intersections.size() + r.issues.size());
+  std::vector<std::vector<std::int64_t>> axes_of_node;
+  for (const core::NodeResult& n : r.nodes) {
+    OutRow row{"node"};
+    row.node_id = n.id;
+    row.degree = n.degree;
+    row.layer = n.layer;
+    row.axis_ids = n.axis_ids;
+    double xy[2] = {n.position.x, n.position.y};
+    row.geom = core::write_ewkb_coordinates(core::WkbType::point, xy, 1, srid);
+    rows.push_back(std::move(row));
+  }
+  for (core::SectionResult& s : r.sections) {
+    OutRow row{"section"};
+    row.axis_id = s.axis_id;
+    row.part = s.part;
+    row.node_id = s.from_node;
+    row.to_node = s.to_node;
+    row.status = s.status;
+    row.start_border = s.start_border;
+    row.end_border = s.end_border;
+    if (s.surface) row.geom = core::write_ewkb(geos, s.surface.get(), srid);
+    row.geom2 = polyline_ewkb(core::WkbType::line_string, s.centre_line, srid);
+    rows.push_back(std::move(row));
+  }
+  for (const core::CornerResult& c : r.corners) {
+    OutRow row{"corner"};
+    row.node_id = c.node_id;
+    row.axis_id = c.a.axis_id;
+    row.part = c.a.part;
+    row.end_a = c.a.at_end;
+    row.axis_b = c.b.axis_id;
+    row.part_b = c.b.part;
+    row.end_b = c.b.at_end;
+    row.status = c.status;
+    row.radius = c.radius;
+    row.radius_wanted = c.radius_wanted;
+    if (c.centre && c.radius > 0.0) {
+      double arc[6] = {c.arc[0].x, c.arc[0].y, c.arc[1].x, c.arc[1].y, c.arc[2].x, c.arc[2].y};
+      row.geom = core::write_ewkb_coordinates(core::WkbType::circular_string, arc, 3, srid);
+      row.geom2 = polyline_ewkb(core::WkbType::line_string, c.arc_points, srid);
+      double xy[2] = {c.centre->x, c.centre->y};
+      row.geom3 = core::write_ewkb_coordinates(core::WkbType::point, xy, 1, srid);
+    } else if (!c.arc_points.empty()) {  // a sharp corner: its point
+      double xy[2] = {c.arc_points.front().x, c.arc_points.front().y};
+      row.geom3 = core::write_ewkb_coordinates(core::WkbType::point, xy, 1, srid);
+    }
+    rows.push_back(std::move(row));
+  }
+  for (core::IntersectionResult& i : r.intersections) {
+    OutRow row{"intersection"};
+    row.node_id = i.node_id;
+    row.status = i.status;
+    row.geom = core::write_ewkb(geos, i.surface.get(), srid);
+    rows.push_back(std::move(row));
+  }
+  for (const core::TopologyIssue& issue : r.issues) {
+    OutRow row{"issue"};
+    row.axis_id = issue.axis_id;
+    row.status = issue.kind;
+    row.detail = issue.detail;
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+Datum bytes_or_null(const core::Bytes& b, bool& isnull) {
+  isnull = b.empty();
+  return isnull ? Datum(0) : PointerGetDatum(pg::to_bytea(b));
+}
+
+}  // namespace
+
+extern "C" {
+
+PG_FUNCTION_INFO_V1(_streetgen_street_surfaces);
+// (ids int8[], geoms bytea[], widths float8[], speeds float8[], layers int4[],
+//  radius_overrides float8[], settings float8[10], override_nodes int8[], override_keys int8[],
+//  override_radii float8[]) -> SETOF record (see kColumns)
+Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
+  // Phase 1: arguments into plain arrays.
+  pg::ArrayArg ids = pg::array_arg(fcinfo, 0, INT8OID, "ids");
+  pg::ArrayArg geoms = pg::array_arg(fcinfo, 1, BYTEAOID, "geoms");
+  pg::ArrayArg widths = pg::array_arg(fcinfo, 2, FLOAT8OID, "widths");
+  pg::ArrayArg speeds = pg::array_arg(fcinfo, 3, FLOAT8OID, "speeds");
+  pg::ArrayArg layers = pg::array_arg(fcinfo, 4, INT4OID, "layers");
+  pg::ArrayArg radii = pg::array_arg(fcinfo, 5, FLOAT8OID, "radius_overrides");
+  pg::ArrayArg settings_arg = pg::array_arg(fcinfo, 6, FLOAT8OID, "settings");
+  pg::ArrayArg override_nodes = pg::array_arg(fcinfo, 7, INT8OID, "override_nodes");
+  pg::ArrayArg override_keys = pg::array_arg(fcinfo, 8, INT8OID, "override_keys");
+  pg::ArrayArg override_radii = pg::array_arg(fcinfo, 9, FLOAT8OID, "override_radii");
+  pg::require_same_length(ids, "ids", geoms, "geoms");
+  pg::require_same_length(ids, "ids", widths, "widths");
+  pg::require_same_length(ids, "ids", speeds, "speeds");
+  if (layers.count != 0) pg::require_same_length(ids, "ids", layers, "layers");
+  if (radii.count != 0) pg::require_same_length(ids, "ids", radii, "radius_overrides");
+  pg::require_same_length(override_nodes, "override_nodes", override_radii, "override_radii");
+  if (override_keys.count != 6 * override_nodes.count) {
+    ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("override_keys must hold six values per override")));
+  }
+  if (settings_arg.count != kSettingCount) {
+    ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("settings must hold %d values", kSettingCount)));
+  }
+  double setting_values[kSettingCount];
+  for (int i = 0; i < kSettingCount; ++i) {
+    if (settings_arg.nulls[i]) pg::raise_null_argument("a setting");
+    setting_values[i] = DatumGetFloat8(settings_arg.values[i]);
+  }
+  auto* axes = static_cast<AxisArg*>(palloc0(sizeof(AxisArg) * std::max(ids.count, 1)));
+  for (int i = 0; i < ids.count; ++i) {
+    if (ids.nulls[i]) pg::raise_null_argument("an axis id");
+    AxisArg& a = axes[i];
+    a.id = DatumGetInt64(ids.values[i]);
+    if (geoms.nulls[i] || widths.nulls[i] || speeds.nulls[i]) {
+      ereport(ERROR, (errcode(ERRCODE_NULL_VALUE_NOT_ALLOWED),
+                      errmsg("axis %lld has a NULL geometry, roadway width or speed", static_cast<long long>(a.id))));
+    }
+    bytea* g = DatumGetByteaPP(geoms.values[i]);
+    a.ewkb = reinterpret_cast<const std::uint8_t*>(VARDATA_ANY(g));
+    a.ewkb_size = VARSIZE_ANY_EXHDR(g);
+    a.width = DatumGetFloat8(widths.values[i]);
+    a.speed = DatumGetFloat8(speeds.values[i]);
+    a.layer = layers.count != 0 && !layers.nulls[i] ? DatumGetInt32(layers.values[i]) : 0;
+    a.has_radius = radii.count != 0 && !radii.nulls[i];
+    a.radius = a.has_radius ? DatumGetFloat8(radii.values[i]) : 0.0;
+  }
+  auto* overrides = static_cast<core::CornerOverride*>(palloc0(sizeof(core::CornerOverride) * std::max(override_nodes.count, 1)));
+  for (int i = 0; i < override_nodes.count; ++i) {
+    for (int k = 0; k < 6; ++k) {
+      if (override_keys.nulls[6 * i + k]) pg::raise_null_argument("an override key");
+    }
+    if (override_nodes.nulls[i] || override_radii.nulls[i]) pg::raise_null_argument("an override");
+    auto key = [&](int k) { return DatumGetInt64(override_keys.values[6 * i + k]); };
+    overrides[i].node_id = DatumGetInt64(override_nodes.values[i]);
+    overrides[i].a = {key(0), static_cast<int>(key(1)), key(2) != 0};
+    overrides[i].b = {key(3), static_cast<int>(key(4)), key(5) != 0};
+    overrides[i].radius = DatumGetFloat8(override_radii.values[i]);
+  }
+  int axis_count = ids.count;
+  int override_count = override_nodes.count;
+  InitMaterializedSRF(fcinfo, 0);
+  auto rows = pg::OwnedResult<std::vector<OutRow>>::create();
+
+  // Phase 2: the engine.
+  pg::CallError error;
+  pg::guarded_call(error, [&] {
+    core::GeosContext& geos = pg::backend_geos();
+    core::SurfaceSettings settings;
+    double* fields[kSettingCount] = {&settings.snap_tolerance, &settings.turn_speed_ratio, &settings.lateral_acceleration,
+                                     &settings.min_radius, &settings.max_radius, &settings.misplaced_factor,
+                                     &settings.min_border_distance, &settings.transition_length_per_metre,
+                                     &settings.min_transition_length, &settings.max_transition_deflection_deg};
+    for (int i = 0; i < kSettingCount; ++i) *fields[i] = setting_values[i];
+    std::vector<core::SurfaceAxis> input;
+    input.reserve(axis_count);
+    int srid = 0;
+    for (int i = 0; i < axis_count; ++i) {
+      core::SurfaceAxis a;
+      a.id = axes[i].id;
+      a.line = read_axis_line(geos, axes[i], srid, i == 0);
+      a.roadway_width = axes[i].width;
+      a.speed_kmh = axes[i].speed;
+      a.layer = axes[i].layer;
+      if (axes[i].has_radius) a.radius_override = axes[i].radius;
+      input.push_back(std::move(a));
+    }
+    std::vector<core::CornerOverride> corner_overrides(overrides, overrides + override_count);
+    core::SurfaceResult result = core::street_surfaces(geos, input, corner_overrides, settings);
+    rows.emplace(to_rows(geos, result, srid));
+  });
+  pg::raise_if_failed(error);
+
+  // Phase 3: emit.
+  auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
+  for (const OutRow& row : *rows) {
+    Datum v[kColumns];
+    bool null[kColumns];
+    auto put_i64 = [&](int c, const std::optional<std::int64_t>& x) {
+      null[c] = !x;
+      v[c] = x ? Int64GetDatum(*x) : Datum(0);
+    };
+    auto put_i32 = [&](int c, const std::optional<int>& x) {
+      null[c] = !x;
+      v[c] = x ? Int32GetDatum(*x) : Datum(0);
+    };
+    auto put_bool = [&](int c, const std::optional<bool>& x) {
+      null[c] = !x;
+      v[c] = x ? BoolGetDatum(*x) : Datum(0);
+    };
+    auto put_f8 = [&](int c, const std::optional<double>& x) {
+      null[c] = !x;
+      v[c] = x ? Float8GetDatum(*x) : Datum(0);
+    };
+    auto put_text = [&](int c, const std::string& s) {
+      null[c] = s.empty();
+      v[c] = s.empty() ? Datum(0) : CStringGetTextDatum(s.c_str());
+    };
+    v[0] = CStringGetTextDatum(row.kind);
+    null[0] = false;
+    put_i64(1, row.node_id);
+    put_i64(2, row.to_node);
+    put_i64(3, row.axis_id);
+    put_i32(4, row.part);
+    put_bool(5, row.end_a);
+    put_i64(6, row.axis_b);
+    put_i32(7, row.part_b);
+    put_bool(8, row.end_b);
+    put_text(9, row.status);
+    put_text(10, row.detail);
+    put_i32(11, row.degree);
+    put_i32(12, row.layer);
+    put_f8(13, row.radius);
+    put_f8(14, row.radius_wanted);
+    put_f8(15, row.start_border);
+    put_f8(16, row.end_border);
+    if (row.axis_ids) {
+      int n = static_cast<int>(row.axis_ids->size());
+      auto* elems = static_cast<Datum*>(palloc(sizeof(Datum) * std::max(n, 1)));
+      for (int k = 0; k < n; ++k) elems[k] = Int64GetDatum((*row.axis_ids)[k]);
+      v[17] = PointerGetDatum(construct_array(elems, n, INT8OID, 8, FLOAT8PASSBYVAL, TYPALIGN_DOUBLE));
+      null[17] = false;
+    } else {
+      v[17] = Datum(0);
+      null[17] = true;
+    }
+    v[18] = bytes_or_null(row.geom, null[18]);
+    v[19] = bytes_or_null(row.geom2, null[19]);
+    v[20] = bytes_or_null(row.geom3, null[20]);
+    tuplestore_putvalues(rsinfo->setResult, rsinfo->setDesc, v, null);
+  }
+  rows.release();
+  PG_RETURN_NULL();
+}
+
+}  // extern "C"
