@@ -58,6 +58,7 @@ CREATE FUNCTION streetgen.generate(model text, OUT kind text, OUT status text, O
   AS $$
 DECLARE
   srid integer := streetgen.model_srid(model);
+  statement text;
 BEGIN
   -- One whole-model recompute at a time per model.
   PERFORM pg_advisory_xact_lock(hashtext('streetgen.generate'), hashtext(model));
@@ -65,25 +66,23 @@ BEGIN
 
   -- Stale rows first (children, then nodes last, once nothing refers to them), then upserts
   -- that leave unchanged rows alone; a corner's radius_override is the user's and is kept.
-  EXECUTE format($q$
-    DELETE FROM %1$I.corner c WHERE NOT EXISTS (
+  FOREACH statement IN ARRAY ARRAY[
+    $q$DELETE FROM %1$I.corner c WHERE NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'corner' AND o.node_id = c.node_id
          AND o.axis_id = c.axis_a AND o.part = c.part_a AND o.end_a = c.end_a
-         AND o.axis_b = c.axis_b AND o.part_b = c.part_b AND o.end_b = c.end_b);
-    DELETE FROM %1$I.intersection i WHERE NOT EXISTS (
-      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'intersection' AND o.node_id = i.node_id);
-    DELETE FROM %1$I.section s WHERE NOT EXISTS (
-      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'section' AND o.axis_id = s.axis_id AND o.part = s.part);
-
-    INSERT INTO %1$I.node AS t (id, geom, degree, layer, axis_ids)
+         AND o.axis_b = c.axis_b AND o.part_b = c.part_b AND o.end_b = c.end_b)$q$,
+    $q$DELETE FROM %1$I.intersection i WHERE NOT EXISTS (
+      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'intersection' AND o.node_id = i.node_id)$q$,
+    $q$DELETE FROM %1$I.section s WHERE NOT EXISTS (
+      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'section' AND o.axis_id = s.axis_id AND o.part = s.part)$q$,
+    $q$INSERT INTO %1$I.node AS t (id, geom, degree, layer, axis_ids)
     SELECT o.node_id, ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s), o.degree, o.layer, o.axis_ids
       FROM pg_temp._streetgen_out o WHERE o.kind = 'node'
     ON CONFLICT (id) DO UPDATE SET geom = EXCLUDED.geom, degree = EXCLUDED.degree, layer = EXCLUDED.layer,
                                    axis_ids = EXCLUDED.axis_ids
      WHERE (t.geom, t.degree, t.layer, t.axis_ids) IS DISTINCT FROM
-           (EXCLUDED.geom, EXCLUDED.degree, EXCLUDED.layer, EXCLUDED.axis_ids);
-
-    INSERT INTO %1$I.section AS t (axis_id, part, from_node, to_node, status, start_border, end_border, centre_line, geom)
+           (EXCLUDED.geom, EXCLUDED.degree, EXCLUDED.layer, EXCLUDED.axis_ids)$q$,
+    $q$INSERT INTO %1$I.section AS t (axis_id, part, from_node, to_node, status, start_border, end_border, centre_line, geom)
     SELECT o.axis_id, o.part, o.node_id, o.to_node, o.status, o.start_border, o.end_border,
            ST_SetSRID(ST_GeomFromEWKB(o.geom2), %2$s), ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s)
       FROM pg_temp._streetgen_out o WHERE o.kind = 'section'
@@ -92,9 +91,8 @@ BEGIN
         centre_line = EXCLUDED.centre_line, geom = EXCLUDED.geom
      WHERE (t.from_node, t.to_node, t.status, t.start_border, t.end_border, t.centre_line, t.geom) IS DISTINCT FROM
            (EXCLUDED.from_node, EXCLUDED.to_node, EXCLUDED.status, EXCLUDED.start_border, EXCLUDED.end_border,
-            EXCLUDED.centre_line, EXCLUDED.geom);
-
-    INSERT INTO %1$I.corner AS t (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b, status, radius_wanted, radius,
+            EXCLUDED.centre_line, EXCLUDED.geom)$q$,
+    $q$INSERT INTO %1$I.corner AS t (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b, status, radius_wanted, radius,
                                  centre, arc, arc_segmentized)
     SELECT o.node_id, o.axis_id, o.part, o.end_a, o.axis_b, o.part_b, o.end_b, o.status, o.radius_wanted, o.radius,
            ST_SetSRID(ST_GeomFromEWKB(o.geom3), %2$s), ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s),
@@ -104,23 +102,22 @@ BEGIN
         radius_wanted = EXCLUDED.radius_wanted, radius = EXCLUDED.radius, centre = EXCLUDED.centre, arc = EXCLUDED.arc,
         arc_segmentized = EXCLUDED.arc_segmentized
      WHERE (t.status, t.radius_wanted, t.radius, t.centre, t.arc, t.arc_segmentized) IS DISTINCT FROM
-           (EXCLUDED.status, EXCLUDED.radius_wanted, EXCLUDED.radius, EXCLUDED.centre, EXCLUDED.arc, EXCLUDED.arc_segmentized);
-
-    INSERT INTO %1$I.intersection AS t (node_id, status, axis_ids, geom)
+           (EXCLUDED.status, EXCLUDED.radius_wanted, EXCLUDED.radius, EXCLUDED.centre, EXCLUDED.arc, EXCLUDED.arc_segmentized)$q$,
+    $q$INSERT INTO %1$I.intersection AS t (node_id, status, axis_ids, geom)
     SELECT o.node_id, o.status, n.axis_ids, ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s)
       FROM pg_temp._streetgen_out o
       JOIN pg_temp._streetgen_out n ON n.kind = 'node' AND n.node_id = o.node_id
      WHERE o.kind = 'intersection'
     ON CONFLICT (node_id) DO UPDATE SET status = EXCLUDED.status, axis_ids = EXCLUDED.axis_ids, geom = EXCLUDED.geom
-     WHERE (t.status, t.axis_ids, t.geom) IS DISTINCT FROM (EXCLUDED.status, EXCLUDED.axis_ids, EXCLUDED.geom);
-
-    DELETE FROM %1$I.node t WHERE NOT EXISTS (
-      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND o.node_id = t.id);
-
-    DELETE FROM %1$I.issue;
-    INSERT INTO %1$I.issue (axis_id, kind, detail)
-    SELECT o.axis_id, o.status, o.detail FROM pg_temp._streetgen_out o WHERE o.kind = 'issue';
-  $q$, model, srid);
+     WHERE (t.status, t.axis_ids, t.geom) IS DISTINCT FROM (EXCLUDED.status, EXCLUDED.axis_ids, EXCLUDED.geom)$q$,
+    $q$DELETE FROM %1$I.node t WHERE NOT EXISTS (
+      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND o.node_id = t.id)$q$,
+    $q$DELETE FROM %1$I.issue$q$,
+    $q$INSERT INTO %1$I.issue (axis_id, kind, detail)
+    SELECT o.axis_id, o.status, o.detail FROM pg_temp._streetgen_out o WHERE o.kind = 'issue'$q$
+  ] LOOP
+    EXECUTE format(statement, model, srid);
+  END LOOP;
 
   RETURN QUERY SELECT o.kind, o.status, count(*) FROM pg_temp._streetgen_out o GROUP BY 1, 2 ORDER BY 1, 2;
 END
@@ -175,3 +172,58 @@ END
 $$;
 COMMENT ON FUNCTION streetgen.street_surfaces(text, jsonb) IS
   'Street surfaces (nodes, sections, corner arcs, intersections, issues) of the axes a query returns; nothing is stored';
+
+-- (Overlaps are measured with ST_Intersection alone: GEOS 3.11's ST_Intersects predicate can
+-- throw on valid polygons with nearly coincident edges, OverlayNG does not.)
+-- How sound a model's generated surfaces are: validity, missing junctions, and overlaps on one
+-- layer (a bridge over a street overlaps it in plan, rightly). The acceptance measures of the
+-- street surfaces; also handy after editing settings.
+CREATE FUNCTION streetgen.surface_quality(model text,
+    OUT nodes bigint, OUT junctions bigint, OUT intersections bigint, OUT missing_intersections bigint,
+    OUT sections bigint, OUT invalid_geometries bigint, OUT surface_area double precision,
+    OUT section_overlap_area double precision, OUT section_overlap_ratio double precision,
+    OUT intersection_overlap_area double precision)
+  RETURNS record
+  LANGUAGE plpgsql STABLE
+  SET search_path FROM CURRENT
+  AS $$
+BEGIN
+  PERFORM streetgen.model_srid(model);
+  EXECUTE format($q$
+    SELECT (SELECT count(*) FROM %1$I.node),
+           (SELECT count(*) FROM %1$I.node WHERE degree >= 2),
+           (SELECT count(*) FROM %1$I.intersection),
+           (SELECT count(*) FROM %1$I.node n WHERE n.degree >= 2
+               AND NOT EXISTS (SELECT 1 FROM %1$I.intersection i WHERE i.node_id = n.id)),
+           (SELECT count(*) FROM %1$I.section WHERE geom IS NOT NULL),
+           (SELECT count(*) FROM %1$I.section WHERE geom IS NOT NULL AND NOT ST_IsValid(geom))
+             + (SELECT count(*) FROM %1$I.intersection WHERE NOT ST_IsValid(geom))
+             + (SELECT count(*) FROM %1$I.corner WHERE arc_segmentized IS NOT NULL AND NOT ST_IsValid(arc_segmentized)),
+           coalesce((SELECT sum(ST_Area(geom)) FROM %1$I.section), 0)
+             + coalesce((SELECT sum(ST_Area(geom)) FROM %1$I.intersection), 0),
+           coalesce((SELECT sum(ST_Area(ST_Intersection(a.geom, b.geom)))
+                       FROM %1$I.section a
+                       JOIN %1$I.axis xa ON xa.id = a.axis_id
+                       JOIN %1$I.section b ON a.axis_id < b.axis_id AND a.geom && b.geom
+                       JOIN %1$I.axis xb ON xb.id = b.axis_id AND xb.layer = xa.layer
+                      ), 0),
+           coalesce((SELECT sum(ST_Area(ST_Intersection(i.geom, s.geom)))
+                       FROM %1$I.intersection i
+                       JOIN %1$I.node n ON n.id = i.node_id
+                       JOIN %1$I.section s ON i.geom && s.geom
+                       JOIN %1$I.axis x ON x.id = s.axis_id AND x.layer = n.layer
+                      ), 0)
+             + coalesce((SELECT sum(ST_Area(ST_Intersection(a.geom, b.geom)))
+                           FROM %1$I.intersection a
+                           JOIN %1$I.node na ON na.id = a.node_id
+                           JOIN %1$I.intersection b ON a.node_id < b.node_id AND a.geom && b.geom
+                           JOIN %1$I.node nb ON nb.id = b.node_id AND nb.layer = na.layer
+                          ), 0)
+  $q$, model)
+  INTO nodes, junctions, intersections, missing_intersections, sections, invalid_geometries, surface_area,
+       section_overlap_area, intersection_overlap_area;
+  section_overlap_ratio := CASE WHEN surface_area > 0 THEN section_overlap_area / surface_area ELSE 0 END;
+END
+$$;
+COMMENT ON FUNCTION streetgen.surface_quality(text) IS
+  'Checks a model''s generated surfaces: invalid geometries, junctions without surface, overlap between sections of different axes';

@@ -36,7 +36,14 @@ SELECT set_eq(
     ('streetgen.osm_is_driveable(jsonb)', 'boolean', 's', false),
     ('streetgen.osm_axis_attributes(jsonb)', 'record', 's', false),
     ('streetgen.utm_srid(geometry)', 'integer', 's', false),
-    ('streetgen.load_osm_ways(text,regclass)', 'record', 'v', false)
+    ('streetgen.load_osm_ways(text,regclass)', 'record', 'v', false),
+    ('streetgen._settings_vector(jsonb)', 'double precision[]', 's', false),
+    ('streetgen._create_output_tables(text,integer)', 'void', 'v', false),
+    ('streetgen._streetgen_street_surfaces(bigint[],bytea[],double precision[],double precision[],integer[],double precision[],double precision[],bigint[],bigint[],double precision[])', 'SETOF record', 'i', false),
+    ('streetgen._compute_model(text)', 'void', 'v', false),
+    ('streetgen.generate(text)', 'SETOF record', 'v', false),
+    ('streetgen.street_surfaces(text,jsonb)', 'SETOF record', 'v', false),
+    ('streetgen.surface_quality(text)', 'record', 's', false)
   $$,
   'the extension ships exactly the documented functions, with these results and volatilities');
 
@@ -51,6 +58,9 @@ SELECT is(pg_temp.argument_names('streetgen.roadway_borders(geometry,double prec
 SELECT is(pg_temp.argument_names('streetgen.load_osm_ways(text,regclass)'), 'model,staging,loaded,not_driveable,degenerate',
           'load_osm_ways(model, staging) -> (loaded, not_driveable, degenerate)');
 SELECT is(pg_temp.argument_names('streetgen.create_model(text,integer)'), 'name,srid', 'create_model(name, srid)');
+SELECT is(pg_temp.argument_names('streetgen.generate(text)'), 'model,kind,status,count', 'generate(model) -> (kind, status, count)');
+SELECT is(pg_temp.argument_names('streetgen.street_surfaces(text,jsonb)'), 'axes,settings,kind,node_id,axis_id,part,status,geom',
+          'street_surfaces(axes, settings) -> (kind, node_id, axis_id, part, status, geom)');
 
 SELECT is_empty(
   'SELECT signature FROM streetgen_functions WHERE security_definer',

@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/interrupts.hpp"
 #include "core/streets/arc_centre.hpp"
+#include "core/streets/box_pairs.hpp"
 
 namespace streetgen::core {
 namespace {
@@ -187,6 +188,7 @@ class SurfaceBuilder {
     topo_axes.reserve(axes_.size());
     for (const SurfaceAxis& a : axes_) topo_axes.push_back({a.id, a.line, a.layer});
     topo_ = build_topology(topo_axes, s_.snap_tolerance);
+    for (const SurfaceAxis& a : axes_) axis_layer_[a.id] = a.layer;
     result_.issues = topo_.issues;
 
     ends_of_node_.assign(topo_.nodes.size(), {});
@@ -210,6 +212,7 @@ class SurfaceBuilder {
       poller.tick();
       build_section(e);
     }
+    separate_overlapping_sections();
     for (SectionResult& sec : result_.sections) {
       if (sec.surface) section_surface_[{sec.axis_id, sec.part}] = sec.surface.get();
     }
@@ -630,12 +633,120 @@ class SurfaceBuilder {
       const TopologyEdge& edge = topo_.edges[e.edge];
       auto it = section_surface_.find({edge.axis_id, edge.part});
       if (it == section_surface_.end()) continue;
-      if (GEOSIntersects_r(ctx_.handle(), surface.get(), it->second) != 1) continue;
       surface = own(ctx_, GEOSDifference_r(ctx_.handle(), surface.get(), it->second), "difference");
     }
     GeomPtr part = pick_polygon(ctx_, surface.get(), node.position);
     if (part && area_of(ctx_, part.get()) > 1e-9) return part;
     return own(ctx_, GEOSBuffer_r(ctx_.handle(), centre.get(), 0.25, kQuadrantSegments), "node buffer");
+  }
+
+  // Sections of different axes on one layer overlap where the axes run closer than their half
+  // widths add up (dual carriageways whose width is estimated, acute branches): each keeps the
+  // part of the overlap nearer its own axis. The split follows a Voronoi diagram of points
+  // sampled along both axes, so it runs along the midline however the axes curve.
+  void separate_overlapping_sections() {
+    std::vector<std::size_t> with_surface;
+    std::vector<Box> boxes;
+    for (std::size_t i = 0; i < result_.sections.size(); ++i) {
+      const SectionResult& s = result_.sections[i];
+      if (!s.surface) continue;
+      double x0, y0, x1, y1;
+      if (GEOSGeom_getXMin_r(ctx_.handle(), s.surface.get(), &x0) == 0 ||
+          GEOSGeom_getYMin_r(ctx_.handle(), s.surface.get(), &y0) == 0 ||
+          GEOSGeom_getXMax_r(ctx_.handle(), s.surface.get(), &x1) == 0 ||
+          GEOSGeom_getYMax_r(ctx_.handle(), s.surface.get(), &y1) == 0) {
+        ctx_.fail("envelope");
+      }
+      with_surface.push_back(i);
+      boxes.push_back({x0, y0, x1, y1});
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    for_each_overlapping_pair(boxes, [&](std::size_t i, std::size_t j) {
+      const SectionResult& a = result_.sections[with_surface[i]];
+      const SectionResult& b = result_.sections[with_surface[j]];
+      if (a.axis_id == b.axis_id || axis_layer_.at(a.axis_id) != axis_layer_.at(b.axis_id)) return;
+      pairs.push_back({with_surface[i], with_surface[j]});
+    });
+    std::sort(pairs.begin(), pairs.end());  // deterministic, whatever order the box join found them
+    InterruptPoller poller(16);
+    for (auto [i, j] : pairs) {
+      poller.tick();
+      SectionResult& a = result_.sections[i];
+      SectionResult& b = result_.sections[j];
+      if (!a.surface || !b.surface) continue;
+      // GEOS overlay (OverlayNG) is robust where its predicates can throw on nearly coincident
+      // edges, so no GEOSIntersects here; and one pair that GEOS cannot split is reported, not
+      // allowed to fail the whole model.
+      try {
+        GeomPtr overlap = own(ctx_, GEOSIntersection_r(ctx_.handle(), a.surface.get(), b.surface.get()), "overlap");
+        if (area_of(ctx_, overlap.get()) < 1e-6) continue;
+        Polyline axis_a = substring(a.centre_line, a.start_border, a.end_border);
+        Polyline axis_b = substring(b.centre_line, b.start_border, b.end_border);
+        GeomPtr nearer_a = nearer_region(overlap.get(), axis_a, axis_b);
+        GeomPtr to_b = own(ctx_, GEOSDifference_r(ctx_.handle(), overlap.get(), nearer_a.get()), "difference");
+        GeomPtr new_a = main_part(own(ctx_, GEOSDifference_r(ctx_.handle(), a.surface.get(), to_b.get()), "difference"), axis_a);
+        GeomPtr new_b = main_part(own(ctx_, GEOSDifference_r(ctx_.handle(), b.surface.get(), nearer_a.get()), "difference"), axis_b);
+        a.surface = std::move(new_a);
+        b.surface = std::move(new_b);
+        a.status = b.status = "narrowed";
+      } catch (const Error& e) {
+        if (e.kind() != ErrorKind::geometry_engine) throw;
+        result_.issues.push_back({a.axis_id, "overlap_kept",
+                                  "the overlap with axis " + std::to_string(b.axis_id) + " could not be split: " + e.detail()});
+      }
+    }
+  }
+
+  // The part of `region` nearer to polyline a than to polyline b.
+  GeomPtr nearer_region(const GEOSGeometry* region, const Polyline& a, const Polyline& b) {
+    double x0, y0, x1, y1;
+    GEOSGeom_getXMin_r(ctx_.handle(), region, &x0);
+    GEOSGeom_getYMin_r(ctx_.handle(), region, &y0);
+    GEOSGeom_getXMax_r(ctx_.handle(), region, &x1);
+    GEOSGeom_getYMax_r(ctx_.handle(), region, &y1);
+    double extent = std::max(x1 - x0, y1 - y0);
+    double spacing = std::clamp(extent / 200.0, 0.05, 1.0);
+    std::vector<GEOSGeometry*> sites;
+    auto sample = [&](const Polyline& line) {
+      double len = length(line);
+      int n = std::max(2, static_cast<int>(std::ceil(len / spacing)) + 1);
+      for (int k = 0; k < n; ++k) {
+        Point p = point_at(line, len * k / (n - 1));
+        // Only the stretch beside the overlap matters.
+        if (p.x < x0 - extent || p.x > x1 + extent || p.y < y0 - extent || p.y > y1 + extent) continue;
+        sites.push_back(GEOSGeom_createPointFromXY_r(ctx_.handle(), p.x, p.y));
+      }
+    };
+    sample(a);
+    sample(b);
+    GeomPtr points = own(ctx_, GEOSGeom_createCollection_r(ctx_.handle(), GEOS_MULTIPOINT, sites.data(),
+                                                           static_cast<unsigned>(sites.size())),
+                         "sample points");
+    GeomPtr cells = own(ctx_, GEOSVoronoiDiagram_r(ctx_.handle(), points.get(), region, 0.0, 0), "voronoi diagram");
+    std::vector<GEOSGeometry*> mine;
+    int n = GEOSGetNumGeometries_r(ctx_.handle(), cells.get());
+    for (int k = 0; k < n; ++k) {
+      const GEOSGeometry* cell = GEOSGetGeometryN_r(ctx_.handle(), cells.get(), k);
+      GeomPtr inside = own(ctx_, GEOSPointOnSurface_r(ctx_.handle(), cell), "point on surface");
+      double x, y;
+      GEOSGeomGetX_r(ctx_.handle(), inside.get(), &x);
+      GEOSGeomGetY_r(ctx_.handle(), inside.get(), &y);
+      if (project(a, {x, y}).distance <= project(b, {x, y}).distance) {
+        mine.push_back(GEOSGeom_clone_r(ctx_.handle(), cell));
+      }
+    }
+    GeomPtr cells_a = own(ctx_, GEOSGeom_createCollection_r(ctx_.handle(), GEOS_GEOMETRYCOLLECTION, mine.data(),
+                                                            static_cast<unsigned>(mine.size())),
+                          "cells");
+    GeomPtr union_a = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), cells_a.get()), "union");
+    return own(ctx_, GEOSIntersection_r(ctx_.handle(), region, union_a.get()), "intersection");
+  }
+
+  // A section after the split: the polygon on its axis (slivers dropped).
+  GeomPtr main_part(GeomPtr surface, const Polyline& axis) {
+    if (GEOSGeomTypeId_r(ctx_.handle(), surface.get()) == GEOS_POLYGON) return surface;
+    GeomPtr part = pick_polygon(ctx_, surface.get(), point_at(axis, 0.5 * length(axis)));
+    return part ? std::move(part) : std::move(surface);
   }
 
   void build_section(std::size_t e) {
@@ -656,11 +767,18 @@ class SurfaceBuilder {
       sr.status = "absorbed";
     } else {
       sr.status = "ok";
-      GeomPtr line = make_line(ctx_, substring(edge.line, sr.start_border, sr.end_border));
-      sr.surface = own(ctx_,
-                       GEOSBufferWithStyle_r(ctx_.handle(), line.get(), axis.roadway_width / 2, kQuadrantSegments,
-                                             GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_ROUND, 5.0),
-                       "section buffer");
+      Polyline centre = substring(edge.line, sr.start_border, sr.end_border);
+      GeomPtr line = make_line(ctx_, centre);
+      GeomPtr buffer = own(ctx_,
+                           GEOSBufferWithStyle_r(ctx_.handle(), line.get(), axis.roadway_width / 2, kQuadrantSegments,
+                                                 GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_ROUND, 5.0),
+                           "section buffer");
+      // GEOS can leave slivers beside a flat-capped buffer of a short piece with a bend: the
+      // section is the part on its axis.
+      if (GEOSGeomTypeId_r(ctx_.handle(), buffer.get()) != GEOS_POLYGON) {
+        buffer = pick_polygon(ctx_, buffer.get(), point_at(centre, 0.5 * length(centre)));
+      }
+      sr.surface = std::move(buffer);
     }
     result_.sections.push_back(std::move(sr));
   }
@@ -675,6 +793,7 @@ class SurfaceBuilder {
   std::vector<std::vector<CornerResult>> corners_of_node_;
   std::vector<bool> transition_;
   std::map<std::pair<std::int64_t, int>, const GEOSGeometry*> section_surface_;
+  std::map<std::int64_t, int> axis_layer_;
   SurfaceResult result_;
 };
 

@@ -76,7 +76,7 @@ struct SectionResult {
   double start_border = 0.0;     // abscissas of the border lines on centre_line
   double end_border = 0.0;
   GeomPtr surface;               // null when the junctions take the whole part
-  std::string status;            // ok, absorbed, duplicate
+  std::string status;            // ok, narrowed (shares an overlap with a nearby axis), absorbed, duplicate
 };
 
 struct CornerResult {
