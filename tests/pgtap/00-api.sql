@@ -35,6 +35,7 @@ SELECT set_eq(
     ('streetgen.osm_parse_lanes(text)', 'smallint', 'i', false),
     ('streetgen.osm_is_driveable(jsonb)', 'boolean', 's', false),
     ('streetgen.osm_axis_attributes(jsonb)', 'record', 's', false),
+    ('streetgen._osm_axis_attributes(jsonb)', 'TABLE(roadway_width double precision, lanes smallint, speed_kmh double precision, road_class text, oneway boolean, reverse_geometry boolean, layer smallint, structure text, sidewalk_width double precision, estimated text[])', 's', false),
     ('streetgen.utm_srid(geometry)', 'integer', 's', false),
     ('streetgen.load_osm_ways(text,regclass)', 'record', 'v', false),
     ('streetgen._settings_vector(jsonb)', 'double precision[]', 's', false),
@@ -65,12 +66,24 @@ SELECT is(pg_temp.argument_names('streetgen.street_surfaces(text,jsonb)'), 'axes
 SELECT is_empty(
   'SELECT signature FROM streetgen_functions WHERE security_definer',
   'no function is SECURITY DEFINER');
+-- The tag parsers and the OSM mapping are inlinable SQL (no SET clause, so PostgreSQL can
+-- inline them into the import query); they name only pg_catalog and streetgen objects.
 SELECT is_empty(
   $$SELECT signature FROM streetgen_functions
      WHERE language <> 'c'
+       AND signature NOT IN ('streetgen.osm_parse_length(text)', 'streetgen.osm_parse_speed(text)',
+                             'streetgen.osm_parse_lanes(text)', 'streetgen.osm_is_driveable(jsonb)',
+                             'streetgen._osm_axis_attributes(jsonb)')
        AND NOT EXISTS (SELECT 1 FROM unnest(config) c
                         WHERE c LIKE 'search_path=pg_catalog, streetgen, %, pg_temp')$$,
-  'every SQL-level function pins search_path to pg_catalog, streetgen, postgis, pg_temp');
+  'every other SQL-level function pins search_path to pg_catalog, streetgen, postgis, pg_temp');
+SELECT is_empty(
+  $$SELECT signature FROM streetgen_functions
+     WHERE signature IN ('streetgen.osm_parse_length(text)', 'streetgen.osm_parse_speed(text)',
+                         'streetgen.osm_parse_lanes(text)', 'streetgen.osm_is_driveable(jsonb)',
+                         'streetgen._osm_axis_attributes(jsonb)')
+       AND (language <> 'sql' OR config IS NOT NULL)$$,
+  'the inlinable mapping functions are plain SQL without a SET clause');
 SELECT is_empty(
   $$SELECT signature FROM streetgen_functions WHERE signature NOT LIKE 'streetgen.\_%' AND comment IS NULL$$,
   'every public function has a comment');

@@ -76,6 +76,25 @@ TEST(ArcCentre, RightAngleAndPolylines) {
   EXPECT_NEAR(project(b, *p).distance, 6, 1e-7);
 }
 
+TEST(ArcCentre, FastAndExactPassesAgree) {
+  // Polylines with bends on both sides, several radii: where the fast pass finds a centre the
+  // exact pass finds the same one.
+  Polyline a{{0, 0}, {12, 1}, {25, 9}, {40, 30}};
+  Polyline b{{0, 0}, {-3, 14}, {2, 30}, {-6, 50}};
+  int found = 0;
+  for (double r : {0.0, 0.5, 2.0, 5.0, 9.0, 15.0}) {
+    auto fast = arc_centre_fast(a, 4 + r, b, 3 + r);
+    auto exact = arc_centre_exact(a, 4 + r, b, 3 + r);
+    ASSERT_EQ(fast.has_value(), exact.has_value()) << r;
+    if (fast) {
+      ++found;
+      EXPECT_NEAR(fast->x, exact->x, 1e-7) << r;
+      EXPECT_NEAR(fast->y, exact->y, 1e-7) << r;
+    }
+  }
+  EXPECT_GE(found, 4);
+}
+
 TEST(StreetSurfaces, CrossJunctionHasFourArcsAndTheExpectedArea) {
   GeosContext ctx;
   SurfaceSettings s;

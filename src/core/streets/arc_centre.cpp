@@ -89,20 +89,70 @@ bool on_locus(const Polyline& line, Point p, double d, int side, double eps) {
   return side * cross(t, p - pr.point) > -eps * d;
 }
 
-}  // namespace
+// The same pieces in plain doubles: the fast path. Its candidates are checked exactly like the
+// exact ones (on_locus), so it can miss a centre in a near-degenerate case (tangency, nearly
+// parallel offsets) but not return a wrong one; a miss is retried with the exact kernel.
+struct FastPiece {
+  bool is_circle;
+  Point p0, dir;  // line: point and unit direction
+  Point centre;   // circle
+  double radius;
+};
 
-std::optional<Point> arc_centre(const Polyline& a, double da, const Polyline& b, double db) {
-  if (a.size() < 2 || b.size() < 2) return std::nullopt;
-  std::vector<Piece> pa = locus_pieces(a, da, +1);
-  std::vector<Piece> pb = locus_pieces(b, db, -1);
+std::vector<FastPiece> fast_pieces(const Polyline& line, double d, int side) {
+  std::vector<FastPiece> pieces;
+  for (std::size_t i = 1; i < line.size(); ++i) {
+    Point dir = unit(line[i] - line[i - 1]);
+    if (norm(dir) == 0.0) continue;
+    pieces.push_back({false, line[i - 1] + (side * d) * left_normal(dir), dir, {}, 0.0});
+    if (i + 1 < line.size()) pieces.push_back({true, {}, {}, line[i], d});
+  }
+  return pieces;
+}
+
+void fast_intersect(const FastPiece& p, const FastPiece& q, std::vector<Point>& out) {
+  if (!p.is_circle && !q.is_circle) {
+    double det = cross(p.dir, q.dir);
+    if (std::abs(det) < 1e-12) return;
+    double t = cross(q.p0 - p.p0, q.dir) / det;
+    out.push_back(p.p0 + t * p.dir);
+    return;
+  }
+  if (p.is_circle && q.is_circle) {
+    Point d = q.centre - p.centre;
+    double dist = norm(d);
+    if (dist == 0.0 || dist > p.radius + q.radius || dist < std::abs(p.radius - q.radius)) return;
+    double along = (dist * dist + p.radius * p.radius - q.radius * q.radius) / (2 * dist);
+    double h2 = p.radius * p.radius - along * along;
+    double h = h2 > 0.0 ? std::sqrt(h2) : 0.0;
+    Point u = (1.0 / dist) * d;
+    Point base = p.centre + along * u;
+    out.push_back(base + h * left_normal(u));
+    out.push_back(base - h * left_normal(u));
+    return;
+  }
+  const FastPiece& c = p.is_circle ? p : q;
+  const FastPiece& l = p.is_circle ? q : p;
+  double along = dot(c.centre - l.p0, l.dir);
+  Point foot = l.p0 + along * l.dir;
+  double h2 = c.radius * c.radius - dot(c.centre - foot, c.centre - foot);
+  if (h2 < 0.0) return;
+  double h = std::sqrt(h2);
+  out.push_back(foot + h * l.dir);
+  out.push_back(foot - h * l.dir);
+}
+
+template <class PieceT, class Intersect>
+std::optional<Point> nearest_valid(const Polyline& a, double da, const Polyline& b, double db,
+                                   const std::vector<PieceT>& pa, const std::vector<PieceT>& pb, Intersect intersect) {
   Point node = a.front();
   double eps = 1e-7 * std::max({1.0, da, db});
   std::optional<Point> best;
   double best_distance = std::numeric_limits<double>::infinity();
   std::vector<Point> candidates;
   InterruptPoller poller(256);
-  for (const Piece& p : pa) {
-    for (const Piece& q : pb) {
+  for (const PieceT& p : pa) {
+    for (const PieceT& q : pb) {
       poller.tick();
       candidates.clear();
       intersect(p, q, candidates);
@@ -118,6 +168,25 @@ std::optional<Point> arc_centre(const Polyline& a, double da, const Polyline& b,
     }
   }
   return best;
+}
+
+}  // namespace
+
+std::optional<Point> arc_centre_fast(const Polyline& a, double da, const Polyline& b, double db) {
+  if (a.size() < 2 || b.size() < 2) return std::nullopt;
+  return nearest_valid(a, da, b, db, fast_pieces(a, da, +1), fast_pieces(b, db, -1), fast_intersect);
+}
+
+std::optional<Point> arc_centre(const Polyline& a, double da, const Polyline& b, double db) {
+  if (std::optional<Point> fast = arc_centre_fast(a, da, b, db)) return fast;
+  return arc_centre_exact(a, da, b, db);
+}
+
+std::optional<Point> arc_centre_exact(const Polyline& a, double da, const Polyline& b, double db) {
+  if (a.size() < 2 || b.size() < 2) return std::nullopt;
+  std::vector<Piece> pa = locus_pieces(a, da, +1);
+  std::vector<Piece> pb = locus_pieces(b, db, -1);
+  return nearest_valid(a, da, b, db, pa, pb, intersect);
 }
 
 }  // namespace streetgen::core

@@ -15,6 +15,14 @@ namespace streetgen::core {
 // `a` and `b` leave the node (their first point is the node) and the corner is swept
 // counter-clockwise from a to b: the centre lies left of a and right of b. Returns nothing when
 // no such point exists (parallel axes, a reflex corner, one road contained in the other).
+//
+// Filtered like CGAL's own kernels: a double-precision pass first, whose candidates are checked
+// before use; only when it finds nothing (near-tangent or nearly parallel offsets) does the exact
+// pass run.
 std::optional<Point> arc_centre(const Polyline& a, double da, const Polyline& b, double db);
+
+// The two passes on their own (tests compare them; the radius search uses the fast one).
+std::optional<Point> arc_centre_fast(const Polyline& a, double da, const Polyline& b, double db);
+std::optional<Point> arc_centre_exact(const Polyline& a, double da, const Polyline& b, double db);
 
 }  // namespace streetgen::core

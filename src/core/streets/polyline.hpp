@@ -19,7 +19,7 @@ inline Point operator-(Point a, Point b) { return {a.x - b.x, a.y - b.y}; }
 inline Point operator*(double k, Point a) { return {k * a.x, k * a.y}; }
 inline double dot(Point a, Point b) { return a.x * b.x + a.y * b.y; }
 inline double cross(Point a, Point b) { return a.x * b.y - a.y * b.x; }
-inline double norm(Point a) { return std::hypot(a.x, a.y); }
+inline double norm(Point a) { return std::sqrt(a.x * a.x + a.y * a.y); }  // metres: no overflow to guard against
 inline double distance(Point a, Point b) { return norm(a - b); }
 inline Point left_normal(Point unit) { return {-unit.y, unit.x}; }
 inline Point unit(Point a) {

@@ -268,10 +268,12 @@ class SurfaceBuilder {
     double foot_a, foot_b;       // abscissas of the tangent points' feet on the axes
   };
 
-  std::optional<Arc> arc_for(const End& a, const End& b, double radius) const {
+  // `fast`: the double-precision pass only (the radius search probes many radii).
+  std::optional<Arc> arc_for(const End& a, const End& b, double radius, bool fast = false) const {
     Polyline oa = substring(a.outgoing, 0.0, a.available);
     Polyline ob = substring(b.outgoing, 0.0, b.available);
-    std::optional<Point> c = arc_centre(oa, a.half_width + radius, ob, b.half_width + radius);
+    std::optional<Point> c = fast ? arc_centre_fast(oa, a.half_width + radius, ob, b.half_width + radius)
+                                  : arc_centre(oa, a.half_width + radius, ob, b.half_width + radius);
     if (!c) return std::nullopt;
     Projection pa = project(oa, *c);
     Projection pb = project(ob, *c);
@@ -314,7 +316,7 @@ class SurfaceBuilder {
         double hi = radius;
         for (int i = 0; i < 24 && hi - lo > 1e-3; ++i) {
           double mid = 0.5 * (lo + hi);
-          std::optional<Arc> m = arc_for(a, b, mid);
+          std::optional<Arc> m = arc_for(a, b, mid, true);
           if (m) {
             lo = mid;
             at_lo = m;
