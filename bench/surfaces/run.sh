@@ -1,0 +1,158 @@
+#!/usr/bin/env bash
+# Street surfaces: acceptance report and benchmark, on real data, in one run.
+#
+#   bash bench/surfaces/run.sh            everything (about 5 minutes on 2 cores)
+#   DATASETS="osm paris" bash bench/surfaces/run.sh      a subset: osm, cases, paris
+#   PEERS=0 bash bench/surfaces/run.sh    without the peer comparison
+#
+# Builds and installs streetgen, starts a throwaway cluster, then for every file of
+# ../shared/data/osm, every case of ../shared/data/osm2streets and the Paris example graph:
+# import (wall time), generate (wall time, peak backend memory), surface_quality, corners by
+# status, intersections by status, issues by kind. Then the Neukolln carriageway fidelity against
+# the real lane areas, the junction match against osm2streets' stored outputs, and the peers
+# (SUMO netconvert, osm2streets-js; bench/peers) on the same OSM files, as time ratios.
+# The report goes to stdout and to $OUT/report.md (default build/bench-surfaces).
+set -euo pipefail
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+data="${STREETGEN_SHARED_DATA:-$repo/../shared/data}"
+out="${OUT:-$repo/build/bench-surfaces}"
+datasets="${DATASETS:-osm cases paris}"
+peers="${PEERS:-1}"
+port=54330
+cluster=/tmp/streetgen-bench-$port
+mkdir -p "$out"
+report="$out/report.md"
+: >"$report"
+say() { echo "$*" | tee -a "$report"; }
+
+STREETGEN_BUILD_TESTS=OFF STREETGEN_BUILD_DIR="$repo/build-bench" bash "$repo/scripts/build.sh" >/dev/null
+bash "$repo/scripts/pgcluster.sh" destroy "$cluster" >/dev/null 2>&1 || true
+bash "$repo/scripts/pgcluster.sh" start "$cluster" "$port" --fast >/dev/null
+trap 'bash "$repo/scripts/pgcluster.sh" destroy "$cluster" >/dev/null 2>&1 || true' EXIT
+export PGHOST="$cluster" PGPORT="$port" PGUSER=postgres PGDATABASE=bench
+export PGOPTIONS="-c client_min_messages=warning"
+createdb bench
+psql -X -q -c "CREATE EXTENSION streetgen CASCADE"
+now() { date +%s.%N; }
+since() { awk -v s="$1" -v e="$(now)" 'BEGIN { printf "%.2f", e - s }'; }
+
+# generate MODEL -> prints "seconds peak_kb" (one fresh backend per model).
+generate() {
+  local model=$1 start
+  start=$(now)
+  local hwm
+  hwm=$(psql -X -q -At <<SQL
+SELECT pg_backend_pid() AS pid \gset
+SELECT count(*) FROM streetgen.generate('$model') \g /dev/null
+\setenv SGPID :pid
+\! awk '/VmHWM/ { print \$2 }' /proc/\$SGPID/status
+SQL
+)
+  echo "$(since "$start") $hwm"
+}
+
+declare -A import_s generate_s peak_kb
+run_dataset() {  # name, import command...
+  local name=$1; shift
+  local start
+  start=$(now)
+  "$@" >"$out/import-$name.log" 2>&1 || { echo "import of $name failed: $(tail -3 "$out/import-$name.log")" >&2; return 1; }
+  import_s[$name]=$(since "$start")
+  read -r generate_s[$name] peak_kb[$name] < <(generate "$name")
+}
+
+names=()
+if [[ " $datasets " == *" osm "* ]]; then
+  for f in "$data"/osm/*; do
+    n="$(basename "$f")"; n="${n%%.*}"; n="${n//-/_}"
+    run_dataset "$n" "$repo/scripts/streetgen-import" -m "$n" "$f" && names+=("$n")
+  done
+fi
+if [[ " $datasets " == *" cases "* ]]; then
+  for d in "$data"/osm2streets/*/; do
+    c="$(basename "$d")"; f="$(ls "$d"/input.osm* | head -1)"
+    run_dataset "c_$c" "$repo/scripts/streetgen-import" -m "c_$c" "$f" && names+=("c_$c")
+  done
+fi
+if [[ " $datasets " == *" paris "* ]]; then
+  load_paris() {
+    psql -X -q -c "SELECT streetgen.create_model('paris', 0)"
+    ogr2ogr -f PostgreSQL "PG:dbname=$PGDATABASE" "$data/examples/cities/paris.geojson" -nln paris_staging \
+      -lco GEOMETRY_NAME=geom -lco SPATIAL_INDEX=NONE --config PG_USE_COPY YES -overwrite
+    psql -X -q -v ON_ERROR_STOP=1 -v model=paris -v staging=paris_staging -f "$repo/bench/surfaces/load-example-graph.sql"
+  }
+  run_dataset paris load_paris && names+=(paris)
+fi
+
+say "# Street surfaces on real data"
+say ""
+say "streetgen $(psql -X -At -c "SELECT extension || ' (GEOS ' || geos || ', CGAL ' || cgal || ', PostGIS ' || postgis || ')' FROM streetgen.version()"), $(nproc) cores, $(date -u +%Y-%m-%d)."
+say "Road data (c) OpenStreetMap contributors, ODbL 1.0; Paris graph from Nishida et al. (ODbL-derived)."
+say ""
+say "| dataset | axes | nodes | junctions | intersections | invalid | missing | section overlap % | import s | generate s | peak MB |"
+say "|---|---|---|---|---|---|---|---|---|---|---|"
+for n in "${names[@]}"; do
+  row=$(psql -X -At -F '|' -c "
+    SELECT (SELECT count(*) FROM $n.axis), q.nodes, q.junctions, q.intersections, q.invalid_geometries,
+           q.missing_intersections, round((100 * q.section_overlap_ratio)::numeric, 4)
+      FROM streetgen.surface_quality('$n') q")
+  say "| $n | $row | ${import_s[$n]} | ${generate_s[$n]} | $(( ${peak_kb[$n]:-0} / 1024 )) |"
+done
+say ""
+say "Corners by status, intersections by status, issues by kind:"
+say ""
+say "| dataset | corners | intersections | issues |"
+say "|---|---|---|---|"
+for n in "${names[@]}"; do
+  corners=$(psql -X -At -c "SELECT string_agg(status || ' ' || c, ', ' ORDER BY c DESC) FROM (SELECT status, count(*) c FROM $n.corner GROUP BY 1) s")
+  inters=$(psql -X -At -c "SELECT string_agg(status || ' ' || c, ', ' ORDER BY c DESC) FROM (SELECT status, count(*) c FROM $n.intersection GROUP BY 1) s")
+  issues=$(psql -X -At -c "SELECT coalesce(string_agg(kind || ' ' || c, ', ' ORDER BY c DESC), 'none') FROM (SELECT kind, count(*) c FROM $n.issue GROUP BY 1) s")
+  say "| $n | $corners | $inters | $issues |"
+done
+totals=$(psql -X -At -c "SELECT count(*) FROM streetgen.model")
+say ""
+say "Models: $totals. Acceptance: invalid = 0, missing = 0, section overlap < 0.1 % on every row above."
+
+if [[ " ${names[*]} " == *" c_neukolln "* ]]; then
+  say ""
+  say "## Fidelity: Neukolln carriageway (truth: lane_area.geojson, OSM + ALKIS)"
+  bash "$repo/bench/surfaces/export-surfaces.sh" c_neukolln "$out/neukolln"
+  say ""
+  say "streetgen: $(/usr/bin/python3 "$repo/bench/peers/fidelity-neukoelln.py" "$out/neukolln/streetgen-roads.geojson" "$out/neukolln/streetgen-junctions.geojson")"
+fi
+if [[ " $datasets " == *" cases "* ]]; then
+  say ""
+  say "## Junctions against osm2streets' stored outputs (geometry.json)"
+  say ""
+  matched=0; reference=0; iou_sum=0
+  for d in "$data"/osm2streets/*/; do
+    c="$(basename "$d")"
+    bash "$repo/bench/surfaces/export-surfaces.sh" "c_$c" "$out/cases/$c" >/dev/null 2>&1 || continue
+    line=$(/usr/bin/python3 "$repo/bench/peers/junction-match.py" "$out/cases/$c/streetgen-junctions.geojson" "$d" 2>/dev/null || true)
+    echo "$c $line" >>"$out/junction-match.txt"
+  done
+  say "$(awk '{ for (i = 2; i <= NF; i++) { split($i, kv, "="); s[kv[1]] += kv[2] } } END {
+      printf "cases %d: ", NR; for (k in s) printf "%s=%g ", k, s[k]; print "" }' "$out/junction-match.txt")"
+  say "(per case: $out/junction-match.txt; mean_iou summed over cases above, divide by cases)"
+fi
+
+if [ "$peers" = 1 ] && [[ " $datasets " == *" osm "* ]]; then
+  say ""
+  say "## Peers on the same OSM files (wall s; ratio = streetgen import+generate / faster peer)"
+  say ""
+  bash "$repo/bench/peers/install-peers.sh" >/dev/null 2>&1
+  say "| file | streetgen s | netconvert s | osm2streets s | ratio | streetgen peak MB | netconvert peak MB |"
+  say "|---|---|---|---|---|---|---|"
+  for f in liechtenstein.osm.pbf reisterstown.osm.pbf baltimore.osm.pbf munich.osm.pbf campo-grande.osm.gz; do
+    n="${f%%.*}"; n="${n//-/_}"
+    [ -n "${import_s[$n]:-}" ] || continue
+    lines=$(bash "$repo/bench/peers/run-peers.sh" "$data/osm/$f" "$out/peers/$n" 2>/dev/null || true)
+    nc=$(echo "$lines" | sed -n 's/^peer=netconvert .*wall_s=\([0-9.]*\).*/\1/p')
+    nc_kb=$(echo "$lines" | sed -n 's/^peer=netconvert .*peak_rss_kb=\([0-9]*\).*/\1/p')
+    o2=$(echo "$lines" | sed -n 's/^peer=osm2streets .*wall_s=\([0-9.]*\).*/\1/p')
+    ours=$(awk -v a="${import_s[$n]}" -v b="${generate_s[$n]}" 'BEGIN { printf "%.2f", a + b }')
+    ratio=$(awk -v o="$ours" -v a="${nc:-0}" -v b="${o2:-0}" 'BEGIN { m = (a > 0 && (b == 0 || a < b)) ? a : b; if (m > 0) printf "%.2f", o / m; else print "n/a" }')
+    say "| $f | $ours | ${nc:-n/a} | ${o2:-n/a} | $ratio | $(( ${peak_kb[$n]:-0} / 1024 )) | $(( ${nc_kb:-0} / 1024 )) |"
+  done
+fi
+echo "report: $report"
