@@ -110,10 +110,17 @@ std::vector<FastPiece> fast_pieces(const Polyline& line, double d, int side) {
   return pieces;
 }
 
-void fast_intersect(const FastPiece& p, const FastPiece& q, std::vector<Point>& out) {
+// Where doubles are not to be trusted the fast pass says so (`doubtful`), and a miss is then
+// retried exactly: nearly parallel offsets, near-tangent circles.
+constexpr double kDoubtful = 1e-9;
+
+void fast_intersect(const FastPiece& p, const FastPiece& q, std::vector<Point>& out, bool& doubtful) {
   if (!p.is_circle && !q.is_circle) {
     double det = cross(p.dir, q.dir);
-    if (std::abs(det) < 1e-12) return;
+    if (std::abs(det) < kDoubtful) {
+      doubtful = true;
+      return;
+    }
     double t = cross(q.p0 - p.p0, q.dir) / det;
     out.push_back(p.p0 + t * p.dir);
     return;
@@ -121,6 +128,10 @@ void fast_intersect(const FastPiece& p, const FastPiece& q, std::vector<Point>& 
   if (p.is_circle && q.is_circle) {
     Point d = q.centre - p.centre;
     double dist = norm(d);
+    double scale = std::max(1.0, p.radius + q.radius);
+    if (std::abs(dist - (p.radius + q.radius)) < kDoubtful * scale || std::abs(dist - std::abs(p.radius - q.radius)) < kDoubtful * scale) {
+      doubtful = true;
+    }
     if (dist == 0.0 || dist > p.radius + q.radius || dist < std::abs(p.radius - q.radius)) return;
     double along = (dist * dist + p.radius * p.radius - q.radius * q.radius) / (2 * dist);
     double h2 = p.radius * p.radius - along * along;
@@ -136,6 +147,7 @@ void fast_intersect(const FastPiece& p, const FastPiece& q, std::vector<Point>& 
   double along = dot(c.centre - l.p0, l.dir);
   Point foot = l.p0 + along * l.dir;
   double h2 = c.radius * c.radius - dot(c.centre - foot, c.centre - foot);
+  if (std::abs(h2) < kDoubtful * std::max(1.0, c.radius * c.radius)) doubtful = true;
   if (h2 < 0.0) return;
   double h = std::sqrt(h2);
   out.push_back(foot + h * l.dir);
@@ -144,7 +156,8 @@ void fast_intersect(const FastPiece& p, const FastPiece& q, std::vector<Point>& 
 
 template <class PieceT, class Intersect>
 std::optional<Point> nearest_valid(const Polyline& a, double da, const Polyline& b, double db,
-                                   const std::vector<PieceT>& pa, const std::vector<PieceT>& pb, Intersect intersect) {
+                                   const std::vector<PieceT>& pa, const std::vector<PieceT>& pb, Intersect intersect,
+                                   bool& doubtful) {
   Point node = a.front();
   double eps = 1e-7 * std::max({1.0, da, db});
   std::optional<Point> best;
@@ -155,7 +168,7 @@ std::optional<Point> nearest_valid(const Polyline& a, double da, const Polyline&
     for (const PieceT& q : pb) {
       poller.tick();
       candidates.clear();
-      intersect(p, q, candidates);
+      intersect(p, q, candidates, doubtful);
       for (Point c : candidates) {
         if (!std::isfinite(c.x) || !std::isfinite(c.y)) continue;
         double dn = distance(c, node);
@@ -163,6 +176,8 @@ std::optional<Point> nearest_valid(const Polyline& a, double da, const Polyline&
         if (on_locus(a, c, da, +1, eps) && on_locus(b, c, db, -1, eps)) {
           best = c;
           best_distance = dn;
+        } else if (on_locus(a, c, da, +1, 1e3 * eps) && on_locus(b, c, db, -1, 1e3 * eps)) {
+          doubtful = true;  // rejected by a hair: the exact pass decides
         }
       }
     }
@@ -172,13 +187,22 @@ std::optional<Point> nearest_valid(const Polyline& a, double da, const Polyline&
 
 }  // namespace
 
-std::optional<Point> arc_centre_fast(const Polyline& a, double da, const Polyline& b, double db) {
+namespace {
+std::optional<Point> fast_pass(const Polyline& a, double da, const Polyline& b, double db, bool& doubtful) {
   if (a.size() < 2 || b.size() < 2) return std::nullopt;
-  return nearest_valid(a, da, b, db, fast_pieces(a, da, +1), fast_pieces(b, db, -1), fast_intersect);
+  return nearest_valid(a, da, b, db, fast_pieces(a, da, +1), fast_pieces(b, db, -1), fast_intersect, doubtful);
+}
+}  // namespace
+
+std::optional<Point> arc_centre_fast(const Polyline& a, double da, const Polyline& b, double db) {
+  bool doubtful = false;
+  return fast_pass(a, da, b, db, doubtful);
 }
 
 std::optional<Point> arc_centre(const Polyline& a, double da, const Polyline& b, double db) {
-  if (std::optional<Point> fast = arc_centre_fast(a, da, b, db)) return fast;
+  bool doubtful = false;
+  if (std::optional<Point> fast = fast_pass(a, da, b, db, doubtful)) return fast;
+  if (!doubtful) return std::nullopt;
   return arc_centre_exact(a, da, b, db);
 }
 
@@ -186,7 +210,10 @@ std::optional<Point> arc_centre_exact(const Polyline& a, double da, const Polyli
   if (a.size() < 2 || b.size() < 2) return std::nullopt;
   std::vector<Piece> pa = locus_pieces(a, da, +1);
   std::vector<Piece> pb = locus_pieces(b, db, -1);
-  return nearest_valid(a, da, b, db, pa, pb, intersect);
+  bool unused = false;
+  return nearest_valid(a, da, b, db, pa, pb,
+                       [](const Piece& p, const Piece& q, std::vector<Point>& out, bool&) { intersect(p, q, out); },
+                       unused);
 }
 
 }  // namespace streetgen::core

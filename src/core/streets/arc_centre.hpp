@@ -17,8 +17,8 @@ namespace streetgen::core {
 // no such point exists (parallel axes, a reflex corner, one road contained in the other).
 //
 // Filtered like CGAL's own kernels: a double-precision pass first, whose candidates are checked
-// before use; only when it finds nothing (near-tangent or nearly parallel offsets) does the exact
-// pass run.
+// before use; only when it finds nothing and met a near-degenerate case on the way (nearly
+// parallel offsets, near-tangent circles, a candidate rejected by a hair) does the exact pass run.
 std::optional<Point> arc_centre(const Polyline& a, double da, const Polyline& b, double db);
 
 // The two passes on their own (tests compare them; the radius search uses the fast one).

@@ -79,6 +79,33 @@ Projection project(const Polyline& line, Point p) {
   return best;
 }
 
+namespace {
+double point_segment_distance(Point p, Point a, Point b) {
+  Point d = b - a;
+  double len2 = dot(d, d);
+  double t = len2 > 0.0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+  return distance(p, a + t * d);
+}
+
+bool segments_cross(Point a0, Point a1, Point b0, Point b1) {
+  double d1 = cross(a1 - a0, b0 - a0), d2 = cross(a1 - a0, b1 - a0);
+  double d3 = cross(b1 - b0, a0 - b0), d4 = cross(b1 - b0, a1 - b0);
+  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0;
+}
+}  // namespace
+
+double polyline_distance(const Polyline& a, const Polyline& b) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < a.size(); ++i) {
+    for (std::size_t j = 0; j + 1 < b.size(); ++j) {
+      if (segments_cross(a[i], a[i + 1], b[j], b[j + 1])) return 0.0;
+      best = std::min({best, point_segment_distance(a[i], b[j], b[j + 1]), point_segment_distance(a[i + 1], b[j], b[j + 1]),
+                       point_segment_distance(b[j], a[i], a[i + 1]), point_segment_distance(b[j + 1], a[i], a[i + 1])});
+    }
+  }
+  return best;
+}
+
 Polyline without_repeated_points(const Polyline& line, double eps) {
   Polyline out;
   for (const Point& p : line) {

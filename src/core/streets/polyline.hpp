@@ -50,6 +50,9 @@ struct Projection {
 // The closest point of `line` to p.
 Projection project(const Polyline& line, Point p);
 
+// Smallest distance between two polylines.
+double polyline_distance(const Polyline& a, const Polyline& b);
+
 // Removes consecutive duplicate vertices (closer than eps).
 Polyline without_repeated_points(const Polyline& line, double eps);
 
