@@ -36,29 +36,36 @@ psql -X -q -c "CREATE EXTENSION streetgen CASCADE"
 now() { date +%s.%N; }
 since() { awk -v s="$1" -v e="$(now)" 'BEGIN { printf "%.2f", e - s }'; }
 
-# generate MODEL -> prints "seconds peak_kb" (one fresh backend per model).
+# generate MODEL -> prints "seconds peak_kb base_kb": wall time of generate() and the backend's
+# peak private memory (VmHWM - RssShmem - RssFile: without shared buffers and mapped files such
+# as libraries and the PROJ database, which other processes share), and the same
+# before generate() (libraries loaded, model read) - one fresh backend per model.
 generate() {
   local model=$1 start
-  start=$(now)
-  local hwm
-  hwm=$(psql -X -q -At <<SQL
+  local kb
+  kb=$(psql -X -q -At <<SQL
 SELECT pg_backend_pid() AS pid \gset
-SELECT count(*) FROM streetgen.generate('$model') \g /dev/null
 \setenv SGPID :pid
-\! awk '/VmHWM/ { print \$2 }' /proc/\$SGPID/status
+SELECT count(ST_AsEWKB(geom)), streetgen.version() FROM $model.axis \g /dev/null
+\! awk '/VmHWM/ { h = \$2 } /RssShmem/ { s = \$2 } /RssFile/ { f = \$2 } END { print h - s - f }' /proc/\$SGPID/status
+\! date +%s.%N
+SELECT count(*) FROM streetgen.generate('$model') \g /dev/null
+\! date +%s.%N
+\! awk '/VmHWM/ { h = \$2 } /RssShmem/ { s = \$2 } /RssFile/ { f = \$2 } END { print h - s - f }' /proc/\$SGPID/status
 SQL
 )
-  echo "$(since "$start") $hwm"
+  read -r base t0 t1 peak <<<"$(echo $kb)"
+  echo "$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f", b - a }') $peak $base"
 }
 
-declare -A import_s generate_s peak_kb
+declare -A import_s generate_s peak_kb base_kb
 run_dataset() {  # name, import command...
   local name=$1; shift
   local start
   start=$(now)
   "$@" >"$out/import-$name.log" 2>&1 || { echo "import of $name failed: $(tail -3 "$out/import-$name.log")" >&2; return 1; }
   import_s[$name]=$(since "$start")
-  read -r generate_s[$name] peak_kb[$name] < <(generate "$name")
+  read -r generate_s[$name] peak_kb[$name] base_kb[$name] < <(generate "$name")
 }
 
 names=()
@@ -89,14 +96,14 @@ say ""
 say "streetgen $(psql -X -At -c "SELECT extension || ' (GEOS ' || geos || ', CGAL ' || cgal || ', PostGIS ' || postgis || ')' FROM streetgen.version()"), $(nproc) cores, $(date -u +%Y-%m-%d)."
 say "Road data (c) OpenStreetMap contributors, ODbL 1.0; Paris graph from Nishida et al. (ODbL-derived)."
 say ""
-say "| dataset | axes | nodes | junctions | intersections | invalid | missing | section overlap % | import s | generate s | peak MB |"
+say "| dataset | axes | nodes | junctions | intersections | invalid | missing | section overlap % | import s | generate s | peak private MB (before generate) |"
 say "|---|---|---|---|---|---|---|---|---|---|---|"
 for n in "${names[@]}"; do
   row=$(psql -X -At -F '|' -c "
     SELECT (SELECT count(*) FROM $n.axis), q.nodes, q.junctions, q.intersections, q.invalid_geometries,
            q.missing_intersections, round((100 * q.section_overlap_ratio)::numeric, 4)
       FROM streetgen.surface_quality('$n') q")
-  say "| $n | $row | ${import_s[$n]} | ${generate_s[$n]} | $(( ${peak_kb[$n]:-0} / 1024 )) |"
+  say "| $n | $row | ${import_s[$n]} | ${generate_s[$n]} | $(( ${peak_kb[$n]:-0} / 1024 )) ($(( ${base_kb[$n]:-0} / 1024 ))) |"
 done
 say ""
 say "Corners by status, intersections by status, issues by kind:"
@@ -117,8 +124,10 @@ if [[ " ${names[*]} " == *" c_neukolln "* ]]; then
   say ""
   say "## Fidelity: Neukolln carriageway (truth: lane_area.geojson, OSM + ALKIS)"
   bash "$repo/bench/surfaces/export-surfaces.sh" c_neukolln "$out/neukolln"
+  EXCLUDE_SERVICE=1 bash "$repo/bench/surfaces/export-surfaces.sh" c_neukolln "$out/neukolln-main"
   say ""
-  say "streetgen: $(/usr/bin/python3 "$repo/bench/peers/fidelity-neukoelln.py" "$out/neukolln/streetgen-roads.geojson" "$out/neukolln/streetgen-junctions.geojson")"
+  say "streetgen, all car roads: $(/usr/bin/python3 "$repo/bench/peers/fidelity-neukoelln.py" "$out/neukolln/streetgen-roads.geojson" "$out/neukolln/streetgen-junctions.geojson" 2>/dev/null)"
+  say "streetgen, main roads (no highway=service, which the real carriageway layer leaves out): $(/usr/bin/python3 "$repo/bench/peers/fidelity-neukoelln.py" "$out/neukolln-main/streetgen-roads.geojson" "$out/neukolln-main/streetgen-junctions.geojson" 2>/dev/null)"
 fi
 if [[ " $datasets " == *" cases "* ]]; then
   say ""
@@ -131,9 +140,11 @@ if [[ " $datasets " == *" cases "* ]]; then
     line=$(/usr/bin/python3 "$repo/bench/peers/junction-match.py" "$out/cases/$c/streetgen-junctions.geojson" "$d" 2>/dev/null || true)
     echo "$c $line" >>"$out/junction-match.txt"
   done
-  say "$(awk '{ for (i = 2; i <= NF; i++) { split($i, kv, "="); s[kv[1]] += kv[2] } } END {
-      printf "cases %d: ", NR; for (k in s) printf "%s=%g ", k, s[k]; print "" }' "$out/junction-match.txt")"
-  say "(per case: $out/junction-match.txt; mean_iou summed over cases above, divide by cases)"
+  say "$(awk '{ for (i = 2; i <= NF; i++) { split($i, kv, "="); v[kv[1]] = kv[2] }
+                 cases++; produced += v["produced"]; reference += v["reference"]; matched += v["matched"]
+                 iou += v["mean_iou"] * v["matched"]; iou50 += v["matched_iou50"] }
+               END { printf "cases %d: reference junctions %d, produced %d, matched %d, mean IoU of matched %.3f, matched with IoU >= 0.5: %d", cases, reference, produced, matched, (matched ? iou / matched : 0), iou50 }' "$out/junction-match.txt")"
+  say "(per case: $out/junction-match.txt)"
 fi
 
 if [ "$peers" = 1 ] && [[ " $datasets " == *" osm "* ]]; then
@@ -141,7 +152,7 @@ if [ "$peers" = 1 ] && [[ " $datasets " == *" osm "* ]]; then
   say "## Peers on the same OSM files (wall s; ratio = streetgen import+generate / faster peer)"
   say ""
   bash "$repo/bench/peers/install-peers.sh" >/dev/null 2>&1
-  say "| file | streetgen s | netconvert s | osm2streets s | ratio | streetgen peak MB | netconvert peak MB |"
+  say "| file | streetgen s | netconvert s | osm2streets s | ratio | streetgen peak private MB | netconvert peak RSS MB |"
   say "|---|---|---|---|---|---|---|"
   for f in liechtenstein.osm.pbf reisterstown.osm.pbf baltimore.osm.pbf munich.osm.pbf campo-grande.osm.gz; do
     n="${f%%.*}"; n="${n//-/_}"
