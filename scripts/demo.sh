@@ -2,7 +2,7 @@
 # The main job, end to end on a fresh Debian 12 machine: install dependencies, build and install
 # streetgen, start a throwaway local PostgreSQL cluster, create the extension, import the real road
 # network of central Gothenburg (OpenStreetMap, fetched from the npm registry) and print what is
-# there and how to connect. Re-running it re-imports the model; the cluster keeps running.
+# there and how to connect. Re-running it makes the demo database anew; the cluster keeps running.
 #   STREETGEN_DEMO_DIR   cluster folder (default /var/tmp/streetgen-demo)
 #   STREETGEN_DEMO_PORT  port on localhost (default 54321)
 set -euo pipefail
@@ -15,13 +15,15 @@ STREETGEN_BUILD_TESTS=OFF STREETGEN_BUILD_DIR="${STREETGEN_BUILD_DIR:-$repo/buil
 bash "$repo/scripts/pgcluster.sh" start "$dir" "$port"
 export PGHOST="$dir" PGPORT="$port" PGUSER=postgres PGDATABASE=streetgen
 export PGOPTIONS="-c client_min_messages=warning"
-psql -X -q -d postgres -tAc "SELECT 1 FROM pg_database WHERE datname = 'streetgen'" | grep -q 1 || createdb streetgen
-psql -X -q -v ON_ERROR_STOP=1 -c "CREATE EXTENSION IF NOT EXISTS streetgen CASCADE" \
-  -c "ALTER EXTENSION streetgen UPDATE" \
-  -c "SELECT streetgen.drop_model('gothenburg') FROM streetgen.model WHERE name = 'gothenburg'" >/dev/null
+# A throwaway demo: the database is made anew each run, with the extension just built.
+dropdb --if-exists streetgen
+createdb streetgen
+psql -X -q -v ON_ERROR_STOP=1 -c "CREATE EXTENSION streetgen CASCADE"
 
 network="$(bash "$repo/scripts/fetch-demo-data.sh")"
 "$repo/scripts/streetgen-import" -m gothenburg "$network"
+echo "generating street surfaces ..."
+psql -X -q -c "SELECT count(*) FROM streetgen.generate('gothenburg')" >/dev/null
 
 echo
 echo "== streetgen demo: what is there =="
@@ -33,6 +35,16 @@ psql -X -q -P footer=off -c "
          round(100.0 * avg(('speed_kmh' = ANY(a.estimated))::int), 1) AS speed_estimated_pct,
          sum((a.structure = 'bridge')::int) AS bridges, sum((a.structure = 'tunnel')::int) AS tunnels
     FROM streetgen.model m, gothenburg.axis a WHERE m.name = 'gothenburg' GROUP BY m.name, m.srid"
+psql -X -q -P footer=off -c "
+  SELECT q.nodes, q.junctions, q.intersections, q.sections, q.invalid_geometries AS invalid,
+         q.missing_intersections AS junctions_without_surface,
+         round(q.surface_area::numeric / 10000, 1) AS roadway_ha,
+         (SELECT count(*) FROM gothenburg.corner WHERE arc IS NOT NULL) AS curb_arcs
+    FROM streetgen.surface_quality('gothenburg') q"
+psql -X -q -P footer=off -c "
+  SELECT 'corner' AS kind, status, count(*) FROM gothenburg.corner GROUP BY 1, 2
+  UNION ALL SELECT 'intersection', status, count(*) FROM gothenburg.intersection GROUP BY 1, 2
+  ORDER BY 1, 3 DESC"
 psql -X -q -P footer=off -c "
   SELECT road_class, count(*) AS axes, round(sum(ST_Length(geom))::numeric / 1000, 1) AS km,
          round(avg(roadway_width)::numeric, 2) AS mean_width_m, round(avg(speed_kmh)::numeric, 1) AS mean_speed_kmh
@@ -46,8 +58,10 @@ Road data: (c) OpenStreetMap contributors, ODbL 1.0 (via npm geojson-path-finder
   QGIS:  Layer > Data Source Manager > PostgreSQL > New
          Name: streetgen-demo   Host: localhost   Port: $port   Database: streetgen
          Authentication: Basic, user postgres, no password (trust on loopback: a throwaway cluster)
-         then add the layer gothenburg.axis (geometry geom, EPSG:32632).
-  Try:   SELECT * FROM streetgen.roadway_borders((SELECT geom FROM gothenburg.axis LIMIT 1), 7);
+         then add the layers gothenburg.section, gothenburg.intersection (surfaces),
+         gothenburg.corner (arc_segmentized: the curb arcs) and gothenburg.axis (EPSG:32632).
+  Try:   SELECT * FROM streetgen.generate('gothenburg');   -- after editing axes or settings
+         UPDATE gothenburg.settings SET turn_speed_ratio = 0.3;
   Stop:  bash $repo/scripts/pgcluster.sh stop $dir      (remove: ... destroy $dir)
 Demo ready in $(( $(date +%s) - started )) s.
 TXT
