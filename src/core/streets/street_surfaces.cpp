@@ -39,6 +39,15 @@ struct End {
   double border = 0.0;    // abscissa of the border line on `outgoing`
 };
 
+// The offset direction at a vertex between segments `before` and `after` (unit vectors), scaled
+// so that offsetting by h along it keeps distance h from both segments (a mitre), limited to 2.
+Point mitre_normal(Point before, Point after) {
+  Point n = unit(left_normal(before) + left_normal(after));
+  if (norm(n) == 0.0) n = left_normal(after);
+  double cos_half = dot(n, left_normal(after));
+  return (cos_half > 0.5 ? 1.0 / cos_half : 2.0) * n;
+}
+
 // Points of the border at distance h on `side` (+1 left, -1 right) of `line`, between abscissas
 // from_s and to_s (either order), with mitred vertices (limited to 2h). The ends take the
 // tangent of the line itself, so an empty stretch still gives the border point.
@@ -54,12 +63,7 @@ Polyline border_path(const Polyline& line, double from_s, double to_s, double h,
     } else if (i + 1 == sub.size()) {
       n = left_normal(tangent_at(line, std::max(0.0, hi - 1e-9)));
     } else {
-      Point before = unit(sub[i] - sub[i - 1]);
-      Point after = unit(sub[i + 1] - sub[i]);
-      n = unit(left_normal(before) + left_normal(after));
-      if (norm(n) == 0.0) n = left_normal(after);
-      double cos_half = dot(n, left_normal(after));
-      n = (cos_half > 0.5 ? 1.0 / cos_half : 2.0) * n;
+      n = mitre_normal(unit(sub[i] - sub[i - 1]), unit(sub[i + 1] - sub[i]));
     }
     out.push_back(sub[i] + (side * h) * n);
   }
@@ -492,12 +496,9 @@ class SurfaceBuilder {
       double h = ends[0].half_width + t * (ends[1].half_width - ends[0].half_width);
       Point before = i > 0 ? unit(path[i] - path[i - 1]) : unit(path[1] - path[0]);
       Point after = i + 1 < path.size() ? unit(path[i + 1] - path[i]) : before;
-      Point nrm = unit(left_normal(before) + left_normal(after));
-      if (norm(nrm) == 0.0) nrm = left_normal(after);
-      double cos_half = dot(nrm, left_normal(after));
-      double scale = cos_half > 0.5 ? 1.0 / cos_half : 2.0;
-      left.push_back(path[i] + (h * scale) * nrm);
-      right.push_back(path[i] - (h * scale) * nrm);
+      Point n = mitre_normal(before, after);
+      left.push_back(path[i] + h * n);
+      right.push_back(path[i] - h * n);
     }
     Polyline ring = left;
     ring.insert(ring.end(), right.rbegin(), right.rend());
