@@ -671,15 +671,24 @@ class SurfaceBuilder {
       const SectionResult& a = result_.sections[with_surface[i]];
       const SectionResult& b = result_.sections[with_surface[j]];
       if (a.axis_id == b.axis_id || axis_layer_.at(a.axis_id) != axis_layer_.at(b.axis_id)) return;
-      pairs.push_back({with_surface[i], with_surface[j]});
+      // The pair's first member is the one with the smaller key: results do not depend on the
+      // order sections were built in (an incremental recompute of a few axes gives the same).
+      bool a_first = std::make_pair(a.axis_id, a.part) < std::make_pair(b.axis_id, b.part);
+      pairs.push_back(a_first ? std::make_pair(with_surface[i], with_surface[j]) : std::make_pair(with_surface[j], with_surface[i]));
     });
-    std::sort(pairs.begin(), pairs.end());  // deterministic, whatever order the box join found them
+    auto key = [&](std::size_t s) { return std::make_pair(result_.sections[s].axis_id, result_.sections[s].part); };
+    std::sort(pairs.begin(), pairs.end(), [&](const auto& x, const auto& y) {
+      return std::make_pair(key(x.first), key(x.second)) < std::make_pair(key(y.first), key(y.second));
+    });
+    // Every pair is split on the sections as built, and each section then gives away, at once,
+    // what is nearer to any other axis: the result does not depend on the order of the pairs,
+    // and a section's shape depends only on the sections that overlap it.
+    std::map<std::size_t, std::vector<GeomPtr>> given_away;
     InterruptPoller poller(16);
     for (auto [i, j] : pairs) {
       poller.tick();
-      SectionResult& a = result_.sections[i];
-      SectionResult& b = result_.sections[j];
-      if (!a.surface || !b.surface) continue;
+      const SectionResult& a = result_.sections[i];
+      const SectionResult& b = result_.sections[j];
       Polyline axis_a = substring(a.centre_line, a.start_border, a.end_border);
       Polyline axis_b = substring(b.centre_line, b.start_border, b.end_border);
       // Sections are within half their width of their axes: farther apart, they cannot overlap.
@@ -692,16 +701,30 @@ class SurfaceBuilder {
         GeomPtr overlap = own(ctx_, GEOSIntersection_r(ctx_.handle(), a.surface.get(), b.surface.get()), "overlap");
         if (area_of(ctx_, overlap.get()) < 1e-6) continue;
         GeomPtr nearer_a = nearer_region(overlap.get(), axis_a, axis_b);
-        GeomPtr to_b = own(ctx_, GEOSDifference_r(ctx_.handle(), overlap.get(), nearer_a.get()), "difference");
-        GeomPtr new_a = main_part(own(ctx_, GEOSDifference_r(ctx_.handle(), a.surface.get(), to_b.get()), "difference"), axis_a);
-        GeomPtr new_b = main_part(own(ctx_, GEOSDifference_r(ctx_.handle(), b.surface.get(), nearer_a.get()), "difference"), axis_b);
-        a.surface = std::move(new_a);
-        b.surface = std::move(new_b);
-        a.status = b.status = "narrowed";
+        GeomPtr nearer_b = own(ctx_, GEOSDifference_r(ctx_.handle(), overlap.get(), nearer_a.get()), "difference");
+        given_away[i].push_back(std::move(nearer_b));
+        given_away[j].push_back(std::move(nearer_a));
       } catch (const Error& e) {
         if (e.kind() != ErrorKind::geometry_engine) throw;
         result_.issues.push_back({a.axis_id, "overlap_kept",
                                   "the overlap with axis " + std::to_string(b.axis_id) + " could not be split: " + e.detail()});
+      }
+    }
+    for (auto& [i, pieces] : given_away) {
+      SectionResult& sec = result_.sections[i];
+      try {
+        std::vector<GEOSGeometry*> raw;
+        for (GeomPtr& piece : pieces) raw.push_back(piece.release());
+        GeomPtr all = own(ctx_, GEOSGeom_createCollection_r(ctx_.handle(), GEOS_GEOMETRYCOLLECTION, raw.data(),
+                                                            static_cast<unsigned>(raw.size())),
+                          "collection");
+        GeomPtr lost = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), all.get()), "union");
+        Polyline axis = substring(sec.centre_line, sec.start_border, sec.end_border);
+        sec.surface = main_part(own(ctx_, GEOSDifference_r(ctx_.handle(), sec.surface.get(), lost.get()), "difference"), axis);
+        sec.status = "narrowed";
+      } catch (const Error& e) {
+        if (e.kind() != ErrorKind::geometry_engine) throw;
+        result_.issues.push_back({sec.axis_id, "overlap_kept", "its overlaps could not be removed: " + e.detail()});
       }
     }
   }

@@ -174,29 +174,32 @@ Topology build_topology(const std::vector<TopologyAxis>& axes, double snap_toler
     }
   }
 
-  // Nodes at the mean position of their events, ordered by first event (deterministic).
+  // Nodes at the mean position of their events. The points are summed in sorted order, so a
+  // node's position (and id) does not depend on the order axes came in: a recompute of a few
+  // axes finds the same node as a run on the whole model.
   std::vector<std::size_t> node_of_event(events.size());
   std::map<std::size_t, std::size_t> node_of_root;
-  std::vector<Point> sums;
-  std::vector<int> counts;
+  std::vector<std::vector<Point>> members;
   std::vector<int> layers;
   for (std::size_t e = 0; e < events.size(); ++e) {
     std::size_t root = clusters.find(e);
-    auto [it, inserted] = node_of_root.emplace(root, sums.size());
+    auto [it, inserted] = node_of_root.emplace(root, members.size());
     if (inserted) {
-      sums.push_back({0.0, 0.0});
-      counts.push_back(0);
+      members.emplace_back();
       layers.push_back(events[e].layer);
     }
     std::size_t n = it->second;
     node_of_event[e] = n;
-    sums[n] = sums[n] + events[e].point;
-    counts[n] += 1;
+    members[n].push_back(events[e].point);
     layers[n] = std::min(layers[n], events[e].layer);
   }
   std::unordered_set<std::int64_t> used_ids;
-  for (std::size_t n = 0; n < sums.size(); ++n) {
-    Point position = (1.0 / counts[n]) * sums[n];
+  for (std::size_t n = 0; n < members.size(); ++n) {
+    std::sort(members[n].begin(), members[n].end(),
+              [](Point a, Point b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+    Point sum{0.0, 0.0};
+    for (const Point& p : members[n]) sum = sum + p;
+    Point position = (1.0 / static_cast<double>(members[n].size())) * sum;
     std::int64_t id = node_id_for(position, layers[n]);
     while (!used_ids.insert(id).second) id = static_cast<std::int64_t>(mix(static_cast<std::uint64_t>(id)) & 0x7fffffffffffffffULL);
     topo.nodes.push_back({id, position, layers[n]});
