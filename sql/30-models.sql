@@ -57,7 +57,7 @@ BEGIN
 
     CREATE TABLE %1$I.section (
       axis_id bigint NOT NULL REFERENCES %1$I.axis (id) ON DELETE CASCADE,
-      part integer NOT NULL,
+      part bigint NOT NULL,
       from_node bigint NOT NULL REFERENCES %1$I.node (id) ON DELETE CASCADE,
       to_node bigint NOT NULL REFERENCES %1$I.node (id) ON DELETE CASCADE,
       status text NOT NULL,
@@ -69,14 +69,15 @@ BEGIN
     );
     CREATE INDEX section_geom_idx ON %1$I.section USING gist (geom);
     COMMENT ON TABLE %1$I.section IS 'Constant part of each axis part between its border lines (geom NULL when the junctions take it all)';
+    COMMENT ON COLUMN %1$I.section.part IS 'Which part of the axis (between two nodes): where it starts along the axis, in mm of curvilinear abscissa';
 
     CREATE TABLE %1$I.corner (
       node_id bigint NOT NULL REFERENCES %1$I.node (id) ON DELETE CASCADE,
       axis_a bigint NOT NULL REFERENCES %1$I.axis (id) ON DELETE CASCADE,
-      part_a integer NOT NULL,
+      part_a bigint NOT NULL,
       end_a boolean NOT NULL,
       axis_b bigint NOT NULL REFERENCES %1$I.axis (id) ON DELETE CASCADE,
-      part_b integer NOT NULL,
+      part_b bigint NOT NULL,
       end_b boolean NOT NULL,
       status text NOT NULL,
       radius_wanted double precision,
@@ -104,7 +105,25 @@ BEGIN
       kind text NOT NULL,
       detail text
     );
+    CREATE INDEX issue_axis_idx ON %1$I.issue (axis_id);
     COMMENT ON TABLE %1$I.issue IS 'What the last generate could not use as given (duplicate or degenerate axes, ...)';
+
+    -- What the incremental refresh walks: the graph of the last result.
+    CREATE INDEX section_from_idx ON %1$I.section (from_node);
+    CREATE INDEX section_to_idx ON %1$I.section (to_node);
+    CREATE INDEX node_axes_idx ON %1$I.node USING gin (axis_ids);
+    CREATE INDEX axis_width_idx ON %1$I.axis (roadway_width);
+
+    -- One row that every recompute of the model updates first: concurrent recomputes of one
+    -- model queue on its row lock (READ COMMITTED), or fail with 40001 under REPEATABLE READ and
+    -- SERIALIZABLE, where a recompute could not see the other's result.
+    CREATE TABLE %1$I.refresh_state (
+      singleton boolean PRIMARY KEY DEFAULT true CHECK (singleton),
+      refreshes bigint NOT NULL DEFAULT 0,
+      refreshed_at timestamptz
+    );
+    INSERT INTO %1$I.refresh_state DEFAULT VALUES;
+    COMMENT ON TABLE %1$I.refresh_state IS 'Serialises the recomputes of this model (generate and the axis triggers)';
   $ddl$, name, srid);
 END
 $$;
@@ -167,6 +186,7 @@ BEGIN
     )$ddl$, name, srid);
   EXECUTE format('CREATE INDEX axis_geom_idx ON %I.axis USING gist (geom)', name);
   PERFORM streetgen._create_output_tables(name, srid);
+  PERFORM streetgen._create_triggers(name);
   EXECUTE format($c$COMMENT ON TABLE %I.axis IS
     'Road axes (input): centre lines with roadway width (m), lanes, speed (km/h), class, one-way, layer (bridges/tunnels), source'$c$, name);
   EXECUTE format($c$COMMENT ON COLUMN %I.axis.estimated IS

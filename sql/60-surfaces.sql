@@ -4,8 +4,8 @@ CREATE FUNCTION streetgen._streetgen_street_surfaces(
     ids bigint[], geoms bytea[], widths double precision[], speeds double precision[], layers integer[],
     radius_overrides double precision[], settings double precision[],
     override_nodes bigint[], override_keys bigint[], override_radii double precision[],
-    OUT kind text, OUT node_id bigint, OUT to_node bigint, OUT axis_id bigint, OUT part integer, OUT end_a boolean,
-    OUT axis_b bigint, OUT part_b integer, OUT end_b boolean, OUT status text, OUT detail text, OUT degree integer,
+    OUT kind text, OUT node_id bigint, OUT to_node bigint, OUT axis_id bigint, OUT part bigint, OUT end_a boolean,
+    OUT axis_b bigint, OUT part_b bigint, OUT end_b boolean, OUT status text, OUT detail text, OUT degree integer,
     OUT layer integer, OUT radius double precision, OUT radius_wanted double precision,
     OUT start_border double precision, OUT end_border double precision, OUT axis_ids bigint[],
     OUT geom bytea, OUT geom2 bytea, OUT geom3 bytea)
@@ -14,9 +14,10 @@ CREATE FUNCTION streetgen._streetgen_street_surfaces(
   COST 100000 ROWS 10000
   AS 'MODULE_PATHNAME', '_streetgen_street_surfaces';
 
--- Runs the engine on MODEL's axes, settings and corner overrides into temp table
--- pg_temp._streetgen_out (dropped at commit).
-CREATE FUNCTION streetgen._compute_model(model text)
+-- Runs the engine on MODEL's axes (all of them, or those whose id is in CONTEXT), its settings
+-- and corner overrides, into temp table pg_temp._streetgen_out (dropped at commit). Axes go in by
+-- id: the engine's results do not depend on the order, but sorted input makes that easy to see.
+CREATE FUNCTION streetgen._compute_model(model text, context bigint[] DEFAULT NULL)
   RETURNS void
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
@@ -34,7 +35,7 @@ BEGIN
                    array_agg(a.speed_kmh ORDER BY a.id) AS speeds,
                    array_agg(a.layer::integer ORDER BY a.id) AS layers,
                    array_agg(a.radius_override ORDER BY a.id) AS radii
-              FROM %1$I.axis a) AS x,
+              FROM %1$I.axis a WHERE $1 IS NULL OR a.id = ANY ($1)) AS x,
            (SELECT streetgen._settings_vector(to_jsonb(s) - 'singleton') AS v FROM %1$I.settings s) AS st,
            (SELECT array_agg(k ORDER BY c.node_id, c.axis_a, c.part_a, c.end_a, c.axis_b, c.part_b, c.end_b, i) AS keys
               FROM %1$I.corner c, unnest(ARRAY[c.axis_a, c.part_a, c.end_a::int, c.axis_b, c.part_b, c.end_b::int])
@@ -47,37 +48,41 @@ BEGIN
                                                 coalesce(x.speeds, '{}'), coalesce(x.layers, '{}'), coalesce(x.radii, '{}'),
                                                 st.v, coalesce(ov.nodes, '{}'), coalesce(ov_keys.keys, '{}'),
                                                 coalesce(ov.radii, '{}')) AS o
-  $q$, model);
+  $q$, model) USING context;
 END
 $$;
 
-CREATE FUNCTION streetgen.generate(model text, OUT kind text, OUT status text, OUT count bigint)
-  RETURNS SETOF record
+-- Writes pg_temp._streetgen_out into MODEL's tables. Whole model (SCOPED false), or only the
+-- rows in scope (SCOPED true): nodes in pg_temp._sg_scope_nodes, sections in
+-- pg_temp._sg_scope_sections, issues of axes in pg_temp._sg_scope_axes; rows out of scope are
+-- neither written nor deleted. Stale rows go first (children, then nodes last, once nothing
+-- refers to them); upserts leave unchanged rows alone; a corner's radius_override is the user's
+-- and is kept.
+CREATE FUNCTION streetgen._store(model text, scoped boolean)
+  RETURNS void
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
   AS $$
 DECLARE
   srid integer := streetgen.model_srid(model);
   statement text;
+  node_scope text := CASE WHEN scoped THEN '%s IN (SELECT id FROM pg_temp._sg_scope_nodes)' ELSE 'true OR %s IS NULL' END;
+  section_scope text := CASE WHEN scoped
+    THEN '(%s, %s) IN (SELECT axis_id, part FROM pg_temp._sg_scope_sections)' ELSE 'true OR (%s, %s) IS NULL' END;
+  axis_scope text := CASE WHEN scoped THEN '%s IN (SELECT id FROM pg_temp._sg_scope_axes)' ELSE 'true OR %s IS NULL' END;
 BEGIN
-  -- One whole-model recompute at a time per model.
-  PERFORM pg_advisory_xact_lock(hashtext('streetgen.generate'), hashtext(model));
-  PERFORM streetgen._compute_model(model);
-
-  -- Stale rows first (children, then nodes last, once nothing refers to them), then upserts
-  -- that leave unchanged rows alone; a corner's radius_override is the user's and is kept.
   FOREACH statement IN ARRAY ARRAY[
-    $q$DELETE FROM %1$I.corner c WHERE NOT EXISTS (
+    $q$DELETE FROM %1$I.corner c WHERE (%3$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'corner' AND o.node_id = c.node_id
          AND o.axis_id = c.axis_a AND o.part = c.part_a AND o.end_a = c.end_a
          AND o.axis_b = c.axis_b AND o.part_b = c.part_b AND o.end_b = c.end_b)$q$,
-    $q$DELETE FROM %1$I.intersection i WHERE NOT EXISTS (
+    $q$DELETE FROM %1$I.intersection i WHERE (%4$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'intersection' AND o.node_id = i.node_id)$q$,
-    $q$DELETE FROM %1$I.section s WHERE NOT EXISTS (
+    $q$DELETE FROM %1$I.section s WHERE (%5$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'section' AND o.axis_id = s.axis_id AND o.part = s.part)$q$,
     $q$INSERT INTO %1$I.node AS t (id, geom, degree, layer, axis_ids)
     SELECT o.node_id, ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s), o.degree, o.layer, o.axis_ids
-      FROM pg_temp._streetgen_out o WHERE o.kind = 'node'
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND (%6$s)
     ON CONFLICT (id) DO UPDATE SET geom = EXCLUDED.geom, degree = EXCLUDED.degree, layer = EXCLUDED.layer,
                                    axis_ids = EXCLUDED.axis_ids
      WHERE (t.geom, t.degree, t.layer, t.axis_ids) IS DISTINCT FROM
@@ -85,7 +90,7 @@ BEGIN
     $q$INSERT INTO %1$I.section AS t (axis_id, part, from_node, to_node, status, start_border, end_border, centre_line, geom)
     SELECT o.axis_id, o.part, o.node_id, o.to_node, o.status, o.start_border, o.end_border,
            ST_SetSRID(ST_GeomFromEWKB(o.geom2), %2$s), ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s)
-      FROM pg_temp._streetgen_out o WHERE o.kind = 'section'
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'section' AND (%7$s)
     ON CONFLICT (axis_id, part) DO UPDATE SET from_node = EXCLUDED.from_node, to_node = EXCLUDED.to_node,
         status = EXCLUDED.status, start_border = EXCLUDED.start_border, end_border = EXCLUDED.end_border,
         centre_line = EXCLUDED.centre_line, geom = EXCLUDED.geom
@@ -97,7 +102,7 @@ BEGIN
     SELECT o.node_id, o.axis_id, o.part, o.end_a, o.axis_b, o.part_b, o.end_b, o.status, o.radius_wanted, o.radius,
            ST_SetSRID(ST_GeomFromEWKB(o.geom3), %2$s), ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s),
            ST_SetSRID(ST_GeomFromEWKB(o.geom2), %2$s)
-      FROM pg_temp._streetgen_out o WHERE o.kind = 'corner'
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'corner' AND (%6$s)
     ON CONFLICT (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b) DO UPDATE SET status = EXCLUDED.status,
         radius_wanted = EXCLUDED.radius_wanted, radius = EXCLUDED.radius, centre = EXCLUDED.centre, arc = EXCLUDED.arc,
         arc_segmentized = EXCLUDED.arc_segmentized
@@ -107,19 +112,38 @@ BEGIN
     SELECT o.node_id, o.status, n.axis_ids, ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s)
       FROM pg_temp._streetgen_out o
       JOIN pg_temp._streetgen_out n ON n.kind = 'node' AND n.node_id = o.node_id
-     WHERE o.kind = 'intersection'
+     WHERE o.kind = 'intersection' AND (%6$s)
     ON CONFLICT (node_id) DO UPDATE SET status = EXCLUDED.status, axis_ids = EXCLUDED.axis_ids, geom = EXCLUDED.geom
      WHERE (t.status, t.axis_ids, t.geom) IS DISTINCT FROM (EXCLUDED.status, EXCLUDED.axis_ids, EXCLUDED.geom)$q$,
-    $q$DELETE FROM %1$I.node t WHERE NOT EXISTS (
+    $q$DELETE FROM %1$I.node t WHERE (%8$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND o.node_id = t.id)$q$,
-    $q$DELETE FROM %1$I.issue$q$,
+    $q$DELETE FROM %1$I.issue i WHERE (%9$s)$q$,
     $q$INSERT INTO %1$I.issue (axis_id, kind, detail)
-    SELECT o.axis_id, o.status, o.detail FROM pg_temp._streetgen_out o WHERE o.kind = 'issue'$q$
+    SELECT o.axis_id, o.status, o.detail FROM pg_temp._streetgen_out o WHERE o.kind = 'issue' AND (%10$s)$q$
   ] LOOP
-    EXECUTE format(statement, model, srid);
+    EXECUTE format(statement, model, srid,
+                   format(node_scope, 'c.node_id'), format(node_scope, 'i.node_id'),
+                   format(section_scope, 's.axis_id', 's.part'), format(node_scope, 'o.node_id'),
+                   format(section_scope, 'o.axis_id', 'o.part'), format(node_scope, 't.id'),
+                   format(axis_scope, 'i.axis_id'), format(axis_scope, 'o.axis_id'));
   END LOOP;
+END
+$$;
 
+CREATE FUNCTION streetgen.generate(model text, OUT kind text, OUT status text, OUT count bigint)
+  RETURNS SETOF record
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  AS $$
+BEGIN
+  PERFORM streetgen.model_srid(model);  -- 22004, 42602, 42704 for bad names
+  PERFORM streetgen._lock_outputs(model);
+  PERFORM streetgen._compute_model(model);
+  PERFORM streetgen._store(model, false);
   RETURN QUERY SELECT o.kind, o.status, count(*) FROM pg_temp._streetgen_out o GROUP BY 1, 2 ORDER BY 1, 2;
+  -- Temp tables go at once, not at commit: a later call in this transaction may run as another
+  -- role, which could not drop them.
+  DROP TABLE pg_temp._streetgen_out;
 END
 $$;
 COMMENT ON FUNCTION streetgen.generate(text) IS
@@ -129,7 +153,7 @@ COMMENT ON FUNCTION streetgen.generate(text) IS
 -- return id (bigint), geom (LineString, projected CRS in metres), roadway_width and speed_kmh;
 -- layer and radius_override are used when present. It runs with the caller's rights.
 CREATE FUNCTION streetgen.street_surfaces(axes text, settings jsonb DEFAULT '{}',
-    OUT kind text, OUT node_id bigint, OUT axis_id bigint, OUT part integer, OUT status text, OUT geom geometry)
+    OUT kind text, OUT node_id bigint, OUT axis_id bigint, OUT part bigint, OUT status text, OUT geom geometry)
   RETURNS SETOF record
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT

@@ -38,7 +38,8 @@ struct AxisArg {  // plain data, filled in phase 1
 struct OutRow {
   const char* kind;
   std::optional<std::int64_t> node_id, to_node, axis_id, axis_b;
-  std::optional<int> part, part_b, degree, layer;
+  std::optional<std::int64_t> part, part_b;
+  std::optional<int> degree, layer;
   std::optional<bool> end_a, end_b;
   std::string status, detail;
   std::optional<double> radius, radius_wanted, start_border, end_border;
@@ -212,8 +213,8 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
     if (override_nodes.nulls[i] || override_radii.nulls[i]) pg::raise_null_argument("an override");
     auto key = [&](int k) { return DatumGetInt64(override_keys.values[6 * i + k]); };
     overrides[i].node_id = DatumGetInt64(override_nodes.values[i]);
-    overrides[i].a = {key(0), static_cast<int>(key(1)), key(2) != 0};
-    overrides[i].b = {key(3), static_cast<int>(key(4)), key(5) != 0};
+    overrides[i].a = {key(0), key(1), key(2) != 0};
+    overrides[i].b = {key(3), key(4), key(5) != 0};
     overrides[i].radius = DatumGetFloat8(override_radii.values[i]);
   }
   int axis_count = ids.count;
@@ -280,10 +281,10 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
     put_i64(1, row.node_id);
     put_i64(2, row.to_node);
     put_i64(3, row.axis_id);
-    put_i32(4, row.part);
+    put_i64(4, row.part);
     put_bool(5, row.end_a);
     put_i64(6, row.axis_b);
-    put_i32(7, row.part_b);
+    put_i64(7, row.part_b);
     put_bool(8, row.end_b);
     put_text(9, row.status);
     put_text(10, row.detail);

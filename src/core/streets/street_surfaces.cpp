@@ -411,9 +411,7 @@ class SurfaceBuilder {
     nr.position = node.position;
     nr.layer = node.layer;
     nr.degree = static_cast<int>(ends.size());
-    std::set<std::int64_t> ids;
-    for (const End& e : ends) ids.insert(topo_.edges[e.edge].axis_id);
-    nr.axis_ids.assign(ids.begin(), ids.end());
+    nr.axis_ids = node.axis_ids;
     result_.nodes.push_back(nr);
     if (ends.empty()) return;
 
@@ -826,7 +824,7 @@ class SurfaceBuilder {
   std::vector<std::pair<double, double>> border_;  // per edge: border abscissa at its start, at its end
   std::vector<std::vector<CornerResult>> corners_of_node_;
   std::vector<bool> transition_;
-  std::map<std::pair<std::int64_t, int>, const GEOSGeometry*> section_surface_;
+  std::map<std::pair<std::int64_t, std::int64_t>, const GEOSGeometry*> section_surface_;
   std::map<std::int64_t, int> axis_layer_;
   std::map<std::int64_t, std::size_t> axis_index_;
   SurfaceResult result_;

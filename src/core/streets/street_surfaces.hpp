@@ -45,8 +45,8 @@ struct SurfaceAxis {
 
 struct EdgeEnd {
   std::int64_t axis_id = 0;
-  int part = 0;
-  bool at_end = false;  // false: the part's start
+  std::int64_t part = 0;  // the part's key: where it starts along the axis, mm
+  bool at_end = false;    // false: the part's start
 };
 inline bool operator==(const EdgeEnd& a, const EdgeEnd& b) {
   return a.axis_id == b.axis_id && a.part == b.part && a.at_end == b.at_end;
@@ -64,12 +64,12 @@ struct NodeResult {
   Point position;
   int layer = 0;
   int degree = 0;
-  std::vector<std::int64_t> axis_ids;  // sorted, distinct
+  std::vector<std::int64_t> axis_ids;  // sorted, distinct: every axis with a point in the node
 };
 
 struct SectionResult {
   std::int64_t axis_id = 0;
-  int part = 0;
+  std::int64_t part = 0;   // where it starts along the axis, mm of abscissa
   std::int64_t from_node = 0;
   std::int64_t to_node = 0;
   Polyline centre_line;          // the whole part, node to node

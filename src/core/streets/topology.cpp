@@ -193,6 +193,12 @@ Topology build_topology(const std::vector<TopologyAxis>& axes, double snap_toler
     members[n].push_back(events[e].point);
     layers[n] = std::min(layers[n], events[e].layer);
   }
+  std::vector<std::vector<std::int64_t>> axes_of_node(members.size());
+  for (std::size_t e = 0; e < events.size(); ++e) axes_of_node[node_of_event[e]].push_back(axes[events[e].axis].id);
+  for (auto& ids : axes_of_node) {
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  }
   std::unordered_set<std::int64_t> used_ids;
   for (std::size_t n = 0; n < members.size(); ++n) {
     std::sort(members[n].begin(), members[n].end(),
@@ -202,7 +208,7 @@ Topology build_topology(const std::vector<TopologyAxis>& axes, double snap_toler
     Point position = (1.0 / static_cast<double>(members[n].size())) * sum;
     std::int64_t id = node_id_for(position, layers[n]);
     while (!used_ids.insert(id).second) id = static_cast<std::int64_t>(mix(static_cast<std::uint64_t>(id)) & 0x7fffffffffffffffULL);
-    topo.nodes.push_back({id, position, layers[n]});
+    topo.nodes.push_back({id, position, layers[n], std::move(axes_of_node[n])});
   }
 
   // Cut every axis at its events; each piece between two nodes is an edge.
@@ -221,7 +227,6 @@ Topology build_topology(const std::vector<TopologyAxis>& axes, double snap_toler
       if (!cuts.empty() && cuts.back().second == n && events[e].abscissa - cuts.back().first <= 2 * tol) continue;
       cuts.push_back({events[e].abscissa, n});
     }
-    int part = 0;
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
       auto [s0, n0] = cuts[k];
       auto [s1, n1] = cuts[k + 1];
@@ -234,7 +239,7 @@ Topology build_topology(const std::vector<TopologyAxis>& axes, double snap_toler
         if (n0 == n1 && len > 1e-9) topo.issues.push_back({axes[a].id, "loop_dropped", "a loop shorter than twice the snap tolerance"});
         continue;
       }
-      topo.edges.push_back({a, axes[a].id, part++, n0, n1, std::move(piece), false});
+      topo.edges.push_back({a, axes[a].id, std::llround(s0 * 1000.0), n0, n1, std::move(piece), false});
     }
   }
 
@@ -252,7 +257,7 @@ Topology build_topology(const std::vector<TopologyAxis>& axes, double snap_toler
       if (close) {
         topo.edges[e].duplicate = true;
         topo.issues.push_back({edge.axis_id, "duplicate_axis",
-                               "part " + std::to_string(edge.part) + " runs along axis " + std::to_string(o.axis_id)});
+                               "the part from " + std::to_string(edge.part / 1000.0) + " m runs along axis " + std::to_string(o.axis_id)});
         break;
       }
     }

@@ -23,12 +23,15 @@ struct TopologyNode {
   std::int64_t id = 0;  // stable: derived from position (mm) and layer
   Point position;
   int layer = 0;
+  std::vector<std::int64_t> axis_ids;  // every axis with a point in the node (sorted), duplicates too
 };
 
 struct TopologyEdge {
   std::size_t axis_index = 0;  // into the input vector
   std::int64_t axis_id = 0;
-  int part = 0;                // 0, 1, ... along the axis
+  // Where the part starts along its axis, in millimetres of abscissa: its key. Unlike an
+  // ordinal it does not change when the axis is split somewhere else, so a change stays local.
+  std::int64_t part = 0;
   std::size_t from_node = 0;   // indices into Topology::nodes
   std::size_t to_node = 0;
   Polyline line;               // from_node's position ... to_node's position

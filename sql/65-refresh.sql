@@ -1,0 +1,312 @@
+-- Always current: statement-level triggers on <model>.axis recompute only the neighbourhood of
+-- the axes a statement changed, with the same engine as generate(), so that after any sequence
+-- of edits the tables equal a full generate() of the same axes (tests/pgtap/60-refresh.sql
+-- checks this on random edits of a real city).
+
+-- Every recompute of a model (generate, a trigger) first updates the model's refresh_state row:
+-- recomputes queue on its lock in READ COMMITTED, and fail with 40001 under REPEATABLE READ or
+-- SERIALIZABLE, where a recompute could not see a concurrent one's result.
+CREATE FUNCTION streetgen._lock_outputs(model text)
+  RETURNS void
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  AS $$
+BEGIN
+  EXECUTE format('UPDATE %I.refresh_state SET refreshes = refreshes + 1, refreshed_at = clock_timestamp()', model);
+END
+$$;
+
+-- The incremental recompute after the axes CHANGED were inserted, updated or deleted (OLD_GEOMS:
+-- the geometries the updated and deleted ones had).
+--
+-- What a change reaches, in the graph of the last result (node, section):
+--   T: the nodes on the changed axes or near them, and the ends of the sections they touch or
+--      touched;
+--   K: T and the nodes one section away (their corners see how long that section is, and
+--      whether T is a dead end);
+--   S1: the sections ending at K, those of the changed axes, and those near the changed
+--      geometries (a section they overlap now or overlapped before);
+--   S2: S1 and the sections overlapping S1 (the midline split of overlaps may move).
+-- K, the ends of S2 and S2 itself are recomputed and rewritten (the scope), with their new
+-- counterparts. What the engine needs to compute them exactly as a full run would: the axes
+-- through every node within two hops of the ends of S2 and of the sections overlapping S2
+-- (corners look one node ahead along each axis, for its length and degree). Parts are keyed by
+-- where they start along their axis, so nothing farther away changes key.
+CREATE FUNCTION streetgen._refresh(model text, changed bigint[], old_geoms geometry[])
+  RETURNS void
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  AS $$
+DECLARE
+  tol double precision;
+  max_width double precision;
+  touched bigint[];
+  context bigint[];
+  axis_count bigint;
+  t text;
+  round integer;
+  grown bigint;
+BEGIN
+  PERFORM streetgen._lock_outputs(model);
+  IF coalesce(cardinality(changed), 0) = 0 THEN
+    RETURN;
+  END IF;
+  EXECUTE format('SELECT s.snap_tolerance, (SELECT coalesce(max(a.roadway_width), 0) FROM %1$I.axis a), (SELECT count(*) FROM %1$I.axis)
+                    FROM %1$I.settings s', model)
+    INTO tol, max_width, axis_count;
+  -- A change that touches a large part of the model: one full run is cheaper than the search.
+  IF cardinality(changed) > greatest(500, axis_count / 5) THEN
+    PERFORM streetgen._compute_model(model);
+    PERFORM streetgen._store(model, false);
+    PERFORM pg_notify('qgis', model);
+    DROP TABLE pg_temp._streetgen_out;
+    RETURN;
+  END IF;
+
+  FOREACH t IN ARRAY ARRAY['_sg_changed_geom', '_sg_t_nodes', '_sg_k_nodes', '_sg_s1', '_sg_s2', '_sg_q', '_sg_context_nodes',
+                           '_sg_scope_nodes', '_sg_scope_sections', '_sg_scope_axes'] LOOP
+    IF to_regclass('pg_temp.' || t) IS NOT NULL THEN
+      EXECUTE format('DROP TABLE pg_temp.%I', t);
+    END IF;
+  END LOOP;
+
+  EXECUTE format($q$
+    CREATE TEMP TABLE _sg_changed_geom ON COMMIT DROP AS
+    SELECT g AS geom FROM unnest($1) AS g WHERE g IS NOT NULL
+    UNION ALL SELECT a.geom FROM %1$I.axis a WHERE a.id = ANY ($2)
+  $q$, model) USING old_geoms, changed;
+
+  -- Axes the change touches: for the scope of the issue table.
+  EXECUTE format($q$
+    SELECT array_agg(DISTINCT id) FROM (
+      SELECT unnest($1) AS id
+      UNION ALL SELECT a.id FROM %1$I.axis a, pg_temp._sg_changed_geom g
+                 WHERE a.geom && ST_Expand(g.geom, $2) AND ST_DWithin(a.geom, g.geom, $2)) AS k
+  $q$, model) INTO touched USING changed, tol + 1e-6;
+
+  EXECUTE format($q$
+    CREATE TEMP TABLE _sg_t_nodes ON COMMIT DROP AS
+    SELECT n.id, n.geom FROM %1$I.node n WHERE n.axis_ids && $1
+    -- A node's points are within the tolerance of each other in a chain, so a node near a
+    -- changed geometry may take in (or lose) one of its points without sharing an axis yet.
+    UNION SELECT n.id, n.geom FROM %1$I.node n, pg_temp._sg_changed_geom g
+           WHERE n.geom && ST_Expand(g.geom, 3 * $2) AND ST_DWithin(n.geom, g.geom, 3 * $2)
+    UNION SELECT n.id, n.geom FROM %1$I.section s, pg_temp._sg_changed_geom g, %1$I.node n
+           WHERE s.centre_line && ST_Expand(g.geom, $2) AND ST_DWithin(s.centre_line, g.geom, $2)
+             AND n.id IN (s.from_node, s.to_node)
+  $q$, model) USING changed, tol + 1e-6;
+  EXECUTE format($q$
+    CREATE TEMP TABLE _sg_k_nodes ON COMMIT DROP AS
+    SELECT id FROM pg_temp._sg_t_nodes
+    UNION SELECT s.to_node FROM %1$I.section s WHERE s.from_node IN (SELECT id FROM pg_temp._sg_t_nodes)
+    UNION SELECT s.from_node FROM %1$I.section s WHERE s.to_node IN (SELECT id FROM pg_temp._sg_t_nodes)
+  $q$, model);
+  EXECUTE format($q$
+    CREATE TEMP TABLE _sg_s1 ON COMMIT DROP AS
+    SELECT s.axis_id, s.part, s.from_node, s.to_node, s.geom FROM %1$I.section s WHERE s.axis_id = ANY ($1)
+    UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, s.geom FROM %1$I.section s
+           WHERE s.from_node IN (SELECT id FROM pg_temp._sg_k_nodes) OR s.to_node IN (SELECT id FROM pg_temp._sg_k_nodes)
+    UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, s.geom FROM %1$I.section s, pg_temp._sg_changed_geom g
+           WHERE s.geom && ST_Expand(g.geom, $2)
+  $q$, model) USING changed, max_width;
+  EXECUTE format($q$
+    CREATE TEMP TABLE _sg_s2 ON COMMIT DROP AS
+    SELECT p.axis_id, p.part, p.from_node, p.to_node, p.geom FROM %1$I.section p
+     WHERE EXISTS (SELECT 1 FROM pg_temp._sg_s1 k WHERE p.geom && k.geom)
+    UNION SELECT axis_id, part, from_node, to_node, geom FROM pg_temp._sg_s1
+  $q$, model);
+  EXECUTE format($q$
+    CREATE TEMP TABLE _sg_q ON COMMIT DROP AS
+    SELECT p.axis_id, p.part, p.from_node, p.to_node FROM %1$I.section p
+     WHERE EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE p.geom && k.geom)
+    UNION SELECT axis_id, part, from_node, to_node FROM pg_temp._sg_s2
+  $q$, model);
+  -- The engine cannot be trusted beyond its context: an axis whose nodes were not all given is
+  -- cut too long there. Such a section may overlap a section in scope where the true one does
+  -- not; so when the output shows an unvetted section near the scope, its old sections join Q
+  -- and the context grows (rarely needed more than once).
+  FOR round IN 1..4 LOOP
+    IF to_regclass('pg_temp._sg_context_nodes') IS NOT NULL THEN
+      DROP TABLE pg_temp._sg_context_nodes;
+    END IF;
+    EXECUTE format($q$
+      CREATE TEMP TABLE _sg_context_nodes ON COMMIT DROP AS
+      WITH RECURSIVE hop (node, depth) AS (
+        SELECT from_node, 0 FROM pg_temp._sg_q
+        UNION SELECT to_node, 0 FROM pg_temp._sg_q
+        UNION SELECT id, 0 FROM pg_temp._sg_k_nodes
+        UNION
+        SELECT CASE WHEN s.from_node = h.node THEN s.to_node ELSE s.from_node END, h.depth + 1
+          FROM hop h JOIN %1$I.section s ON s.from_node = h.node OR s.to_node = h.node
+         WHERE h.depth < 2)
+      SELECT DISTINCT node AS id FROM hop
+    $q$, model);
+    EXECUTE format($q$
+      SELECT array_agg(DISTINCT id) FROM (
+        SELECT unnest(n.axis_ids) AS id FROM %1$I.node n WHERE n.id IN (SELECT id FROM pg_temp._sg_context_nodes)
+        UNION ALL SELECT axis_id FROM pg_temp._sg_q
+        UNION ALL SELECT unnest($1)) AS c
+    $q$, model) INTO context USING touched;
+
+    PERFORM streetgen._compute_model(model, context);
+
+    EXECUTE format($q$
+      INSERT INTO pg_temp._sg_q (axis_id, part, from_node, to_node)
+      SELECT p.axis_id, p.part, p.from_node, p.to_node FROM %1$I.section p
+       WHERE p.axis_id IN (
+               SELECT o.axis_id FROM pg_temp._streetgen_out o
+                WHERE o.kind = 'section' AND o.geom IS NOT NULL
+                  AND NOT EXISTS (SELECT 1 FROM pg_temp._sg_q q WHERE q.axis_id = o.axis_id AND q.part = o.part)
+                  AND NOT (o.axis_id = ANY ($1))
+                  AND EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE ST_GeomFromEWKB(o.geom) && k.geom))
+         AND EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE p.geom && ST_Expand(k.geom, $2))
+         AND NOT EXISTS (SELECT 1 FROM pg_temp._sg_q q WHERE q.axis_id = p.axis_id AND q.part = p.part)
+    $q$, model) USING changed, max_width;
+    GET DIAGNOSTICS grown = ROW_COUNT;
+    EXIT WHEN grown = 0;
+  END LOOP;
+
+  -- The scope: what was there (old) and what is there now (new) within reach of the change.
+  -- New sections come from the changed axes, or lie between nodes of K and new nodes on the
+  -- changed axes (an axis split or joined where a changed axis touches it). The engine's output
+  -- beyond the scope is not trusted: a section leaving the context may run past a node whose
+  -- axes were not given.
+  CREATE TEMP TABLE _sg_scope_sections ON COMMIT DROP AS
+    WITH new_nodes AS (
+      SELECT id FROM pg_temp._sg_k_nodes
+      UNION SELECT n.node_id FROM pg_temp._streetgen_out n WHERE n.kind = 'node' AND n.axis_ids && changed
+      -- A node of T that lost or gained a point is a new node (a new id) nearby.
+      UNION SELECT n.node_id FROM pg_temp._streetgen_out n, pg_temp._sg_t_nodes t
+             WHERE n.kind = 'node' AND ST_DWithin(ST_GeomFromEWKB(n.geom), t.geom, 3 * (tol + 1e-6)))
+    SELECT axis_id, part FROM pg_temp._sg_s2
+    UNION SELECT o.axis_id, o.part FROM pg_temp._streetgen_out o
+           WHERE o.kind = 'section'
+             AND (o.axis_id = ANY (changed)
+                  OR (o.node_id IN (SELECT id FROM new_nodes) AND o.to_node IN (SELECT id FROM new_nodes)));
+  EXECUTE format($q$
+    CREATE TEMP TABLE _sg_scope_nodes ON COMMIT DROP AS
+    SELECT id FROM pg_temp._sg_k_nodes
+    UNION SELECT o.node_id FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND o.axis_ids && $1
+    UNION SELECT s.from_node FROM %1$I.section s JOIN pg_temp._sg_scope_sections k USING (axis_id, part)
+    UNION SELECT s.to_node FROM %1$I.section s JOIN pg_temp._sg_scope_sections k USING (axis_id, part)
+    UNION SELECT o.node_id FROM pg_temp._streetgen_out o JOIN pg_temp._sg_scope_sections k USING (axis_id, part)
+           WHERE o.kind = 'section'
+    UNION SELECT o.to_node FROM pg_temp._streetgen_out o JOIN pg_temp._sg_scope_sections k USING (axis_id, part)
+           WHERE o.kind = 'section'
+  $q$, model) USING changed;
+  CREATE TEMP TABLE _sg_scope_axes ON COMMIT DROP AS
+    SELECT unnest(touched) AS id UNION SELECT axis_id FROM pg_temp._sg_scope_sections;
+
+  PERFORM streetgen._store(model, true);
+  PERFORM pg_notify('qgis', model);
+  -- Temp tables go at once, not at commit: a later statement in this transaction may run as
+  -- another role, which could not drop them.
+  FOREACH t IN ARRAY ARRAY['_streetgen_out', '_sg_changed_geom', '_sg_t_nodes', '_sg_k_nodes', '_sg_s1', '_sg_s2', '_sg_q',
+                           '_sg_context_nodes', '_sg_scope_nodes', '_sg_scope_sections', '_sg_scope_axes'] LOOP
+    EXECUTE format('DROP TABLE pg_temp.%I', t);
+  END LOOP;
+END
+$$;
+
+-- Trigger functions: one per event, since each sees different transition tables.
+CREATE FUNCTION streetgen._axis_inserted()
+  RETURNS trigger
+  LANGUAGE plpgsql
+  SET search_path FROM CURRENT
+  AS $$
+BEGIN
+  PERFORM streetgen._refresh(TG_TABLE_SCHEMA, (SELECT array_agg(id) FROM new_rows), '{}');
+  RETURN NULL;
+END
+$$;
+
+-- Only what shapes the surfaces counts; an edit of tags or source alone recomputes nothing.
+CREATE FUNCTION streetgen._axis_updated()
+  RETURNS trigger
+  LANGUAGE plpgsql
+  SET search_path FROM CURRENT
+  AS $$
+DECLARE
+  ids bigint[];
+  geoms geometry[];
+BEGIN
+  SELECT array_agg(coalesce(n.id, o.id)), array_agg(o.geom) INTO ids, geoms
+    FROM old_rows o FULL JOIN new_rows n ON n.id = o.id
+   WHERE (o.geom, o.roadway_width, o.speed_kmh, o.layer, o.radius_override)
+         IS DISTINCT FROM (n.geom, n.roadway_width, n.speed_kmh, n.layer, n.radius_override);
+  IF ids IS NOT NULL THEN
+    PERFORM streetgen._refresh(TG_TABLE_SCHEMA, ids, geoms);
+  END IF;
+  RETURN NULL;
+END
+$$;
+
+CREATE FUNCTION streetgen._axis_deleted()
+  RETURNS trigger
+  LANGUAGE plpgsql
+  SET search_path FROM CURRENT
+  AS $$
+BEGIN
+  PERFORM streetgen._refresh(TG_TABLE_SCHEMA, (SELECT array_agg(id) FROM old_rows), (SELECT array_agg(geom) FROM old_rows));
+  RETURN NULL;
+END
+$$;
+
+-- A corner's radius_override takes effect at once: its two axes count as changed.
+CREATE FUNCTION streetgen._corner_override_changed()
+  RETURNS trigger
+  LANGUAGE plpgsql
+  SET search_path FROM CURRENT
+  AS $$
+DECLARE
+  ids bigint[];
+BEGIN
+  SELECT array_agg(DISTINCT a) INTO ids
+    FROM (SELECT n.axis_a AS a FROM new_rows n JOIN old_rows o USING (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b)
+           WHERE n.radius_override IS DISTINCT FROM o.radius_override
+          UNION ALL
+          SELECT n.axis_b FROM new_rows n JOIN old_rows o USING (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b)
+           WHERE n.radius_override IS DISTINCT FROM o.radius_override) AS c;
+  IF ids IS NOT NULL THEN
+    PERFORM streetgen._refresh(TG_TABLE_SCHEMA, ids, '{}');
+  END IF;
+  RETURN NULL;
+END
+$$;
+
+-- New settings change everything: a full recompute.
+CREATE FUNCTION streetgen._settings_changed()
+  RETURNS trigger
+  LANGUAGE plpgsql
+  SET search_path FROM CURRENT
+  AS $$
+BEGIN
+  PERFORM streetgen._lock_outputs(TG_TABLE_SCHEMA);
+  PERFORM streetgen._compute_model(TG_TABLE_SCHEMA);
+  PERFORM streetgen._store(TG_TABLE_SCHEMA, false);
+  PERFORM pg_notify('qgis', TG_TABLE_SCHEMA);
+  DROP TABLE pg_temp._streetgen_out;
+  RETURN NULL;
+END
+$$;
+
+CREATE FUNCTION streetgen._create_triggers(name text)
+  RETURNS void
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  AS $$
+BEGIN
+  EXECUTE format($ddl$
+    CREATE TRIGGER axis_refresh_insert AFTER INSERT ON %1$I.axis
+      REFERENCING NEW TABLE AS new_rows FOR EACH STATEMENT EXECUTE FUNCTION streetgen._axis_inserted();
+    CREATE TRIGGER axis_refresh_update AFTER UPDATE ON %1$I.axis
+      REFERENCING OLD TABLE AS old_rows NEW TABLE AS new_rows FOR EACH STATEMENT EXECUTE FUNCTION streetgen._axis_updated();
+    CREATE TRIGGER axis_refresh_delete AFTER DELETE ON %1$I.axis
+      REFERENCING OLD TABLE AS old_rows FOR EACH STATEMENT EXECUTE FUNCTION streetgen._axis_deleted();
+    CREATE TRIGGER corner_override AFTER UPDATE ON %1$I.corner
+      REFERENCING OLD TABLE AS old_rows NEW TABLE AS new_rows FOR EACH STATEMENT EXECUTE FUNCTION streetgen._corner_override_changed();
+    CREATE TRIGGER settings_refresh AFTER UPDATE ON %1$I.settings
+      FOR EACH STATEMENT EXECUTE FUNCTION streetgen._settings_changed();
+  $ddl$, name);
+END
+$$;
