@@ -110,6 +110,8 @@ BEGIN
 
     -- What the incremental refresh walks: the graph of the last result.
     CREATE INDEX section_from_idx ON %1$I.section (from_node);
+    CREATE INDEX section_centre_line_idx ON %1$I.section USING gist (centre_line);
+    CREATE INDEX corner_override_idx ON %1$I.corner (node_id) WHERE radius_override IS NOT NULL;
     CREATE INDEX section_to_idx ON %1$I.section (to_node);
     CREATE INDEX node_axes_idx ON %1$I.node USING gin (axis_ids);
     CREATE INDEX axis_width_idx ON %1$I.axis (roadway_width);

@@ -250,6 +250,7 @@ CREATE FUNCTION streetgen.load_osm_ways(model text, staging regclass,
   RETURNS record
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
+  SET jit = off
   AS $$
 DECLARE
   model_srid integer := streetgen.model_srid(model);

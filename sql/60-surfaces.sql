@@ -21,6 +21,7 @@ CREATE FUNCTION streetgen._compute_model(model text, context bigint[] DEFAULT NU
   RETURNS void
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
+  SET jit = off
   AS $$
 BEGIN
   IF to_regclass('pg_temp._streetgen_out') IS NOT NULL THEN
@@ -49,6 +50,7 @@ BEGIN
                                                 st.v, coalesce(ov.nodes, '{}'), coalesce(ov_keys.keys, '{}'),
                                                 coalesce(ov.radii, '{}')) AS o
   $q$, model) USING context;
+  ANALYZE pg_temp._streetgen_out;  -- the statements that store it plan with real numbers
 END
 $$;
 
@@ -62,6 +64,7 @@ CREATE FUNCTION streetgen._store(model text, scoped boolean)
   RETURNS void
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
+  SET jit = off
   AS $$
 DECLARE
   srid integer := streetgen.model_srid(model);
@@ -134,6 +137,7 @@ CREATE FUNCTION streetgen.generate(model text, OUT kind text, OUT status text, O
   RETURNS SETOF record
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
+  SET jit = off
   AS $$
 BEGIN
   PERFORM streetgen.model_srid(model);  -- 22004, 42602, 42704 for bad names
@@ -157,6 +161,7 @@ CREATE FUNCTION streetgen.street_surfaces(axes text, settings jsonb DEFAULT '{}'
   RETURNS SETOF record
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
+  SET jit = off
   AS $$
 DECLARE
   columns text[];
@@ -210,6 +215,7 @@ CREATE FUNCTION streetgen.surface_quality(model text,
   RETURNS record
   LANGUAGE plpgsql STABLE
   SET search_path FROM CURRENT
+  SET jit = off
   AS $$
 BEGIN
   PERFORM streetgen.model_srid(model);

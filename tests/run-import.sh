@@ -3,7 +3,8 @@
 # shipped flex style, and the GeoJSON demo network (Gothenburg, npm geojson-path-finder@2.1.0)
 # through ogr2ogr, into models of one database; then tests/import/check-import.sql checks the
 # result against facts gathered here with independent tools (osmium, python's json);
-# tests/import/check-surfaces.sql generates street surfaces on every network and checks them.
+# tests/import/check-surfaces.sql generates street surfaces on every network and checks them;
+# tests/import/check-refresh.sql checks the always-current invariant over random edits.
 source "$(dirname "$0")/lib.sh"
 : "${STREETGEN_SHARED_DATA:?}"
 osm_dir="$STREETGEN_SHARED_DATA/osm"
@@ -57,7 +58,8 @@ psql -X -q -v ON_ERROR_STOP=1 -c "INSERT INTO import_fact VALUES ('gothenburg', 
   $loaded, $not_driveable, $degenerate, 11.8, 57.6, 12.1, 57.8, $seconds)"
 
 status=0
-pg_prove -d "$db" "$SRC/tests/import/check-import.sql" "$SRC/tests/import/check-surfaces.sql" || status=$?
+pg_prove -d "$db" "$SRC/tests/import/check-import.sql" "$SRC/tests/import/check-surfaces.sql" \
+  "$SRC/tests/import/check-refresh.sql" || status=$?
 psql -X -c "SELECT model, kind, highway_ways, loaded, not_driveable, degenerate, seconds FROM import_fact ORDER BY model"
 assert_no_crash_since "$mark" || status=1
 exit $status
