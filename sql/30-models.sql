@@ -102,6 +102,7 @@ BEGIN
 
     CREATE TABLE %1$I.issue (
       axis_id bigint REFERENCES %1$I.axis (id) ON DELETE CASCADE,
+      part bigint,
       kind text NOT NULL,
       detail text
     );

@@ -15,7 +15,7 @@ CREATE FUNCTION streetgen._streetgen_street_surfaces(
   AS 'MODULE_PATHNAME', '_streetgen_street_surfaces';
 
 -- Runs the engine on MODEL's axes (all of them, or those whose id is in CONTEXT), its settings
--- and corner overrides, into temp table pg_temp._streetgen_out (dropped at commit). Axes go in by
+-- and corner overrides, into the work table pg_temp._streetgen_out (see _work_tables). Axes go in by
 -- id: the engine's results do not depend on the order, but sorted input makes that easy to see.
 CREATE FUNCTION streetgen._compute_model(model text, context bigint[] DEFAULT NULL)
   RETURNS void
@@ -24,11 +24,10 @@ CREATE FUNCTION streetgen._compute_model(model text, context bigint[] DEFAULT NU
   SET jit = off
   AS $$
 BEGIN
-  IF to_regclass('pg_temp._streetgen_out') IS NOT NULL THEN
-    DROP TABLE pg_temp._streetgen_out;
-  END IF;
+  PERFORM streetgen._work_tables();
+  TRUNCATE pg_temp._streetgen_out;
   EXECUTE format($q$
-    CREATE TEMP TABLE _streetgen_out ON COMMIT DROP AS
+    INSERT INTO pg_temp._streetgen_out
     SELECT o.*
       FROM (SELECT array_agg(a.id ORDER BY a.id) AS ids,
                    array_agg(ST_AsEWKB(a.geom) ORDER BY a.id) AS geoms,
@@ -72,7 +71,11 @@ DECLARE
   node_scope text := CASE WHEN scoped THEN '%s IN (SELECT id FROM pg_temp._sg_scope_nodes)' ELSE 'true OR %s IS NULL' END;
   section_scope text := CASE WHEN scoped
     THEN '(%s, %s) IN (SELECT axis_id, part FROM pg_temp._sg_scope_sections)' ELSE 'true OR (%s, %s) IS NULL' END;
-  axis_scope text := CASE WHEN scoped THEN '%s IN (SELECT id FROM pg_temp._sg_scope_axes)' ELSE 'true OR %s IS NULL' END;
+  -- An issue about one part follows its section's scope; one about a whole axis, its axis'.
+  issue_scope text := CASE WHEN scoped
+    THEN '(CASE WHEN %2$s IS NULL THEN %1$s IN (SELECT id FROM pg_temp._sg_scope_axes)
+                ELSE (%1$s, %2$s) IN (SELECT axis_id, part FROM pg_temp._sg_scope_sections) END)'
+    ELSE 'true OR (%1$s, %2$s) IS NULL' END;
 BEGIN
   FOREACH statement IN ARRAY ARRAY[
     $q$DELETE FROM %1$I.corner c WHERE (%3$s) AND NOT EXISTS (
@@ -121,14 +124,14 @@ BEGIN
     $q$DELETE FROM %1$I.node t WHERE (%8$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND o.node_id = t.id)$q$,
     $q$DELETE FROM %1$I.issue i WHERE (%9$s)$q$,
-    $q$INSERT INTO %1$I.issue (axis_id, kind, detail)
-    SELECT o.axis_id, o.status, o.detail FROM pg_temp._streetgen_out o WHERE o.kind = 'issue' AND (%10$s)$q$
+    $q$INSERT INTO %1$I.issue (axis_id, part, kind, detail)
+    SELECT o.axis_id, o.part, o.status, o.detail FROM pg_temp._streetgen_out o WHERE o.kind = 'issue' AND (%10$s)$q$
   ] LOOP
     EXECUTE format(statement, model, srid,
                    format(node_scope, 'c.node_id'), format(node_scope, 'i.node_id'),
                    format(section_scope, 's.axis_id', 's.part'), format(node_scope, 'o.node_id'),
                    format(section_scope, 'o.axis_id', 'o.part'), format(node_scope, 't.id'),
-                   format(axis_scope, 'i.axis_id'), format(axis_scope, 'o.axis_id'));
+                   format(issue_scope, 'i.axis_id', 'i.part'), format(issue_scope, 'o.axis_id', 'o.part'));
   END LOOP;
 END
 $$;
@@ -145,9 +148,6 @@ BEGIN
   PERFORM streetgen._compute_model(model);
   PERFORM streetgen._store(model, false);
   RETURN QUERY SELECT o.kind, o.status, count(*) FROM pg_temp._streetgen_out o GROUP BY 1, 2 ORDER BY 1, 2;
-  -- Temp tables go at once, not at commit: a later call in this transaction may run as another
-  -- role, which could not drop them.
-  DROP TABLE pg_temp._streetgen_out;
 END
 $$;
 COMMENT ON FUNCTION streetgen.generate(text) IS

@@ -16,6 +16,43 @@ BEGIN
 END
 $$;
 
+-- The work tables of a recompute: temporary, made once per session and truncated before each
+-- use. Creating and dropping them on every edit took new locks each time, and a long
+-- transaction of many edits (a QGIS editing session commits once) ran out of lock slots; DELETE
+-- instead of TRUNCATE left them full of dead rows in such a transaction. Granted to PUBLIC: one
+-- session may recompute as several roles.
+CREATE FUNCTION streetgen._work_tables()
+  RETURNS void
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  AS $$
+DECLARE
+  definition text;
+BEGIN
+  IF to_regclass('pg_temp._sg_scope_axes') IS NOT NULL THEN
+    RETURN;
+  END IF;
+  FOREACH definition IN ARRAY ARRAY[
+    '_streetgen_out (kind text, node_id bigint, to_node bigint, axis_id bigint, part bigint, end_a boolean, axis_b bigint,
+                     part_b bigint, end_b boolean, status text, detail text, degree integer, layer integer,
+                     radius double precision, radius_wanted double precision, start_border double precision,
+                     end_border double precision, axis_ids bigint[], geom bytea, geom2 bytea, geom3 bytea)',
+    '_sg_changed_geom (geom geometry)',
+    '_sg_t_nodes (id bigint, geom geometry)',
+    '_sg_k_nodes (id bigint)',
+    '_sg_s1 (axis_id bigint, part bigint, from_node bigint, to_node bigint, geom geometry)',
+    '_sg_s2 (axis_id bigint, part bigint, from_node bigint, to_node bigint, geom geometry)',
+    '_sg_q (axis_id bigint, part bigint, from_node bigint, to_node bigint)',
+    '_sg_context_nodes (id bigint)',
+    '_sg_scope_sections (axis_id bigint, part bigint)',
+    '_sg_scope_nodes (id bigint)',
+    '_sg_scope_axes (id bigint)'] LOOP
+    EXECUTE 'CREATE TEMP TABLE IF NOT EXISTS ' || definition;
+    EXECUTE format('GRANT ALL ON pg_temp.%I TO PUBLIC', split_part(definition, ' ', 1));
+  END LOOP;
+END
+$$;
+
 -- The incremental recompute after the axes CHANGED were inserted, updated or deleted (OLD_GEOMS:
 -- the geometries the updated and deleted ones had).
 --
@@ -66,19 +103,14 @@ BEGIN
     PERFORM streetgen._compute_model(model);
     PERFORM streetgen._store(model, false);
     PERFORM pg_notify('qgis', model);
-    DROP TABLE pg_temp._streetgen_out;
     RETURN;
   END IF;
 
-  FOREACH t IN ARRAY ARRAY['_sg_changed_geom', '_sg_t_nodes', '_sg_k_nodes', '_sg_s1', '_sg_s2', '_sg_q', '_sg_context_nodes',
-                           '_sg_scope_nodes', '_sg_scope_sections', '_sg_scope_axes'] LOOP
-    IF to_regclass('pg_temp.' || t) IS NOT NULL THEN
-      EXECUTE format('DROP TABLE pg_temp.%I', t);
-    END IF;
-  END LOOP;
+  PERFORM streetgen._work_tables();
 
+  TRUNCATE pg_temp._sg_changed_geom;
   EXECUTE format($q$
-    CREATE TEMP TABLE _sg_changed_geom ON COMMIT DROP AS
+    INSERT INTO pg_temp._sg_changed_geom
     SELECT g AS geom FROM unnest($1) AS g WHERE g IS NOT NULL
     UNION ALL SELECT a.geom FROM %1$I.axis a WHERE a.id = ANY ($2)
   $q$, model) USING old_geoms, changed;
@@ -92,8 +124,9 @@ BEGIN
                  LATERAL (SELECT a.id FROM %1$I.axis a WHERE a.geom && ST_Expand(g.geom, $2) AND ST_DWithin(a.geom, g.geom, $2)) AS a) AS k
   $q$, model) INTO touched USING changed, tol + 1e-6;
 
+  TRUNCATE pg_temp._sg_t_nodes;
   EXECUTE format($q$
-    CREATE TEMP TABLE _sg_t_nodes ON COMMIT DROP AS
+    INSERT INTO pg_temp._sg_t_nodes
     SELECT n.id, n.geom FROM %1$I.node n WHERE n.axis_ids && $1
     -- A node's points are within the tolerance of each other in a chain, so a node near a
     -- changed geometry may take in (or lose) one of its points without sharing an axis yet.
@@ -107,15 +140,17 @@ BEGIN
                  LATERAL (SELECT n.id, n.geom FROM %1$I.node n WHERE n.id = e.id) AS n
   $q$, model) USING changed, tol + 1e-6;
   ANALYZE pg_temp._sg_t_nodes;
+  TRUNCATE pg_temp._sg_k_nodes;
   EXECUTE format($q$
-    CREATE TEMP TABLE _sg_k_nodes ON COMMIT DROP AS
+    INSERT INTO pg_temp._sg_k_nodes
     SELECT id FROM pg_temp._sg_t_nodes
     UNION SELECT s.to_node FROM %1$I.section s WHERE s.from_node IN (SELECT id FROM pg_temp._sg_t_nodes)
     UNION SELECT s.from_node FROM %1$I.section s WHERE s.to_node IN (SELECT id FROM pg_temp._sg_t_nodes)
   $q$, model);
   ANALYZE pg_temp._sg_k_nodes;
+  TRUNCATE pg_temp._sg_s1;
   EXECUTE format($q$
-    CREATE TEMP TABLE _sg_s1 ON COMMIT DROP AS
+    INSERT INTO pg_temp._sg_s1
     SELECT s.axis_id, s.part, s.from_node, s.to_node, s.geom FROM %1$I.section s WHERE s.axis_id = ANY ($1)
     UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, s.geom FROM %1$I.section s
            WHERE s.from_node IN (SELECT id FROM pg_temp._sg_k_nodes)
@@ -125,15 +160,17 @@ BEGIN
            LATERAL (SELECT s.* FROM %1$I.section s WHERE s.geom && ST_Expand(g.geom, $2)) AS s
   $q$, model) USING changed, max_width;
   ANALYZE pg_temp._sg_s1;
+  TRUNCATE pg_temp._sg_s2;
   EXECUTE format($q$
-    CREATE TEMP TABLE _sg_s2 ON COMMIT DROP AS
+    INSERT INTO pg_temp._sg_s2
     SELECT p.axis_id, p.part, p.from_node, p.to_node, p.geom FROM pg_temp._sg_s1 k,
            LATERAL (SELECT p.* FROM %1$I.section p WHERE p.geom && k.geom) AS p
     UNION SELECT axis_id, part, from_node, to_node, geom FROM pg_temp._sg_s1
   $q$, model);
   ANALYZE pg_temp._sg_s2;
+  TRUNCATE pg_temp._sg_q;
   EXECUTE format($q$
-    CREATE TEMP TABLE _sg_q ON COMMIT DROP AS
+    INSERT INTO pg_temp._sg_q
     SELECT p.axis_id, p.part, p.from_node, p.to_node FROM pg_temp._sg_s2 k,
            LATERAL (SELECT p.* FROM %1$I.section p WHERE p.geom && k.geom) AS p
     UNION SELECT axis_id, part, from_node, to_node FROM pg_temp._sg_s2
@@ -144,11 +181,9 @@ BEGIN
   -- not; so when the output shows an unvetted section near the scope, its old sections join Q
   -- and the context grows (rarely needed more than once).
   FOR round IN 1..4 LOOP
-    IF to_regclass('pg_temp._sg_context_nodes') IS NOT NULL THEN
-      DROP TABLE pg_temp._sg_context_nodes;
-    END IF;
+    TRUNCATE pg_temp._sg_context_nodes;
     EXECUTE format($q$
-      CREATE TEMP TABLE _sg_context_nodes ON COMMIT DROP AS
+      INSERT INTO pg_temp._sg_context_nodes
       -- UNION ALL and a DISTINCT at the end: the recursive UNION's hash table, sized by the
       -- planner's guess, cost 30 ms to set up for a few hundred rows.
       WITH RECURSIVE hop (node, depth) AS (
@@ -192,7 +227,8 @@ BEGIN
   -- changed axes (an axis split or joined where a changed axis touches it). The engine's output
   -- beyond the scope is not trusted: a section leaving the context may run past a node whose
   -- axes were not given.
-  CREATE TEMP TABLE _sg_scope_sections ON COMMIT DROP AS
+  TRUNCATE pg_temp._sg_scope_sections;
+  INSERT INTO pg_temp._sg_scope_sections
     WITH new_nodes AS (
       SELECT id FROM pg_temp._sg_k_nodes
       UNION SELECT n.node_id FROM pg_temp._streetgen_out n WHERE n.kind = 'node' AND n.axis_ids && changed
@@ -204,8 +240,9 @@ BEGIN
            WHERE o.kind = 'section'
              AND (o.axis_id = ANY (changed)
                   OR (o.node_id IN (SELECT id FROM new_nodes) AND o.to_node IN (SELECT id FROM new_nodes)));
+  TRUNCATE pg_temp._sg_scope_nodes;
   EXECUTE format($q$
-    CREATE TEMP TABLE _sg_scope_nodes ON COMMIT DROP AS
+    INSERT INTO pg_temp._sg_scope_nodes
     SELECT id FROM pg_temp._sg_k_nodes
     UNION SELECT o.node_id FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND o.axis_ids && $1
     UNION SELECT s.from_node FROM %1$I.section s JOIN pg_temp._sg_scope_sections k USING (axis_id, part)
@@ -215,17 +252,12 @@ BEGIN
     UNION SELECT o.to_node FROM pg_temp._streetgen_out o JOIN pg_temp._sg_scope_sections k USING (axis_id, part)
            WHERE o.kind = 'section'
   $q$, model) USING changed;
-  CREATE TEMP TABLE _sg_scope_axes ON COMMIT DROP AS
+  TRUNCATE pg_temp._sg_scope_axes;
+  INSERT INTO pg_temp._sg_scope_axes
     SELECT unnest(touched) AS id UNION SELECT axis_id FROM pg_temp._sg_scope_sections;
 
   PERFORM streetgen._store(model, true);
   PERFORM pg_notify('qgis', model);
-  -- Temp tables go at once, not at commit: a later statement in this transaction may run as
-  -- another role, which could not drop them.
-  FOREACH t IN ARRAY ARRAY['_streetgen_out', '_sg_changed_geom', '_sg_t_nodes', '_sg_k_nodes', '_sg_s1', '_sg_s2', '_sg_q',
-                           '_sg_context_nodes', '_sg_scope_nodes', '_sg_scope_sections', '_sg_scope_axes'] LOOP
-    EXECUTE format('DROP TABLE pg_temp.%I', t);
-  END LOOP;
 END
 $$;
 
@@ -276,12 +308,11 @@ BEGIN
      WHERE t.node_id IS NULL OR o.node_id IS NULL OR t.status <> o.status
         OR ST_HausdorffDistance(t.geom, ST_GeomFromEWKB(o.geom)) > 1e-6
     UNION ALL
-    (SELECT 'issue', concat_ws('/', axis_id, kind, detail), 'differs' FROM (
-       (SELECT axis_id, kind, detail FROM %1$I.issue EXCEPT ALL SELECT axis_id, status, detail FROM o WHERE kind = 'issue')
+    (SELECT 'issue', concat_ws('/', axis_id, part, kind, detail), 'differs' FROM (
+       (SELECT axis_id, part, kind, detail FROM %1$I.issue EXCEPT ALL SELECT axis_id, part, status, detail FROM o WHERE kind = 'issue')
        UNION ALL
-       (SELECT axis_id, status, detail FROM o WHERE kind = 'issue' EXCEPT ALL SELECT axis_id, kind, detail FROM %1$I.issue)) d)
+       (SELECT axis_id, part, status, detail FROM o WHERE kind = 'issue' EXCEPT ALL SELECT axis_id, part, kind, detail FROM %1$I.issue)) d)
   $q$, model);
-  DROP TABLE pg_temp._streetgen_out;
 END
 $$;
 COMMENT ON FUNCTION streetgen.outdated(text) IS
@@ -364,7 +395,6 @@ BEGIN
   PERFORM streetgen._compute_model(TG_TABLE_SCHEMA);
   PERFORM streetgen._store(TG_TABLE_SCHEMA, false);
   PERFORM pg_notify('qgis', TG_TABLE_SCHEMA);
-  DROP TABLE pg_temp._streetgen_out;
   RETURN NULL;
 END
 $$;

@@ -138,6 +138,7 @@ std::vector<OutRow> to_rows(core::GeosContext& geos, core::SurfaceResult& r, int
   for (const core::TopologyIssue& issue : r.issues) {
     OutRow row{"issue"};
     row.axis_id = issue.axis_id;
+    row.part = issue.part;
     row.status = issue.kind;
     row.detail = issue.detail;
     rows.push_back(std::move(row));

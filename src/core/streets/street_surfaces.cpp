@@ -705,7 +705,8 @@ class SurfaceBuilder {
       } catch (const Error& e) {
         if (e.kind() != ErrorKind::geometry_engine) throw;
         result_.issues.push_back({a.axis_id, "overlap_kept",
-                                  "the overlap with axis " + std::to_string(b.axis_id) + " could not be split: " + e.detail()});
+                                  "the overlap with axis " + std::to_string(b.axis_id) + " could not be split: " + e.detail(),
+                                  a.part});
       }
     }
     for (auto& [i, pieces] : given_away) {
@@ -722,7 +723,7 @@ class SurfaceBuilder {
         sec.status = "narrowed";
       } catch (const Error& e) {
         if (e.kind() != ErrorKind::geometry_engine) throw;
-        result_.issues.push_back({sec.axis_id, "overlap_kept", "its overlaps could not be removed: " + e.detail()});
+        result_.issues.push_back({sec.axis_id, "overlap_kept", "its overlaps could not be removed: " + e.detail(), sec.part});
       }
     }
   }

@@ -80,7 +80,7 @@ Topology build_topology(const std::vector<TopologyAxis>& axes, double snap_toler
     lengths[i] = length(lines[i]);
     usable[i] = lines[i].size() >= 2 && lengths[i] > tol;
     if (!usable[i]) {
-      topo.issues.push_back({axes[i].id, "degenerate_axis", "shorter than the snap tolerance; no surface"});
+      topo.issues.push_back({axes[i].id, "degenerate_axis", "shorter than the snap tolerance; no surface", std::nullopt});
     }
   }
 
@@ -236,7 +236,10 @@ Topology build_topology(const std::vector<TopologyAxis>& axes, double snap_toler
       piece = without_repeated_points(piece, 1e-9);
       double len = length(piece);
       if (piece.size() < 2 || len <= 1e-9 || (n0 == n1 && len <= 2 * tol)) {
-        if (n0 == n1 && len > 1e-9) topo.issues.push_back({axes[a].id, "loop_dropped", "a loop shorter than twice the snap tolerance"});
+        if (n0 == n1 && len > 1e-9) {
+          topo.issues.push_back({axes[a].id, "loop_dropped", "a loop shorter than twice the snap tolerance",
+                                 std::llround(s0 * 1000.0)});
+        }
         continue;
       }
       topo.edges.push_back({a, axes[a].id, std::llround(s0 * 1000.0), n0, n1, std::move(piece), false});
@@ -256,8 +259,7 @@ Topology build_topology(const std::vector<TopologyAxis>& axes, double snap_toler
                    std::all_of(o.line.begin(), o.line.end(), [&](Point p) { return project(edge.line, p).distance <= tol; });
       if (close) {
         topo.edges[e].duplicate = true;
-        topo.issues.push_back({edge.axis_id, "duplicate_axis",
-                               "the part from " + std::to_string(edge.part / 1000.0) + " m runs along axis " + std::to_string(o.axis_id)});
+        topo.issues.push_back({edge.axis_id, "duplicate_axis", "it runs along axis " + std::to_string(o.axis_id), edge.part});
         break;
       }
     }

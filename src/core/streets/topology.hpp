@@ -6,6 +6,7 @@
 #include "core/no_postgres.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,8 +41,9 @@ struct TopologyEdge {
 
 struct TopologyIssue {
   std::int64_t axis_id;
-  std::string kind;  // degenerate_axis, duplicate_axis, loop_dropped
+  std::string kind;  // degenerate_axis, duplicate_axis, loop_dropped, overlap_kept
   std::string detail;
+  std::optional<std::int64_t> part;  // the part concerned, when it is about one part
 };
 
 struct Topology {
