@@ -21,9 +21,8 @@ createdb streetgen
 psql -X -q -v ON_ERROR_STOP=1 -c "CREATE EXTENSION streetgen CASCADE"
 
 network="$(bash "$repo/scripts/fetch-demo-data.sh")"
+# The model's triggers generate the street surfaces as the axes arrive.
 "$repo/scripts/streetgen-import" -m gothenburg "$network"
-echo "generating street surfaces ..."
-psql -X -q -c "SELECT count(*) FROM streetgen.generate('gothenburg')" >/dev/null
 
 echo
 echo "== streetgen demo: what is there =="
@@ -49,19 +48,27 @@ psql -X -q -P footer=off -c "
   SELECT road_class, count(*) AS axes, round(sum(ST_Length(geom))::numeric / 1000, 1) AS km,
          round(avg(roadway_width)::numeric, 2) AS mean_width_m, round(avg(speed_kmh)::numeric, 1) AS mean_speed_kmh
     FROM gothenburg.axis GROUP BY road_class ORDER BY km DESC"
+# A QGIS project for the demo model, styled, its layers repainting when an edit commits.
+project="$dir/gothenburg.qgs"
+if ! QT_QPA_PLATFORM=offscreen XDG_RUNTIME_DIR="$(mktemp -d)" /usr/bin/python3 "$repo/qgis/make_project.py" \
+     "host=localhost port=$port dbname=streetgen user=postgres" gothenburg "$project" >/dev/null 2>&1; then
+  project="(not written: PyQGIS missing; apt-get install python3-qgis)"
+fi
+
 cat <<TXT
 Road data: (c) OpenStreetMap contributors, ODbL 1.0 (via npm geojson-path-finder@2.1.0).
 
 == connect ==
   psql:  psql "host=localhost port=$port dbname=streetgen user=postgres"
          (or: PGHOST=$dir PGPORT=$port psql -U postgres streetgen)
-  QGIS:  Layer > Data Source Manager > PostgreSQL > New
+  QGIS:  open the project $project
+         or: Layer > Data Source Manager > PostgreSQL > New
          Name: streetgen-demo   Host: localhost   Port: $port   Database: streetgen
          Authentication: Basic, user postgres, no password (trust on loopback: a throwaway cluster)
          then add the layers gothenburg.section, gothenburg.intersection (surfaces),
          gothenburg.corner (arc_segmentized: the curb arcs) and gothenburg.axis (EPSG:32632).
-  Try:   SELECT * FROM streetgen.generate('gothenburg');   -- after editing axes or settings
-         UPDATE gothenburg.settings SET turn_speed_ratio = 0.3;
+  Try:   edit gothenburg.axis in QGIS or psql: the surfaces follow at commit
+         UPDATE gothenburg.settings SET turn_speed_ratio = 0.3;   -- a full recompute
   Stop:  bash $repo/scripts/pgcluster.sh stop $dir      (remove: ... destroy $dir)
 Demo ready in $(( $(date +%s) - started )) s.
 TXT

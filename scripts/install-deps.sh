@@ -9,7 +9,7 @@ packages=(
   libgeos-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libgtest-dev valgrind
   osm2pgsql osmium-tool gdal-bin
-  python3
+  python3 python3-psycopg python3-qgis
 )
 
 missing=()
