@@ -104,7 +104,8 @@ BEGIN
       axis_id bigint REFERENCES %1$I.axis (id) ON DELETE CASCADE,
       part bigint,
       kind text NOT NULL,
-      detail text
+      detail text,
+      node_id bigint  -- where it happens, when the part has no section (a dropped loop, a duplicate)
     );
     CREATE INDEX issue_axis_idx ON %1$I.issue (axis_id);
     COMMENT ON TABLE %1$I.issue IS 'What the last generate could not use as given (duplicate or degenerate axes, ...)';

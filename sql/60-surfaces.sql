@@ -76,11 +76,13 @@ DECLARE
   node_scope text := CASE WHEN scoped THEN '%s IN (SELECT id FROM pg_temp._sg_scope_nodes)' ELSE 'true OR %s IS NULL' END;
   section_scope text := CASE WHEN scoped
     THEN '(%s, %s) IN (SELECT axis_id, part FROM pg_temp._sg_scope_sections)' ELSE 'true OR (%s, %s) IS NULL' END;
-  -- An issue about one part follows its section's scope; one about a whole axis, its axis'.
+  -- An issue about one part follows its section's scope, or its node's when that part has no
+  -- section (a dropped loop, a duplicate); one about a whole axis, its axis'.
   issue_scope text := CASE WHEN scoped
     THEN '(CASE WHEN %2$s IS NULL THEN %1$s IN (SELECT id FROM pg_temp._sg_scope_axes)
-                ELSE (%1$s, %2$s) IN (SELECT axis_id, part FROM pg_temp._sg_scope_sections) END)'
-    ELSE 'true OR (%1$s, %2$s) IS NULL' END;
+                ELSE (%1$s, %2$s) IN (SELECT axis_id, part FROM pg_temp._sg_scope_sections)
+                     OR %3$s IN (SELECT id FROM pg_temp._sg_scope_nodes) END)'
+    ELSE 'true OR (%1$s, %2$s, %3$s) IS NULL' END;
 BEGIN
   FOREACH statement IN ARRAY ARRAY[
     $q$DELETE FROM %1$I.corner c WHERE (%3$s) AND NOT EXISTS (
@@ -129,14 +131,14 @@ BEGIN
     $q$DELETE FROM %1$I.node t WHERE (%8$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND o.node_id = t.id)$q$,
     $q$DELETE FROM %1$I.issue i WHERE (%9$s)$q$,
-    $q$INSERT INTO %1$I.issue (axis_id, part, kind, detail)
-    SELECT o.axis_id, o.part, o.status, o.detail FROM pg_temp._streetgen_out o WHERE o.kind = 'issue' AND (%10$s)$q$
+    $q$INSERT INTO %1$I.issue (axis_id, part, kind, detail, node_id)
+    SELECT o.axis_id, o.part, o.status, o.detail, o.node_id FROM pg_temp._streetgen_out o WHERE o.kind = 'issue' AND (%10$s)$q$
   ] LOOP
     EXECUTE format(statement, model, srid,
                    format(node_scope, 'c.node_id'), format(node_scope, 'i.node_id'),
                    format(section_scope, 's.axis_id', 's.part'), format(node_scope, 'o.node_id'),
                    format(section_scope, 'o.axis_id', 'o.part'), format(node_scope, 't.id'),
-                   format(issue_scope, 'i.axis_id', 'i.part'), format(issue_scope, 'o.axis_id', 'o.part'));
+                   format(issue_scope, 'i.axis_id', 'i.part', 'i.node_id'), format(issue_scope, 'o.axis_id', 'o.part', 'o.node_id'));
   END LOOP;
   -- After a whole model (a bulk load, new settings) the statistics are stale or missing until
   -- autovacuum comes by, and the next edits' neighbourhood searches would plan as if the tables

@@ -171,12 +171,23 @@ BEGIN
     UNION SELECT axis_id, part, from_node, to_node, geom FROM pg_temp._sg_s1
   $q$, model);
   ANALYZE pg_temp._sg_s2;
+  -- The junction of a node in scope is cut from the sections at that node, and those are split
+  -- with every section they overlap: so Q also takes in the sections at the ends of S2 and what
+  -- overlaps them (a soak found a junction recomputed without an axis that overlapped one of its
+  -- sections but did not share its node).
   TRUNCATE pg_temp._sg_q;
   EXECUTE format($q$
     INSERT INTO pg_temp._sg_q
-    SELECT p.axis_id, p.part, p.from_node, p.to_node FROM pg_temp._sg_s2 k,
+    WITH ends (id) AS (SELECT from_node FROM pg_temp._sg_s2 UNION SELECT to_node FROM pg_temp._sg_s2),
+    s3 AS (
+      SELECT axis_id, part, from_node, to_node, geom FROM pg_temp._sg_s2
+      UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, s.geom
+              FROM ends e,
+                   LATERAL (SELECT s.* FROM %1$I.section s WHERE s.from_node = e.id
+                            UNION ALL SELECT s.* FROM %1$I.section s WHERE s.to_node = e.id) AS s)
+    SELECT p.axis_id, p.part, p.from_node, p.to_node FROM s3 k,
            LATERAL (SELECT p.* FROM %1$I.section p WHERE p.geom && k.geom) AS p
-    UNION SELECT axis_id, part, from_node, to_node FROM pg_temp._sg_s2
+    UNION SELECT axis_id, part, from_node, to_node FROM s3
   $q$, model);
   ANALYZE pg_temp._sg_q;
   -- The engine cannot be trusted beyond its context: an axis whose nodes were not all given is
@@ -205,16 +216,20 @@ BEGIN
 
     PERFORM streetgen._compute_model(model, context);
 
+    -- (its old sections near the scope, and those under it: cut too long, it may reach the
+    -- scope from a stretch whose old sections stopped short of it)
     EXECUTE format($q$
       INSERT INTO pg_temp._sg_q (axis_id, part, from_node, to_node)
+      WITH unvetted AS (
+        SELECT o.axis_id, ST_GeomFromEWKB(o.geom) AS geom FROM pg_temp._streetgen_out o
+         WHERE o.kind = 'section' AND o.geom IS NOT NULL
+           AND NOT EXISTS (SELECT 1 FROM pg_temp._sg_q q WHERE q.axis_id = o.axis_id AND q.part = o.part)
+           AND NOT (o.axis_id = ANY ($1))
+           AND EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE ST_GeomFromEWKB(o.geom) && k.geom))
       SELECT p.axis_id, p.part, p.from_node, p.to_node FROM %1$I.section p
-       WHERE p.axis_id IN (
-               SELECT o.axis_id FROM pg_temp._streetgen_out o
-                WHERE o.kind = 'section' AND o.geom IS NOT NULL
-                  AND NOT EXISTS (SELECT 1 FROM pg_temp._sg_q q WHERE q.axis_id = o.axis_id AND q.part = o.part)
-                  AND NOT (o.axis_id = ANY ($1))
-                  AND EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE ST_GeomFromEWKB(o.geom) && k.geom))
-         AND EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE p.geom && ST_Expand(k.geom, $2))
+       WHERE p.axis_id IN (SELECT axis_id FROM unvetted)
+         AND (EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE p.geom && ST_Expand(k.geom, $2))
+              OR EXISTS (SELECT 1 FROM unvetted u WHERE u.axis_id = p.axis_id AND p.geom && u.geom))
          AND NOT EXISTS (SELECT 1 FROM pg_temp._sg_q q WHERE q.axis_id = p.axis_id AND q.part = p.part)
     $q$, model) USING changed, max_width;
     GET DIAGNOSTICS grown = ROW_COUNT;
@@ -313,14 +328,32 @@ BEGIN
         OR ST_HausdorffDistance(t.geom, ST_GeomFromEWKB(o.geom)) > 1e-6
     UNION ALL
     (SELECT 'issue', concat_ws('/', axis_id, part, kind, detail), 'differs' FROM (
-       (SELECT axis_id, part, kind, detail FROM %1$I.issue EXCEPT ALL SELECT axis_id, part, status, detail FROM o WHERE kind = 'issue')
+       (SELECT axis_id, part, kind, detail, node_id FROM %1$I.issue
+        EXCEPT ALL SELECT axis_id, part, status, detail, node_id FROM o WHERE kind = 'issue')
        UNION ALL
-       (SELECT axis_id, part, status, detail FROM o WHERE kind = 'issue' EXCEPT ALL SELECT axis_id, part, kind, detail FROM %1$I.issue)) d)
+       (SELECT axis_id, part, status, detail, node_id FROM o WHERE kind = 'issue'
+        EXCEPT ALL SELECT axis_id, part, kind, detail, node_id FROM %1$I.issue)) d)
   $q$, model);
 END
 $$;
 COMMENT ON FUNCTION streetgen.outdated(text) IS
   'Rows of a model''s generated tables that differ from a full recompute (none when current): kind, key, missing/extra/differs';
+
+-- Before any row of a statement is touched: the model's lock first. Taken only in the AFTER
+-- trigger, a DELETE had already locked the rows its cascade removes (sections, corners) when it
+-- queued behind another session's recompute, which then needed those rows: a deadlock (40P01).
+CREATE FUNCTION streetgen._lock_outputs_first()
+  RETURNS trigger
+  LANGUAGE plpgsql
+  SET search_path FROM CURRENT
+  AS $$
+BEGIN
+  -- (the same row lock as the recompute's UPDATE, without counting a recompute: an edit of tags
+  -- alone recomputes nothing)
+  EXECUTE format('SELECT 1 FROM %I.refresh_state FOR NO KEY UPDATE', TG_TABLE_SCHEMA);
+  RETURN NULL;
+END
+$$;
 
 -- Trigger functions: one per event, since each sees different transition tables.
 CREATE FUNCTION streetgen._axis_inserted()
@@ -410,6 +443,12 @@ CREATE FUNCTION streetgen._create_triggers(name text)
   AS $$
 BEGIN
   EXECUTE format($ddl$
+    CREATE TRIGGER axis_lock_outputs BEFORE INSERT OR UPDATE OR DELETE ON %1$I.axis
+      FOR EACH STATEMENT EXECUTE FUNCTION streetgen._lock_outputs_first();
+    CREATE TRIGGER corner_lock_outputs BEFORE UPDATE ON %1$I.corner
+      FOR EACH STATEMENT EXECUTE FUNCTION streetgen._lock_outputs_first();
+    CREATE TRIGGER settings_lock_outputs BEFORE UPDATE ON %1$I.settings
+      FOR EACH STATEMENT EXECUTE FUNCTION streetgen._lock_outputs_first();
     CREATE TRIGGER axis_refresh_insert AFTER INSERT ON %1$I.axis
       REFERENCING NEW TABLE AS new_rows FOR EACH STATEMENT EXECUTE FUNCTION streetgen._axis_inserted();
     CREATE TRIGGER axis_refresh_update AFTER UPDATE ON %1$I.axis

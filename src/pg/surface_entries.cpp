@@ -139,6 +139,7 @@ std::vector<OutRow> to_rows(core::GeosContext& geos, core::SurfaceResult& r, int
     OutRow row{"issue"};
     row.axis_id = issue.axis_id;
     row.part = issue.part;
+    row.node_id = issue.node_id;
     row.status = issue.kind;
     row.detail = issue.detail;
     rows.push_back(std::move(row));

@@ -44,6 +44,7 @@ SELECT set_eq(
     ('streetgen._compute_model(text,bigint[])', 'void', 'v', false),
     ('streetgen._store(text,boolean)', 'void', 'v', false),
     ('streetgen._lock_outputs(text)', 'void', 'v', false),
+    ('streetgen._lock_outputs_first()', 'trigger', 'v', false),
     ('streetgen._refresh(text,bigint[],geometry[])', 'void', 'v', false),
     ('streetgen._axis_inserted()', 'trigger', 'v', false),
     ('streetgen._axis_updated()', 'trigger', 'v', false),

@@ -238,7 +238,7 @@ Topology build_topology(const std::vector<TopologyAxis>& axes, double snap_toler
       if (piece.size() < 2 || len <= 1e-9 || (n0 == n1 && len <= 2 * tol)) {
         if (n0 == n1 && len > 1e-9) {
           topo.issues.push_back({axes[a].id, "loop_dropped", "a loop shorter than twice the snap tolerance",
-                                 std::llround(s0 * 1000.0)});
+                                 std::llround(s0 * 1000.0), topo.nodes[n0].id});
         }
         continue;
       }
@@ -259,7 +259,8 @@ Topology build_topology(const std::vector<TopologyAxis>& axes, double snap_toler
                    std::all_of(o.line.begin(), o.line.end(), [&](Point p) { return project(edge.line, p).distance <= tol; });
       if (close) {
         topo.edges[e].duplicate = true;
-        topo.issues.push_back({edge.axis_id, "duplicate_axis", "it runs along axis " + std::to_string(o.axis_id), edge.part});
+        topo.issues.push_back({edge.axis_id, "duplicate_axis", "it runs along axis " + std::to_string(o.axis_id), edge.part,
+                               topo.nodes[edge.from_node].id});
         break;
       }
     }

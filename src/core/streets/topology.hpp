@@ -44,6 +44,9 @@ struct TopologyIssue {
   std::string kind;  // degenerate_axis, duplicate_axis, loop_dropped, overlap_kept
   std::string detail;
   std::optional<std::int64_t> part;  // the part concerned, when it is about one part
+  // The node it happens at, when the part it concerns has no section (a dropped loop, a
+  // duplicate): what an incremental refresh scopes it by, since no section carries it.
+  std::optional<std::int64_t> node_id = std::nullopt;
 };
 
 struct Topology {
