@@ -171,23 +171,27 @@ BEGIN
     UNION SELECT axis_id, part, from_node, to_node, geom FROM pg_temp._sg_s1
   $q$, model);
   ANALYZE pg_temp._sg_s2;
-  -- The junction of a node in scope is cut from the sections at that node, and those are split
-  -- with every section they overlap: so Q also takes in the sections at the ends of S2 and what
-  -- overlaps them (a soak found a junction recomputed without an axis that overlapped one of its
-  -- sections but did not share its node).
+  -- The junction of a node in scope is cut from the sections at that node, and a narrowed one
+  -- among them was split with a section it overlapped: so that section joins Q as well (a soak
+  -- found a junction recomputed without an axis that overlapped one of its sections but did not
+  -- share its node). The sections at the node are in the context already (one section beyond).
   TRUNCATE pg_temp._sg_q;
   EXECUTE format($q$
     INSERT INTO pg_temp._sg_q
     WITH ends (id) AS (SELECT from_node FROM pg_temp._sg_s2 UNION SELECT to_node FROM pg_temp._sg_s2),
-    s3 AS (
-      SELECT axis_id, part, from_node, to_node, geom FROM pg_temp._sg_s2
-      UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, s.geom
-              FROM ends e,
-                   LATERAL (SELECT s.* FROM %1$I.section s WHERE s.from_node = e.id
-                            UNION ALL SELECT s.* FROM %1$I.section s WHERE s.to_node = e.id) AS s)
-    SELECT p.axis_id, p.part, p.from_node, p.to_node FROM s3 k,
+    narrowed_at_ends AS (
+      SELECT s.geom
+        FROM ends e,
+             LATERAL (SELECT s.geom FROM %1$I.section s WHERE s.from_node = e.id AND s.status = 'narrowed'
+                      UNION ALL SELECT s.geom FROM %1$I.section s WHERE s.to_node = e.id AND s.status = 'narrowed') AS s)
+    SELECT p.axis_id, p.part, p.from_node, p.to_node FROM pg_temp._sg_s2 k,
            LATERAL (SELECT p.* FROM %1$I.section p WHERE p.geom && k.geom) AS p
-    UNION SELECT axis_id, part, from_node, to_node FROM s3
+    -- (stored sections overlap no more: the pieces of a split touch along the split line; a
+    -- distance, not ST_Intersects, which can fail on such touching rings)
+    UNION SELECT p.axis_id, p.part, p.from_node, p.to_node FROM narrowed_at_ends k,
+           LATERAL (SELECT p.* FROM %1$I.section p
+                     WHERE p.geom && ST_Expand(k.geom, 1e-3) AND ST_DWithin(p.geom, k.geom, 1e-3)) AS p
+    UNION SELECT axis_id, part, from_node, to_node FROM pg_temp._sg_s2
   $q$, model);
   ANALYZE pg_temp._sg_q;
   -- The engine cannot be trusted beyond its context: an axis whose nodes were not all given is
