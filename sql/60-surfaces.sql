@@ -22,6 +22,8 @@ CREATE FUNCTION streetgen._compute_model(model text, context bigint[] DEFAULT NU
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
   SET jit = off
+  -- (_refresh turns them off for its index lookups; these statements join unindexed work tables)
+  SET enable_seqscan = on SET enable_hashjoin = on SET enable_mergejoin = on
   AS $$
 BEGIN
   PERFORM streetgen._work_tables();
@@ -69,6 +71,8 @@ CREATE FUNCTION streetgen._store(model text, scoped boolean)
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
   SET jit = off
+  -- (_refresh turns them off for its index lookups; these statements join unindexed work tables)
+  SET enable_seqscan = on SET enable_hashjoin = on SET enable_mergejoin = on
   AS $$
 DECLARE
   srid integer := streetgen.model_srid(model);

@@ -16,11 +16,11 @@ BEGIN
 END
 $$;
 
--- The work tables of a recompute: temporary, made once per session and truncated before each
--- use. Creating and dropping them on every edit took new locks each time, and a long
--- transaction of many edits (a QGIS editing session commits once) ran out of lock slots; DELETE
--- instead of TRUNCATE left them full of dead rows in such a transaction. Granted to PUBLIC: one
--- session may recompute as several roles.
+-- The work tables of a recompute: temporary, made once per session. Granted to PUBLIC: one
+-- session may recompute as several roles. The engine's output (_streetgen_out) is truncated
+-- before each run (see _compute_model); the small neighbourhood tables are emptied by
+-- _empty_work_tables. The neighbourhood's sections are kept as their envelopes: only bounding
+-- boxes are compared, and small rows keep a table of many emptied edits small.
 CREATE FUNCTION streetgen._work_tables()
   RETURNS void
   LANGUAGE plpgsql VOLATILE
@@ -40,8 +40,8 @@ BEGIN
     '_sg_changed_geom (geom geometry)',
     '_sg_t_nodes (id bigint, geom geometry)',
     '_sg_k_nodes (id bigint)',
-    '_sg_s1 (axis_id bigint, part bigint, from_node bigint, to_node bigint, geom geometry)',
-    '_sg_s2 (axis_id bigint, part bigint, from_node bigint, to_node bigint, geom geometry)',
+    '_sg_s1 (axis_id bigint, part bigint, from_node bigint, to_node bigint, envelope geometry)',
+    '_sg_s2 (axis_id bigint, part bigint, from_node bigint, to_node bigint, envelope geometry)',
     '_sg_q (axis_id bigint, part bigint, from_node bigint, to_node bigint)',
     '_sg_context_nodes (id bigint)',
     '_sg_scope_sections (axis_id bigint, part bigint)',
@@ -50,6 +50,42 @@ BEGIN
     EXECUTE 'CREATE TEMP TABLE IF NOT EXISTS ' || definition;
     EXECUTE format('GRANT ALL ON pg_temp.%I TO PUBLIC', split_part(definition, ' ', 1));
   END LOOP;
+END
+$$;
+
+-- Empties the neighbourhood work tables before a local recompute. DELETE, not TRUNCATE: a
+-- TRUNCATE gives a table a new file (made now, unlinked at commit) and makes every cached plan
+-- that reads it plan again; with ANALYZE, that was about a third of a small edit's time.
+-- Deleted rows stay on their pages (temporary tables are never vacuumed, and a transaction's
+-- own deletions cannot be pruned before it ends), so past 256 kB the tables are truncated after
+-- all: every few hundred edits, or once in a while in a long editing transaction.
+CREATE FUNCTION streetgen._empty_work_tables()
+  RETURNS void
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  AS $$
+BEGIN
+  PERFORM streetgen._work_tables();
+  IF pg_relation_size('pg_temp._sg_changed_geom') + pg_relation_size('pg_temp._sg_t_nodes')
+     + pg_relation_size('pg_temp._sg_k_nodes') + pg_relation_size('pg_temp._sg_s1') + pg_relation_size('pg_temp._sg_s2')
+     + pg_relation_size('pg_temp._sg_q') + pg_relation_size('pg_temp._sg_context_nodes')
+     + pg_relation_size('pg_temp._sg_scope_sections') + pg_relation_size('pg_temp._sg_scope_nodes')
+     + pg_relation_size('pg_temp._sg_scope_axes') > 256 * 1024 THEN
+    TRUNCATE pg_temp._sg_changed_geom, pg_temp._sg_t_nodes, pg_temp._sg_k_nodes, pg_temp._sg_s1, pg_temp._sg_s2,
+             pg_temp._sg_q, pg_temp._sg_context_nodes, pg_temp._sg_scope_sections, pg_temp._sg_scope_nodes,
+             pg_temp._sg_scope_axes;
+  ELSE
+    DELETE FROM pg_temp._sg_changed_geom;
+    DELETE FROM pg_temp._sg_t_nodes;
+    DELETE FROM pg_temp._sg_k_nodes;
+    DELETE FROM pg_temp._sg_s1;
+    DELETE FROM pg_temp._sg_s2;
+    DELETE FROM pg_temp._sg_q;
+    DELETE FROM pg_temp._sg_context_nodes;
+    DELETE FROM pg_temp._sg_scope_sections;
+    DELETE FROM pg_temp._sg_scope_nodes;
+    DELETE FROM pg_temp._sg_scope_axes;
+  END IF;
 END
 $$;
 
@@ -70,13 +106,20 @@ $$;
 -- section away from them: a corner looks one node ahead along each of its axes, for the length
 -- of that part and whether the node ahead is a dead end. (Two sections away was the first
 -- guess; one holds the invariant over 700 random edits of two cities and costs half as much.)
--- Parts are keyed by
--- where they start along their axis, so nothing farther away changes key.
+-- Parts are keyed by where they start along their axis, so nothing farther away changes key.
+--
+-- The statements name the model's tables without a schema, under a search_path that puts the
+-- model first (after pg_catalog), so that they are static SQL: PL/pgSQL plans each once per
+-- session (and again for another model) instead of on every edit. Generic plans: the work
+-- tables hold a few dozen rows and the lookups go by index whatever the arrays hold.
 CREATE FUNCTION streetgen._refresh(model text, changed bigint[], old_geoms geometry[])
   RETURNS void
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
   SET jit = off
+  SET plan_cache_mode = force_generic_plan
+  -- (in the SET clause so that the set_config below ends with the function, not the transaction)
+  SET enable_seqscan = on SET enable_hashjoin = on SET enable_mergejoin = on
   AS $$
 DECLARE
   tol double precision;
@@ -84,7 +127,6 @@ DECLARE
   touched bigint[];
   context bigint[];
   axis_count bigint;
-  t text;
   round integer;
   grown bigint;
 BEGIN
@@ -92,14 +134,16 @@ BEGIN
   IF coalesce(cardinality(changed), 0) = 0 THEN
     RETURN;
   END IF;
+  PERFORM set_config('search_path',
+                     format('pg_catalog, %I, %s', model, regexp_replace(current_setting('search_path'), '^\s*pg_catalog\s*,\s*', '')),
+                     true);
   -- (max by the width index; the axis count from the statistics, counted only if there are none)
-  EXECUTE format('SELECT s.snap_tolerance,
-                         coalesce((SELECT a.roadway_width FROM %1$I.axis a ORDER BY a.roadway_width DESC LIMIT 1), 0),
-                         (SELECT c.reltuples::bigint FROM pg_class c WHERE c.oid = %2$L::regclass)
-                    FROM %1$I.settings s', model, format('%I.axis', model))
-    INTO tol, max_width, axis_count;
+  SELECT s.snap_tolerance, coalesce((SELECT a.roadway_width FROM axis a ORDER BY a.roadway_width DESC LIMIT 1), 0),
+         (SELECT c.reltuples::bigint FROM pg_class c WHERE c.oid = 'axis'::regclass)
+    INTO tol, max_width, axis_count
+    FROM settings s;
   IF axis_count < 0 THEN
-    EXECUTE format('SELECT count(*) FROM %I.axis', model) INTO axis_count;
+    SELECT count(*) INTO axis_count FROM axis;
   END IF;
   -- A change that touches a large part of the model: one full run is cheaper than the search.
   IF cardinality(changed) > least(500, axis_count / 5) THEN
@@ -109,133 +153,107 @@ BEGIN
     RETURN;
   END IF;
 
-  PERFORM streetgen._work_tables();
-
-  TRUNCATE pg_temp._sg_changed_geom;
-  EXECUTE format($q$
-    INSERT INTO pg_temp._sg_changed_geom
-    SELECT g AS geom FROM unnest($1) AS g WHERE g IS NOT NULL
-    UNION ALL SELECT a.geom FROM %1$I.axis a WHERE a.id = ANY ($2)
-  $q$, model) USING old_geoms, changed;
-  ANALYZE pg_temp._sg_changed_geom;
+  -- From here on every lookup in the model's tables goes by index: the plans are generic, made
+  -- once, and without statistics on the work tables the planner would guess them at thousands
+  -- of rows and hash whole tables (a hundred ms per edit). The engine run and the store, which
+  -- join the unindexed output table, turn them on again.
+  PERFORM set_config('enable_seqscan', 'off', true), set_config('enable_hashjoin', 'off', true),
+          set_config('enable_mergejoin', 'off', true);
+  PERFORM streetgen._empty_work_tables();
+  INSERT INTO pg_temp._sg_changed_geom
+  SELECT g AS geom FROM unnest(old_geoms) AS g WHERE g IS NOT NULL
+  UNION ALL SELECT a.geom FROM axis a WHERE a.id = ANY (changed);
 
   -- Axes the change touches: for the scope of the issue table.
-  EXECUTE format($q$
-    SELECT array_agg(DISTINCT id) FROM (
-      SELECT unnest($1) AS id
-      UNION ALL SELECT a.id FROM pg_temp._sg_changed_geom g,
-                 LATERAL (SELECT a.id FROM %1$I.axis a WHERE a.geom && ST_Expand(g.geom, $2) AND ST_DWithin(a.geom, g.geom, $2)) AS a) AS k
-  $q$, model) INTO touched USING changed, tol + 1e-6;
+  SELECT array_agg(DISTINCT id) INTO touched FROM (
+    SELECT unnest(changed) AS id
+    UNION ALL SELECT a.id FROM pg_temp._sg_changed_geom g,
+               LATERAL (SELECT a.id FROM axis a WHERE a.geom && ST_Expand(g.geom, tol + 1e-6)
+                                                  AND ST_DWithin(a.geom, g.geom, tol + 1e-6)) AS a) AS k;
 
-  TRUNCATE pg_temp._sg_t_nodes;
-  EXECUTE format($q$
-    INSERT INTO pg_temp._sg_t_nodes
-    SELECT n.id, n.geom FROM %1$I.node n WHERE n.axis_ids && $1
-    -- A node's points are within the tolerance of each other in a chain, so a node near a
-    -- changed geometry may take in (or lose) one of its points without sharing an axis yet.
-    UNION SELECT n.id, n.geom FROM pg_temp._sg_changed_geom g,
-           LATERAL (SELECT n.id, n.geom FROM %1$I.node n
-                     WHERE n.geom && ST_Expand(g.geom, 3 * $2) AND ST_DWithin(n.geom, g.geom, 3 * $2)) AS n
-    UNION SELECT n.id, n.geom
-            FROM pg_temp._sg_changed_geom g,
-                 LATERAL (SELECT unnest(ARRAY[s.from_node, s.to_node]) AS id FROM %1$I.section s
-                           WHERE s.centre_line && ST_Expand(g.geom, $2) AND ST_DWithin(s.centre_line, g.geom, $2)) AS e,
-                 LATERAL (SELECT n.id, n.geom FROM %1$I.node n WHERE n.id = e.id) AS n
-  $q$, model) USING changed, tol + 1e-6;
-  ANALYZE pg_temp._sg_t_nodes;
-  TRUNCATE pg_temp._sg_k_nodes;
-  EXECUTE format($q$
-    INSERT INTO pg_temp._sg_k_nodes
-    SELECT id FROM pg_temp._sg_t_nodes
-    UNION SELECT s.to_node FROM %1$I.section s WHERE s.from_node IN (SELECT id FROM pg_temp._sg_t_nodes)
-    UNION SELECT s.from_node FROM %1$I.section s WHERE s.to_node IN (SELECT id FROM pg_temp._sg_t_nodes)
-  $q$, model);
-  ANALYZE pg_temp._sg_k_nodes;
-  TRUNCATE pg_temp._sg_s1;
-  EXECUTE format($q$
-    INSERT INTO pg_temp._sg_s1
-    SELECT s.axis_id, s.part, s.from_node, s.to_node, s.geom FROM %1$I.section s WHERE s.axis_id = ANY ($1)
-    UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, s.geom FROM %1$I.section s
-           WHERE s.from_node IN (SELECT id FROM pg_temp._sg_k_nodes)
-    UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, s.geom FROM %1$I.section s
-           WHERE s.to_node IN (SELECT id FROM pg_temp._sg_k_nodes)
-    UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, s.geom FROM pg_temp._sg_changed_geom g,
-           LATERAL (SELECT s.* FROM %1$I.section s WHERE s.geom && ST_Expand(g.geom, $2)) AS s
-  $q$, model) USING changed, max_width;
-  ANALYZE pg_temp._sg_s1;
-  TRUNCATE pg_temp._sg_s2;
-  EXECUTE format($q$
-    INSERT INTO pg_temp._sg_s2
-    SELECT p.axis_id, p.part, p.from_node, p.to_node, p.geom FROM pg_temp._sg_s1 k,
-           LATERAL (SELECT p.* FROM %1$I.section p WHERE p.geom && k.geom) AS p
-    UNION SELECT axis_id, part, from_node, to_node, geom FROM pg_temp._sg_s1
-  $q$, model);
-  ANALYZE pg_temp._sg_s2;
+  INSERT INTO pg_temp._sg_t_nodes
+  SELECT n.id, n.geom FROM node n WHERE n.axis_ids && changed
+  -- A node's points are within the tolerance of each other in a chain, so a node near a
+  -- changed geometry may take in (or lose) one of its points without sharing an axis yet.
+  UNION SELECT n.id, n.geom FROM pg_temp._sg_changed_geom g,
+         LATERAL (SELECT n.id, n.geom FROM node n
+                   WHERE n.geom && ST_Expand(g.geom, 3 * (tol + 1e-6)) AND ST_DWithin(n.geom, g.geom, 3 * (tol + 1e-6))) AS n
+  UNION SELECT n.id, n.geom
+          FROM pg_temp._sg_changed_geom g,
+               LATERAL (SELECT unnest(ARRAY[s.from_node, s.to_node]) AS id FROM section s
+                         WHERE s.centre_line && ST_Expand(g.geom, tol + 1e-6) AND ST_DWithin(s.centre_line, g.geom, tol + 1e-6)) AS e,
+               LATERAL (SELECT n.id, n.geom FROM node n WHERE n.id = e.id) AS n;
+  INSERT INTO pg_temp._sg_k_nodes
+  SELECT id FROM pg_temp._sg_t_nodes
+  UNION SELECT s.to_node FROM pg_temp._sg_t_nodes t, LATERAL (SELECT s.to_node FROM section s WHERE s.from_node = t.id) AS s
+  UNION SELECT s.from_node FROM pg_temp._sg_t_nodes t, LATERAL (SELECT s.from_node FROM section s WHERE s.to_node = t.id) AS s;
+  INSERT INTO pg_temp._sg_s1
+  SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Envelope(s.geom) FROM unnest(changed) AS c (id),
+         LATERAL (SELECT s.* FROM section s WHERE s.axis_id = c.id) AS s
+  UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Envelope(s.geom) FROM pg_temp._sg_k_nodes k,
+         LATERAL (SELECT s.* FROM section s WHERE s.from_node = k.id) AS s
+  UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Envelope(s.geom) FROM pg_temp._sg_k_nodes k,
+         LATERAL (SELECT s.* FROM section s WHERE s.to_node = k.id) AS s
+  UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Envelope(s.geom) FROM pg_temp._sg_changed_geom g,
+         LATERAL (SELECT s.* FROM section s WHERE s.geom && ST_Expand(g.geom, max_width)) AS s;
+  INSERT INTO pg_temp._sg_s2
+  SELECT p.axis_id, p.part, p.from_node, p.to_node, ST_Envelope(p.geom) FROM pg_temp._sg_s1 k,
+         LATERAL (SELECT p.* FROM section p WHERE p.geom && k.envelope) AS p
+  UNION SELECT axis_id, part, from_node, to_node, envelope FROM pg_temp._sg_s1;
   -- The junction of a node in scope is cut from the sections at that node, and a narrowed one
   -- among them was split with a section it overlapped: so that section joins Q as well (a soak
   -- found a junction recomputed without an axis that overlapped one of its sections but did not
   -- share its node). The sections at the node are in the context already (one section beyond).
-  TRUNCATE pg_temp._sg_q;
-  EXECUTE format($q$
-    INSERT INTO pg_temp._sg_q
-    WITH ends (id) AS (SELECT from_node FROM pg_temp._sg_s2 UNION SELECT to_node FROM pg_temp._sg_s2),
-    narrowed_at_ends AS (
-      SELECT s.geom
-        FROM ends e,
-             LATERAL (SELECT s.geom FROM %1$I.section s WHERE s.from_node = e.id AND s.status = 'narrowed'
-                      UNION ALL SELECT s.geom FROM %1$I.section s WHERE s.to_node = e.id AND s.status = 'narrowed') AS s)
-    SELECT p.axis_id, p.part, p.from_node, p.to_node FROM pg_temp._sg_s2 k,
-           LATERAL (SELECT p.* FROM %1$I.section p WHERE p.geom && k.geom) AS p
-    -- (stored sections overlap no more: the pieces of a split touch along the split line; a
-    -- distance, not ST_Intersects, which can fail on such touching rings)
-    UNION SELECT p.axis_id, p.part, p.from_node, p.to_node FROM narrowed_at_ends k,
-           LATERAL (SELECT p.* FROM %1$I.section p
-                     WHERE p.geom && ST_Expand(k.geom, 1e-3) AND ST_DWithin(p.geom, k.geom, 1e-3)) AS p
-    UNION SELECT axis_id, part, from_node, to_node FROM pg_temp._sg_s2
-  $q$, model);
-  ANALYZE pg_temp._sg_q;
+  INSERT INTO pg_temp._sg_q
+  WITH ends (id) AS (SELECT from_node FROM pg_temp._sg_s2 UNION SELECT to_node FROM pg_temp._sg_s2),
+  narrowed_at_ends AS (
+    SELECT s.geom
+      FROM ends e,
+           LATERAL (SELECT s.geom FROM section s WHERE s.from_node = e.id AND s.status = 'narrowed'
+                    UNION ALL SELECT s.geom FROM section s WHERE s.to_node = e.id AND s.status = 'narrowed') AS s)
+  SELECT p.axis_id, p.part, p.from_node, p.to_node FROM pg_temp._sg_s2 k,
+         LATERAL (SELECT p.* FROM section p WHERE p.geom && k.envelope) AS p
+  -- (stored sections overlap no more: the pieces of a split touch along the split line; a
+  -- distance, not ST_Intersects, which can fail on such touching rings)
+  UNION SELECT p.axis_id, p.part, p.from_node, p.to_node FROM narrowed_at_ends k,
+         LATERAL (SELECT p.* FROM section p
+                   WHERE p.geom && ST_Expand(k.geom, 1e-3) AND ST_DWithin(p.geom, k.geom, 1e-3)) AS p
+  UNION SELECT axis_id, part, from_node, to_node FROM pg_temp._sg_s2;
   -- The engine cannot be trusted beyond its context: an axis whose nodes were not all given is
   -- cut too long there. Such a section may overlap a section in scope where the true one does
   -- not; so when the output shows an unvetted section near the scope, its old sections join Q
-  -- and the context grows (rarely needed more than once).
+  -- (those near the scope, and those under it: cut too long, it may reach the scope from a
+  -- stretch whose old sections stopped short of it) and the context grows (rarely needed more
+  -- than once).
   FOR round IN 1..4 LOOP
-    TRUNCATE pg_temp._sg_context_nodes;
-    EXECUTE format($q$
-      INSERT INTO pg_temp._sg_context_nodes
-      WITH base (node) AS (
-        SELECT from_node FROM pg_temp._sg_q UNION SELECT to_node FROM pg_temp._sg_q UNION SELECT id FROM pg_temp._sg_k_nodes)
-      SELECT node FROM base
-      UNION SELECT x.node
-              FROM base b,
-                   LATERAL (SELECT s.to_node FROM %1$I.section s WHERE s.from_node = b.node
-                            UNION ALL SELECT s.from_node FROM %1$I.section s WHERE s.to_node = b.node) AS x (node)
-    $q$, model);
-    ANALYZE pg_temp._sg_context_nodes;
-    EXECUTE format($q$
-      SELECT array_agg(DISTINCT id) FROM (
-        SELECT unnest(n.axis_ids) AS id FROM %1$I.node n WHERE n.id IN (SELECT id FROM pg_temp._sg_context_nodes)
-        UNION ALL SELECT axis_id FROM pg_temp._sg_q
-        UNION ALL SELECT unnest($1)) AS c
-    $q$, model) INTO context USING touched;
+    DELETE FROM pg_temp._sg_context_nodes;
+    INSERT INTO pg_temp._sg_context_nodes
+    WITH base (node) AS (
+      SELECT from_node FROM pg_temp._sg_q UNION SELECT to_node FROM pg_temp._sg_q UNION SELECT id FROM pg_temp._sg_k_nodes)
+    SELECT node FROM base
+    UNION SELECT x.node
+            FROM base b,
+                 LATERAL (SELECT s.to_node FROM section s WHERE s.from_node = b.node
+                          UNION ALL SELECT s.from_node FROM section s WHERE s.to_node = b.node) AS x (node);
+    SELECT array_agg(DISTINCT id) INTO context FROM (
+      SELECT unnest(n.axis_ids) AS id FROM pg_temp._sg_context_nodes c, LATERAL (SELECT n.axis_ids FROM node n WHERE n.id = c.id) AS n
+      UNION ALL SELECT axis_id FROM pg_temp._sg_q
+      UNION ALL SELECT unnest(touched)) AS c;
 
     PERFORM streetgen._compute_model(model, context);
 
-    -- (its old sections near the scope, and those under it: cut too long, it may reach the
-    -- scope from a stretch whose old sections stopped short of it)
-    EXECUTE format($q$
-      INSERT INTO pg_temp._sg_q (axis_id, part, from_node, to_node)
-      WITH unvetted AS (
-        SELECT o.axis_id, ST_GeomFromEWKB(o.geom) AS geom FROM pg_temp._streetgen_out o
-         WHERE o.kind = 'section' AND o.geom IS NOT NULL
-           AND NOT EXISTS (SELECT 1 FROM pg_temp._sg_q q WHERE q.axis_id = o.axis_id AND q.part = o.part)
-           AND NOT (o.axis_id = ANY ($1))
-           AND EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE ST_GeomFromEWKB(o.geom) && k.geom))
-      SELECT p.axis_id, p.part, p.from_node, p.to_node FROM %1$I.section p
-       WHERE p.axis_id IN (SELECT axis_id FROM unvetted)
-         AND (EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE p.geom && ST_Expand(k.geom, $2))
-              OR EXISTS (SELECT 1 FROM unvetted u WHERE u.axis_id = p.axis_id AND p.geom && u.geom))
-         AND NOT EXISTS (SELECT 1 FROM pg_temp._sg_q q WHERE q.axis_id = p.axis_id AND q.part = p.part)
-    $q$, model) USING changed, max_width;
+    INSERT INTO pg_temp._sg_q (axis_id, part, from_node, to_node)
+    WITH unvetted AS (
+      SELECT o.axis_id, ST_GeomFromEWKB(o.geom) AS geom FROM pg_temp._streetgen_out o
+       WHERE o.kind = 'section' AND o.geom IS NOT NULL
+         AND NOT EXISTS (SELECT 1 FROM pg_temp._sg_q q WHERE q.axis_id = o.axis_id AND q.part = o.part)
+         AND NOT (o.axis_id = ANY (changed))
+         AND EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE ST_GeomFromEWKB(o.geom) && k.envelope))
+    SELECT p.axis_id, p.part, p.from_node, p.to_node FROM section p
+     WHERE p.axis_id IN (SELECT axis_id FROM unvetted)
+       AND (EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE p.geom && ST_Expand(k.envelope, max_width))
+            OR EXISTS (SELECT 1 FROM unvetted u WHERE u.axis_id = p.axis_id AND p.geom && u.geom))
+       AND NOT EXISTS (SELECT 1 FROM pg_temp._sg_q q WHERE q.axis_id = p.axis_id AND q.part = p.part);
     GET DIAGNOSTICS grown = ROW_COUNT;
     EXIT WHEN grown = 0;
   END LOOP;
@@ -245,7 +263,6 @@ BEGIN
   -- changed axes (an axis split or joined where a changed axis touches it). The engine's output
   -- beyond the scope is not trusted: a section leaving the context may run past a node whose
   -- axes were not given.
-  TRUNCATE pg_temp._sg_scope_sections;
   INSERT INTO pg_temp._sg_scope_sections
     WITH new_nodes AS (
       SELECT id FROM pg_temp._sg_k_nodes
@@ -258,25 +275,21 @@ BEGIN
            WHERE o.kind = 'section'
              AND (o.axis_id = ANY (changed)
                   OR (o.node_id IN (SELECT id FROM new_nodes) AND o.to_node IN (SELECT id FROM new_nodes)));
-  ANALYZE pg_temp._sg_scope_sections;
-  TRUNCATE pg_temp._sg_scope_nodes;
-  EXECUTE format($q$
-    INSERT INTO pg_temp._sg_scope_nodes
-    SELECT id FROM pg_temp._sg_k_nodes
-    UNION SELECT o.node_id FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND o.axis_ids && $1
-    -- (lateral: a lookup by key per section in scope, whatever the planner guesses of their number)
-    UNION SELECT e.id FROM pg_temp._sg_scope_sections k,
-           LATERAL (SELECT unnest(ARRAY[s.from_node, s.to_node]) AS id FROM %1$I.section s
-                     WHERE s.axis_id = k.axis_id AND s.part = k.part) AS e
-    UNION SELECT o.node_id FROM pg_temp._streetgen_out o JOIN pg_temp._sg_scope_sections k USING (axis_id, part)
-           WHERE o.kind = 'section'
-    UNION SELECT o.to_node FROM pg_temp._streetgen_out o JOIN pg_temp._sg_scope_sections k USING (axis_id, part)
-           WHERE o.kind = 'section'
-  $q$, model) USING changed;
-  TRUNCATE pg_temp._sg_scope_axes;
+  INSERT INTO pg_temp._sg_scope_nodes
+  SELECT id FROM pg_temp._sg_k_nodes
+  UNION SELECT o.node_id FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND o.axis_ids && changed
+  -- (lateral: a lookup by key per section in scope, whatever the planner guesses of their number)
+  UNION SELECT e.id FROM pg_temp._sg_scope_sections k,
+         LATERAL (SELECT unnest(ARRAY[s.from_node, s.to_node]) AS id FROM section s
+                   WHERE s.axis_id = k.axis_id AND s.part = k.part) AS e
+  UNION SELECT o.node_id FROM pg_temp._streetgen_out o JOIN pg_temp._sg_scope_sections k USING (axis_id, part)
+         WHERE o.kind = 'section'
+  UNION SELECT o.to_node FROM pg_temp._streetgen_out o JOIN pg_temp._sg_scope_sections k USING (axis_id, part)
+         WHERE o.kind = 'section';
   INSERT INTO pg_temp._sg_scope_axes
     SELECT unnest(touched) AS id UNION SELECT axis_id FROM pg_temp._sg_scope_sections;
   ANALYZE pg_temp._sg_scope_nodes;
+  ANALYZE pg_temp._sg_scope_sections;
   ANALYZE pg_temp._sg_scope_axes;
 
   PERFORM streetgen._store(model, true);

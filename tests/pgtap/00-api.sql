@@ -54,6 +54,7 @@ SELECT set_eq(
     ('streetgen._create_triggers(text)', 'void', 'v', false),
     ('streetgen.outdated(text)', 'SETOF record', 'v', false),
     ('streetgen._work_tables()', 'void', 'v', false),
+    ('streetgen._empty_work_tables()', 'void', 'v', false),
     ('streetgen.generate(text)', 'SETOF record', 'v', false),
     ('streetgen.street_surfaces(text,jsonb)', 'SETOF record', 'v', false),
     ('streetgen.surface_quality(text)', 'record', 's', false)

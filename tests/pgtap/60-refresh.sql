@@ -29,6 +29,17 @@ SELECT is((SELECT count(*) FROM live.section WHERE axis_id = 4), 0::bigint, 'its
 INSERT INTO live.axis (id, geom, roadway_width, speed_kmh) OVERRIDING SYSTEM VALUE VALUES (6, 'SRID=32631;LINESTRING(-40 -40, 40 40)', 7, 40);
 SELECT is((SELECT count(*) FROM streetgen.outdated('live')), 0::bigint, 'a new axis crossing the junction: current');
 
+-- A recompute plans its neighbourhood lookups with its own search_path and planner settings;
+-- they end with it, and the rest of the editor's transaction keeps its own.
+CREATE TEMP TABLE settings_before AS SELECT current_setting('search_path') AS path;
+SET LOCAL enable_mergejoin = off;
+UPDATE live.axis SET roadway_width = 7 WHERE id = 5;
+SELECT is(current_setting('search_path'), (SELECT path FROM settings_before), 'an edit leaves the search_path as it was');
+SELECT is(ARRAY[current_setting('enable_seqscan'), current_setting('enable_hashjoin'), current_setting('enable_mergejoin')],
+          ARRAY['on', 'on', 'off'], 'and the planner settings as they were');
+RESET enable_mergejoin;
+SELECT is((SELECT count(*) FROM streetgen.outdated('live')), 0::bigint, 'a width change in that transaction: current');
+
 -- What does not shape the surfaces recomputes nothing.
 CREATE TEMP TABLE before_tags AS SELECT pg_temp.refreshes() AS n;
 UPDATE live.axis SET tags = '{"name": "Rue X"}', source = 'me' WHERE id = 1;
