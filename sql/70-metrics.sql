@@ -48,7 +48,8 @@ COMMENT ON TYPE streetgen.network_metrics IS
   'Statistics of a street network (see streetgen.network_stats): counts, lengths in m, areas in m², densities per km², shares in [0, 1], orientation in 36 bins of 10° centred on 0° (north), raw distributions as arrays';
 
 CREATE FUNCTION streetgen._streetgen_network_stats(geoms bytea[], node_tolerance double precision, win bytea,
-                                                   split_at_crossings boolean, simplify boolean, blocks boolean)
+                                                   split_at_crossings boolean, simplify boolean, blocks boolean,
+                                                   layers integer[])
   RETURNS streetgen.network_metrics
   LANGUAGE c IMMUTABLE PARALLEL SAFE
   COST 100000
@@ -65,7 +66,7 @@ CREATE FUNCTION streetgen._streetgen_compare_networks(a streetgen.network_metric
 
 -- Checks shared by the overloads: a metric SRID for the edges and the window.
 CREATE FUNCTION streetgen._network_stats(geoms bytea[], srid integer, node_tolerance double precision,
-    window_polygon geometry, split_at_crossings boolean, simplify boolean, blocks boolean)
+    window_polygon geometry, split_at_crossings boolean, simplify boolean, blocks boolean, layers integer[] DEFAULT NULL)
   RETURNS streetgen.network_metrics
   LANGUAGE plpgsql STABLE PARALLEL SAFE
   SET search_path FROM CURRENT
@@ -82,7 +83,7 @@ BEGIN
   END IF;
   RETURN streetgen._streetgen_network_stats(coalesce(geoms, '{}'), node_tolerance, ST_AsEWKB(window_polygon),
                                             coalesce(split_at_crossings, false), coalesce(simplify, false),
-                                            coalesce(blocks, true));
+                                            coalesce(blocks, true), coalesce(layers, '{}'));
 END
 $$;
 
@@ -135,8 +136,9 @@ $$;
 COMMENT ON FUNCTION streetgen.network_stats(text, double precision, geometry, boolean, boolean, boolean) IS
   'Network statistics of the edges a query returns (column geom); see network_stats(geometry, ...)';
 
--- A model's axes, through the surface engine's topology (split at crossings on one layer's
--- worth of line work) with the model's snap tolerance unless one is given.
+-- A model's axes, through the surface engine's topology (split where axes of one layer cross;
+-- bridges and tunnels meet the rest only at their ends) with the model's snap tolerance unless
+-- one is given.
 CREATE FUNCTION streetgen.model_network_stats(model text, node_tolerance double precision DEFAULT NULL,
     window_polygon geometry DEFAULT NULL, simplify boolean DEFAULT false, blocks boolean DEFAULT true)
   RETURNS streetgen.network_metrics
@@ -148,12 +150,14 @@ DECLARE
   srid integer := streetgen.model_srid(model);
   tolerance double precision := node_tolerance;
   geoms bytea[];
+  layers integer[];
 BEGIN
   IF tolerance IS NULL THEN
     EXECUTE format('SELECT s.snap_tolerance FROM %I.settings s', model) INTO tolerance;
   END IF;
-  EXECUTE format('SELECT array_agg(ST_AsEWKB(a.geom) ORDER BY a.id) FROM %I.axis a', model) INTO geoms;
-  RETURN streetgen._network_stats(geoms, srid, coalesce(tolerance, 0), window_polygon, true, simplify, blocks);
+  EXECUTE format('SELECT array_agg(ST_AsEWKB(a.geom) ORDER BY a.id), array_agg(a.layer::integer ORDER BY a.id)
+                    FROM %I.axis a', model) INTO geoms, layers;
+  RETURN streetgen._network_stats(geoms, srid, coalesce(tolerance, 0), window_polygon, true, simplify, blocks, layers);
 END
 $$;
 COMMENT ON FUNCTION streetgen.model_network_stats(text, double precision, geometry, boolean, boolean) IS

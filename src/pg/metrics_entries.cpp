@@ -152,10 +152,12 @@ extern "C" {
 
 PG_FUNCTION_INFO_V1(_streetgen_network_stats);
 // (geoms bytea[], node_tolerance float8, win bytea, split_at_crossings bool, simplify bool,
-//  blocks bool) -> streetgen.network_metrics
+//  blocks bool, layers int4[]) -> streetgen.network_metrics
 Datum _streetgen_network_stats(PG_FUNCTION_ARGS) {
   // Phase 1.
   pg::ArrayArg geoms = pg::array_arg(fcinfo, 0, BYTEAOID, "edges");
+  pg::ArrayArg layer_arg = pg::array_arg(fcinfo, 6, INT4OID, "layers");
+  if (layer_arg.count != 0) pg::require_same_length(geoms, "edges", layer_arg, "layers");
   for (int a = 1; a <= 5; ++a) {
     if (a != 2 && PG_ARGISNULL(a)) {
       static const char* const names[] = {"", "node_tolerance", "", "split_at_crossings", "simplify", "blocks"};
@@ -170,10 +172,12 @@ Datum _streetgen_network_stats(PG_FUNCTION_ARGS) {
   }
   bool split = PG_GETARG_BOOL(3), simplify = PG_GETARG_BOOL(4), blocks = PG_GETARG_BOOL(5);
   auto* edges = static_cast<GeomArg*>(palloc0(sizeof(GeomArg) * (geoms.count > 0 ? geoms.count : 1)));
+  auto* edge_layers = static_cast<int*>(palloc0(sizeof(int) * (geoms.count > 0 ? geoms.count : 1)));
   int edge_count = 0;
   for (int i = 0; i < geoms.count; ++i) {
     if (geoms.nulls[i]) continue;  // like an aggregate, NULL edges are skipped
     bytea* g = DatumGetByteaPP(geoms.values[i]);
+    edge_layers[edge_count] = layer_arg.count != 0 && !layer_arg.nulls[i] ? DatumGetInt32(layer_arg.values[i]) : 0;
     edges[edge_count++] = {reinterpret_cast<const std::uint8_t*>(VARDATA_ANY(g)), VARSIZE_ANY_EXHDR(g)};
   }
   TupleDesc tupdesc;
@@ -188,6 +192,7 @@ Datum _streetgen_network_stats(PG_FUNCTION_ARGS) {
   pg::guarded_call(error, [&] {
     core::GeosContext& geos = pg::backend_geos();
     std::vector<core::Polyline> lines;
+    std::vector<int> layers;
     lines.reserve(edge_count);
     int srid = 0;
     for (int i = 0; i < edge_count; ++i) {
@@ -200,6 +205,7 @@ Datum _streetgen_network_stats(PG_FUNCTION_ARGS) {
                                                                       ", the first edge " + std::to_string(srid) + ".");
       }
       append_lines(geos, g.geom.get(), static_cast<std::size_t>(i), lines);
+      layers.resize(lines.size(), edge_layers[i]);  // every part of a MultiLineString on its layer
     }
     core::SridGeometry win;
     core::NetworkStatsOptions options;
@@ -218,7 +224,7 @@ Datum _streetgen_network_stats(PG_FUNCTION_ARGS) {
     graph_options.node_tolerance = tolerance;
     graph_options.split_at_crossings = split;
     graph_options.simplify = simplify;
-    core::NetworkGraph graph = core::build_network_graph(lines, graph_options);
+    core::NetworkGraph graph = core::build_network_graph(lines, graph_options, layers);
     lines.clear();
     stats.emplace(core::network_stats(geos, graph, options));
   });

@@ -136,6 +136,11 @@ SELECT results_eq(
   'model: crossing axes split, ends within the snap tolerance (0.5 m) merged');
 SELECT is((SELECT node_count FROM streetgen.model_network_stats('metrics_m', 0.0)), 7::bigint,
           'model with node_tolerance 0: the near end stays apart');
+UPDATE metrics_m.axis SET layer = 1 WHERE ST_XMin(geom) = 0;  -- the north-south axis becomes a bridge
+SELECT results_eq(
+  $$SELECT node_count, edge_count, degree4_share FROM streetgen.model_network_stats('metrics_m')$$,
+  $$VALUES (5::bigint, 3::bigint, 0::float8)$$,
+  'model: a bridge crosses without a junction');
 SELECT throws_ok($$SELECT streetgen.model_network_stats('no_such_model')$$, '42704', NULL, 'unknown model: 42704');
 
 SELECT * FROM finish();

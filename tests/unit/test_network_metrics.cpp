@@ -134,6 +134,10 @@ TEST(NetworkMetrics, SplitAtCrossingsUsesTheEngineTopology) {
   EXPECT_EQ(s[Metric::edge_count], 4);
   EXPECT_EQ(s[Metric::degree4_share], 0.2);
   EXPECT_EQ(stats_of(geos, {{{-50, 0}, {50, 0}}, {{0, -50}, {0, 50}}})[Metric::node_count], 4);
+  // A bridge (layer 1) crosses without a junction.
+  NetworkGraph bridge = build_network_graph({{{-50, 0}, {50, 0}}, {{0, -50}, {0, 50}}}, o, {0, 1});
+  EXPECT_EQ(bridge.nodes.size(), 4u);
+  EXPECT_EQ(bridge.edges.size(), 2u);
 }
 
 TEST(NetworkMetrics, WindowKeepsFullDegreesAndClipsLengths) {

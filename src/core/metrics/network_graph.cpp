@@ -186,7 +186,8 @@ void simplify_graph(NetworkGraph& g) {
 
 }  // namespace
 
-NetworkGraph build_network_graph(const std::vector<Polyline>& input, const NetworkGraphOptions& options) {
+NetworkGraph build_network_graph(const std::vector<Polyline>& input, const NetworkGraphOptions& options,
+                                 const std::vector<int>& layers) {
   const double tol = options.node_tolerance;
   if (!std::isfinite(tol) || tol < 0.0) {
     throw_invalid_argument("node_tolerance must be a finite number >= 0",
@@ -199,6 +200,7 @@ NetworkGraph build_network_graph(const std::vector<Polyline>& input, const Netwo
     for (std::size_t i = 0; i < input.size(); ++i) {
       axes[i].id = static_cast<std::int64_t>(i);
       axes[i].line = input[i];
+      axes[i].layer = i < layers.size() ? layers[i] : 0;
     }
     Topology topo = build_topology(axes, tol);
     for (const TopologyIssue& issue : topo.issues) {

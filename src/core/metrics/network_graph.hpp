@@ -36,7 +36,9 @@ struct NetworkGraph {
 };
 
 // Throws invalid_argument for a negative or non-finite tolerance. Lines with fewer than two
-// distinct points count as collapsed.
-NetworkGraph build_network_graph(const std::vector<Polyline>& lines, const NetworkGraphOptions& options);
+// distinct points count as collapsed. `layers` (empty, or one per line) only matter with
+// split_at_crossings: lines on different layers (bridges, tunnels) meet only at their ends.
+NetworkGraph build_network_graph(const std::vector<Polyline>& lines, const NetworkGraphOptions& options,
+                                 const std::vector<int>& layers = {});
 
 }  // namespace streetgen::core
