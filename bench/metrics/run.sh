@@ -12,6 +12,8 @@
 # function call runs on one core. OSMnx (python3-osmnx, /usr/bin/python3): street counts,
 # basic_stats, bearings and orientation entropy on the graph built from the same edges; blocks,
 # which OSMnx does not compute, with shapely's polygonize (bench/metrics/osmnx_stats.py).
+# Then compare_networks baselines on real data: what realism_score two real networks get (Paris
+# west against Paris east, each in a window shrunk 50 m from the cut; Paris against New York).
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 data="${STREETGEN_SHARED_DATA:-$repo/../shared/data}"
@@ -31,7 +33,9 @@ createdb bench
 psql -X -q -c "CREATE EXTENSION streetgen CASCADE"
 psql -X -q -c "CREATE TABLE paris (id integer, geom geometry(LineString, 0))"
 /usr/bin/python3 "$repo/tests/metrics/geojson_edges.py" "$paris" | psql -X -q -c "COPY paris FROM STDIN"
-psql -X -q -c "VACUUM ANALYZE paris"
+psql -X -q -c "CREATE TABLE new_york (id integer, geom geometry(LineString, 0))"
+/usr/bin/python3 "$repo/tests/metrics/geojson_edges.py" "$data/examples/cities/new-york.geojson" | psql -X -q -c "COPY new_york FROM STDIN"
+psql -X -q -c "VACUUM ANALYZE paris, new_york"
 
 # Median of RUNS calls, each timed by the server clock around the one function call.
 time_call() {
@@ -80,3 +84,24 @@ for name, a, b in rows:
     print(f"  {name:<22} streetgen {a:>12.6g}  OSMnx {b:>12.6g}  rel. diff {(a - b) / b:+.2e}")
 print(f"  (streetgen dropped {ours['duplicates']} exact duplicate edges)")
 PY
+
+echo "compare_networks baselines (realism_score; headline metrics' relative differences):"
+psql -X -q -At -v ON_ERROR_STOP=1 <<'SQL'
+CREATE TEMP TABLE cut AS SELECT ST_XMin(e) AS x0, ST_YMin(e) AS y0, ST_XMax(e) AS x1, ST_YMax(e) AS y1,
+                                (ST_XMin(e) + ST_XMax(e)) / 2 AS xm
+  FROM (SELECT ST_Extent(geom)::geometry AS e FROM paris) s;
+CREATE TEMP TABLE pairs AS
+SELECT 'paris west vs paris east' AS pair, c.*
+  FROM cut, streetgen.compare_networks(
+         streetgen.network_stats('SELECT geom FROM paris', 0, ST_MakeEnvelope(cut.x0 + 50, cut.y0 + 50, cut.xm - 50, cut.y1 - 50, 0)),
+         streetgen.network_stats('SELECT geom FROM paris', 0, ST_MakeEnvelope(cut.xm + 50, cut.y0 + 50, cut.x1 - 50, cut.y1 - 50, 0))) c
+UNION ALL
+SELECT 'paris vs new york', c.*
+  FROM streetgen.compare_networks(streetgen.network_stats('SELECT geom FROM paris'),
+                                  streetgen.network_stats('SELECT geom FROM new_york')) c;
+SELECT '  ' || pair || ': realism_score ' || round(score::numeric, 3) || ';' ||
+       (SELECT string_agg(' ' || p2.metric || ' ' || to_char(100 * p2.relative_difference, 'FMSG9999990.0') || ' %', ',' ORDER BY p2.metric)
+          FROM pairs p2 WHERE p2.pair = p.pair AND p2.metric IN ('street_density', 'intersection_density', 'mean_degree',
+               'dead_end_share', 'degree4_share', 'connected_node_ratio', 'orientation_order', 'block_area_median'))
+  FROM pairs p WHERE metric = 'realism_score' ORDER BY pair DESC;
+SQL

@@ -153,6 +153,10 @@ TEST(NetworkMetrics, WindowKeepsFullDegreesAndClipsLengths) {
   EXPECT_NEAR(s[Metric::street_density], 0.2 / 0.01, 1e-9);
   // Without the window the arms' ends are dead ends.
   EXPECT_EQ(stats_of(geos, cross)[Metric::dead_end_share], 0.8);
+  // An edge that leaves and re-enters the window: its clipped part is a MultiLineString.
+  NetworkStats u = stats_of(geos, {{{-40, 0}, {-40, 100}, {40, 100}, {40, 0}}}, {}, window.get());
+  EXPECT_NEAR(u[Metric::total_length], 100.0, 1e-9);
+  EXPECT_EQ(u[Metric::node_count], 2);
   auto line = wkt(geos, "LINESTRING(0 0, 1 1)");
   NetworkStatsOptions bad;
   bad.window = line.get();

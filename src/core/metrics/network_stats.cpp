@@ -265,7 +265,7 @@ NetworkStats network_stats(GeosContext& geos, const NetworkGraph& graph, const N
           in_window = 0.0;
         } else {
           GeomPtr part = own(geos, GEOSIntersection_r(h, options.window, line.get()), "window clip");
-          if (GEOSGeomGetLength_r(h, part.get(), &in_window) == 0) geos.fail("clipped length");
+          if (GEOSLength_r(h, part.get(), &in_window) == 0) geos.fail("clipped length");  // may be a MultiLineString
         }
       }
     } else {
