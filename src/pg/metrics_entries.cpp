@@ -154,7 +154,12 @@ PG_FUNCTION_INFO_V1(_streetgen_network_stats);
 // (geoms bytea[], node_tolerance float8, win bytea, split_at_crossings bool, simplify bool,
 //  blocks bool, layers int4[]) -> streetgen.network_metrics
 Datum _streetgen_network_stats(PG_FUNCTION_ARGS) {
-  // Phase 1.
+  // Phase 1. A library newer than the installed SQL would read arguments that are not there.
+  if (PG_NARGS() != 7) {
+    ereport(ERROR, (errcode(ERRCODE_OBJECT_NOT_IN_PREREQUISITE_STATE),
+                    errmsg("_streetgen_network_stats expects 7 arguments, got %d", PG_NARGS()),
+                    errhint("Run ALTER EXTENSION streetgen UPDATE, or re-create the extension.")));
+  }
   pg::ArrayArg geoms = pg::array_arg(fcinfo, 0, BYTEAOID, "edges");
   pg::ArrayArg layer_arg = pg::array_arg(fcinfo, 6, INT4OID, "layers");
   if (layer_arg.count != 0) pg::require_same_length(geoms, "edges", layer_arg, "layers");
