@@ -58,18 +58,24 @@ void append_lines(core::GeosContext& geos, const GEOSGeometry* g, std::size_t in
   out.push_back(std::move(line));
 }
 
-const char* const kArrayColumns[] = {"degrees", "segment_lengths", "orientation_histogram",
+const char* const kArrayColumns[] = {"degrees",     "segment_lengths",   "orientation_histogram",
                                      "block_areas", "block_compactness", "block_aspect_ratios"};
 constexpr int kArrayCount = 6;
 
 const std::vector<double>* array_of(const core::NetworkStats& s, int k) {
   switch (k) {
-    case 1: return &s.segment_lengths;
-    case 2: return &s.orientation_histogram;
-    case 3: return &s.block_areas;
-    case 4: return &s.block_compactness;
-    case 5: return &s.block_aspect_ratios;
-    default: return nullptr;
+    case 1:
+      return &s.segment_lengths;
+    case 2:
+      return &s.orientation_histogram;
+    case 3:
+      return &s.block_areas;
+    case 4:
+      return &s.block_compactness;
+    case 5:
+      return &s.block_aspect_ratios;
+    default:
+      return nullptr;
   }
 }
 std::vector<double>* array_of(core::NetworkStats& s, int k) {
@@ -143,7 +149,8 @@ core::NetworkStats to_stats(const MetricsArg& arg) {
 Datum float8_array(const std::vector<double>& v) {
   auto* elems = static_cast<Datum*>(palloc(sizeof(Datum) * (v.empty() ? 1 : v.size())));
   for (std::size_t i = 0; i < v.size(); ++i) elems[i] = Float8GetDatum(v[i]);
-  return PointerGetDatum(construct_array(elems, static_cast<int>(v.size()), FLOAT8OID, 8, FLOAT8PASSBYVAL, TYPALIGN_DOUBLE));
+  return PointerGetDatum(
+      construct_array(elems, static_cast<int>(v.size()), FLOAT8OID, 8, FLOAT8PASSBYVAL, TYPALIGN_DOUBLE));
 }
 
 }  // namespace
@@ -187,7 +194,8 @@ Datum _streetgen_network_stats(PG_FUNCTION_ARGS) {
   }
   TupleDesc tupdesc;
   if (get_call_result_type(fcinfo, nullptr, &tupdesc) != TYPEFUNC_COMPOSITE) {
-    ereport(ERROR, (errcode(ERRCODE_FEATURE_NOT_SUPPORTED), errmsg("_streetgen_network_stats must return a composite")));
+    ereport(ERROR,
+            (errcode(ERRCODE_FEATURE_NOT_SUPPORTED), errmsg("_streetgen_network_stats must return a composite")));
   }
   tupdesc = BlessTupleDesc(tupdesc);
   auto stats = pg::OwnedResult<core::NetworkStats>::create();
@@ -206,8 +214,9 @@ Datum _streetgen_network_stats(PG_FUNCTION_ARGS) {
       if (i == 0) {
         srid = g.srid;
       } else if (g.srid != srid) {
-        core::throw_invalid_argument("edges must share one SRID", "The " + name + " has SRID " + std::to_string(g.srid) +
-                                                                      ", the first edge " + std::to_string(srid) + ".");
+        core::throw_invalid_argument(
+            "edges must share one SRID",
+            "The " + name + " has SRID " + std::to_string(g.srid) + ", the first edge " + std::to_string(srid) + ".");
       }
       append_lines(geos, g.geom.get(), static_cast<std::size_t>(i), lines);
       layers.resize(lines.size(), edge_layers[i]);  // every part of a MultiLineString on its layer
@@ -218,9 +227,9 @@ Datum _streetgen_network_stats(PG_FUNCTION_ARGS) {
     if (window.ewkb != nullptr) {
       win = core::read_ewkb(geos, window.ewkb, window.size, "window");
       if (edge_count > 0 && win.srid != srid) {
-        core::throw_invalid_argument("window must have the SRID of the edges",
-                                     "The window has SRID " + std::to_string(win.srid) + ", the edges " +
-                                         std::to_string(srid) + ".");
+        core::throw_invalid_argument(
+            "window must have the SRID of the edges",
+            "The window has SRID " + std::to_string(win.srid) + ", the edges " + std::to_string(srid) + ".");
       }
       core::require_finite_coordinates(geos, win.geom.get(), "window");
       options.window = win.geom.get();

@@ -98,7 +98,7 @@ TEST(NetworkMetrics, CollapsedAndDuplicateEdgesAreDroppedAndCounted) {
   NetworkGraphOptions o;
   o.node_tolerance = 1.0;
   NetworkGraph g = build_network_graph({{{0, 0}, {100, 0}},
-                                        {{100, 0}, {0, 0}},           // reversed duplicate
+                                        {{100, 0}, {0, 0}},            // reversed duplicate
                                         {{0, 0}, {50, 10}, {100, 0}},  // parallel, another course: kept
                                         {{100, 0}, {100.5, 0.5}},      // collapses into one node
                                         {{5, 5}, {5, 5}}},             // degenerate
@@ -114,9 +114,8 @@ TEST(NetworkMetrics, SimplifyMergesChainsThroughDegreeTwoNodes) {
   GeosContext geos;
   NetworkGraphOptions o;
   o.simplify = true;
-  NetworkGraph g = build_network_graph({{{0, 0}, {10, 0}}, {{10, 0}, {20, 5}}, {{20, 5}, {30, 0}}, {{30, 0}, {30, 50}},
-                                        {{30, 0}, {60, 0}}},
-                                       o);
+  NetworkGraph g = build_network_graph(
+      {{{0, 0}, {10, 0}}, {{10, 0}, {20, 5}}, {{20, 5}, {30, 0}}, {{30, 0}, {30, 50}}, {{30, 0}, {60, 0}}}, o);
   ASSERT_EQ(g.edges.size(), 3u);
   EXPECT_EQ(g.nodes.size(), 4u);
   EXPECT_EQ(g.merged_nodes, 2u);

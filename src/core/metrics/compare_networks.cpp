@@ -106,11 +106,11 @@ std::vector<ComparisonRow> compare_networks(const NetworkStats& a, const Network
   distribution("block_area", a.block_areas, b.block_areas);
   distribution("block_compactness", a.block_compactness, b.block_compactness);
   distribution("block_aspect_ratio", a.block_aspect_ratios, b.block_aspect_ratios);
-  rows.push_back({"orientation", "distribution", kNaN, kNaN, kNaN,
-                  kuiper_histogram(a.orientation_histogram, b.orientation_histogram),
-                  circular_wasserstein_histogram(a.orientation_histogram, b.orientation_histogram,
-                                                 360.0 / kOrientationBins),
-                  kNaN});
+  rows.push_back(
+      {"orientation", "distribution", kNaN, kNaN, kNaN,
+       kuiper_histogram(a.orientation_histogram, b.orientation_histogram),
+       circular_wasserstein_histogram(a.orientation_histogram, b.orientation_histogram, 360.0 / kOrientationBins),
+       kNaN});
   double median = kNaN;
   if (!headline.empty()) {
     std::sort(headline.begin(), headline.end());

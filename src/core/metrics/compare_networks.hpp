@@ -12,18 +12,17 @@
 //                        φ, median block area) of min(1, |relative difference|); 1 is identical.
 //                        The "per-pair median over all metrics" is 1 - realism_score.
 #pragma once
-#include "core/no_postgres.hpp"
-
 #include <string>
 #include <vector>
 
 #include "core/metrics/network_stats.hpp"
+#include "core/no_postgres.hpp"
 
 namespace streetgen::core {
 
 struct ComparisonRow {
   std::string metric;
-  std::string kind;  // scalar, distribution, score
+  std::string kind;                                          // scalar, distribution, score
   double a, b, relative_difference, ks, wasserstein, score;  // NaN where not applicable
 };
 

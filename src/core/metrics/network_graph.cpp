@@ -51,7 +51,8 @@ std::vector<std::size_t> cluster_points(const std::vector<Point>& pts, double to
     seen.reserve(pts.size());
     for (std::size_t i = 0; i < pts.size(); ++i) {
       poller.tick();
-      auto& bucket = seen[cell_key(static_cast<std::int64_t>(bits(pts[i].x)), static_cast<std::int64_t>(bits(pts[i].y)))];
+      auto& bucket =
+          seen[cell_key(static_cast<std::int64_t>(bits(pts[i].x)), static_cast<std::int64_t>(bits(pts[i].y)))];
       for (std::size_t j : bucket) {
         if (pts[j].x == pts[i].x && pts[j].y == pts[i].y) {
           uf.unite(i, j);
@@ -190,8 +191,7 @@ NetworkGraph build_network_graph(const std::vector<Polyline>& input, const Netwo
                                  const std::vector<int>& layers) {
   const double tol = options.node_tolerance;
   if (!std::isfinite(tol) || tol < 0.0) {
-    throw_invalid_argument("node_tolerance must be a finite number >= 0",
-                           "It is " + std::to_string(tol) + ".");
+    throw_invalid_argument("node_tolerance must be a finite number >= 0", "It is " + std::to_string(tol) + ".");
   }
   NetworkGraph g;
   std::vector<Polyline> lines;
@@ -243,7 +243,8 @@ NetworkGraph build_network_graph(const std::vector<Polyline>& input, const Netwo
   std::vector<Point> position(node_count);
   for (std::size_t v = 0; v < node_count; ++v) {
     // Unmerged nodes keep their exact coordinates (no rounding from the mean).
-    position[v] = members[v] == 1 || merge_tol == 0.0 ? ends[first[v]] : (1.0 / static_cast<double>(members[v])) * sum[v];
+    position[v] =
+        members[v] == 1 || merge_tol == 0.0 ? ends[first[v]] : (1.0 / static_cast<double>(members[v])) * sum[v];
   }
 
   // Edges with snapped ends; collapsed ones and exact duplicates dropped.
@@ -266,7 +267,8 @@ NetworkGraph build_network_graph(const std::vector<Polyline>& input, const Netwo
       ++g.collapsed_edges;
       continue;
     }
-    auto& bucket = by_pair[cell_key(static_cast<std::int64_t>(std::min(a, b)), static_cast<std::int64_t>(std::max(a, b)))];
+    auto& bucket =
+        by_pair[cell_key(static_cast<std::int64_t>(std::min(a, b)), static_cast<std::int64_t>(std::max(a, b)))];
     bool duplicate = false;
     for (std::size_t k : bucket) {
       const NetworkEdge& o = g.edges[k];

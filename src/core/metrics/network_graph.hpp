@@ -4,11 +4,10 @@
 // keeps one edge of a two-way street), and optionally the engine's topology splits crossings and
 // degree-2 nodes are merged away (OSMnx's simplification).
 #pragma once
-#include "core/no_postgres.hpp"
-
 #include <cstddef>
 #include <vector>
 
+#include "core/no_postgres.hpp"
 #include "core/streets/polyline.hpp"
 
 namespace streetgen::core {
@@ -22,17 +21,17 @@ struct NetworkGraphOptions {
 struct NetworkEdge {
   std::size_t a = 0;  // node indices; a == b for a self-loop
   std::size_t b = 0;
-  Polyline line;      // starts at node a's position, ends at node b's
+  Polyline line;  // starts at node a's position, ends at node b's
   double length = 0.0;
 };
 
 struct NetworkGraph {
   std::vector<Point> nodes;
   std::vector<NetworkEdge> edges;
-  std::vector<int> degree;  // undirected; a self-loop counts twice (OSMnx's street_count)
-  std::size_t duplicate_edges = 0;   // dropped: same nodes and same course as an earlier edge
-  std::size_t collapsed_edges = 0;   // dropped: both ends in one node and no longer than 2 x tolerance
-  std::size_t merged_nodes = 0;      // degree-2 nodes removed by simplify
+  std::vector<int> degree;          // undirected; a self-loop counts twice (OSMnx's street_count)
+  std::size_t duplicate_edges = 0;  // dropped: same nodes and same course as an earlier edge
+  std::size_t collapsed_edges = 0;  // dropped: both ends in one node and no longer than 2 x tolerance
+  std::size_t merged_nodes = 0;     // degree-2 nodes removed by simplify
 };
 
 // Throws invalid_argument for a negative or non-finite tolerance. Lines with fewer than two

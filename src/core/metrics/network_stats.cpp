@@ -118,8 +118,7 @@ void summarise(std::vector<double> values, NetworkStats& s, Metric p25, Metric m
   s[p75] = quantile_sorted(values, 0.75);
 }
 
-void compute_blocks(GeosContext& geos, const NetworkGraph& graph, const GEOSPreparedGeometry* window,
-                    NetworkStats& s) {
+void compute_blocks(GeosContext& geos, const NetworkGraph& graph, const GEOSPreparedGeometry* window, NetworkStats& s) {
   GEOSContextHandle_t h = geos.handle();
   std::vector<GeomPtr> lines;
   lines.reserve(graph.edges.size());
@@ -306,7 +305,8 @@ NetworkStats network_stats(GeosContext& geos, const NetworkGraph& graph, const N
   s[Metric::degree3_share] = ratio(static_cast<double>(by_degree[3]), nodes);
   s[Metric::degree4_share] = ratio(static_cast<double>(by_degree[4]), nodes);
   s[Metric::degree5plus_share] = ratio(static_cast<double>(by_degree[5]), nodes);
-  s[Metric::connected_node_ratio] = ratio(static_cast<double>(junctions), static_cast<double>(junctions + by_degree[1]));
+  s[Metric::connected_node_ratio] =
+      ratio(static_cast<double>(junctions), static_cast<double>(junctions + by_degree[1]));
   s[Metric::mean_segment_length] = ratio(circuit_length, static_cast<double>(s.segment_lengths.size()));
   s[Metric::circuity] = ratio(circuit_length, chord_total);
 

@@ -14,14 +14,13 @@
 //   blocks               bounded faces of the planar line work (GEOS polygonize)
 // Undefined values (a ratio over nothing, a density over a zero area) are NaN.
 #pragma once
-#include "core/no_postgres.hpp"
-
 #include <array>
 #include <cstddef>
 #include <vector>
 
 #include "core/geos_context.hpp"
 #include "core/metrics/network_graph.hpp"
+#include "core/no_postgres.hpp"
 
 namespace streetgen::core {
 
@@ -65,9 +64,9 @@ enum class Metric : int {
 constexpr std::size_t kMetricCount = static_cast<std::size_t>(Metric::count_);
 
 struct MetricInfo {
-  const char* name;   // the SQL column name
-  bool integer;       // bigint in SQL
-  bool headline;      // one of the metrics of the realism score (see compare_networks)
+  const char* name;  // the SQL column name
+  bool integer;      // bigint in SQL
+  bool headline;     // one of the metrics of the realism score (see compare_networks)
 };
 const std::array<MetricInfo, kMetricCount>& metric_table();
 
@@ -75,9 +74,9 @@ constexpr int kOrientationBins = 36;
 
 struct NetworkStats {
   std::array<double, kMetricCount> value{};
-  std::vector<int> degrees;                  // per node counted (in the window)
-  std::vector<double> segment_lengths;       // per edge counted
-  std::vector<double> orientation_histogram; // kOrientationBins length shares (sum 1), bin 0 centred on 0°
+  std::vector<int> degrees;                   // per node counted (in the window)
+  std::vector<double> segment_lengths;        // per edge counted
+  std::vector<double> orientation_histogram;  // kOrientationBins length shares (sum 1), bin 0 centred on 0°
   std::vector<double> block_areas, block_compactness, block_aspect_ratios;
 
   double& operator[](Metric m) { return value[static_cast<std::size_t>(m)]; }
