@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/ewkb.hpp"
 #include "core/geometry_checks.hpp"
+#include "core/interrupts.hpp"
 #include "core/metrics/compare_networks.hpp"
 #include "core/metrics/network_graph.hpp"
 #include "core/metrics/network_stats.hpp"
@@ -208,7 +209,9 @@ Datum _streetgen_network_stats(PG_FUNCTION_ARGS) {
     std::vector<int> layers;
     lines.reserve(edge_count);
     int srid = 0;
+    core::InterruptPoller poller(1024);
     for (int i = 0; i < edge_count; ++i) {
+      poller.tick();
       std::string name = "edge " + std::to_string(i + 1);
       core::SridGeometry g = core::read_ewkb(geos, edges[i].ewkb, edges[i].size, name.c_str());
       if (i == 0) {

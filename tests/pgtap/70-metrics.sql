@@ -143,5 +143,36 @@ SELECT results_eq(
   'model: a bridge crosses without a junction');
 SELECT throws_ok($$SELECT streetgen.model_network_stats('no_such_model')$$, '42704', NULL, 'unknown model: 42704');
 
+-- Cancellation: statement_timeout stops a long computation inside C++ (a 180,000-edge network
+-- through the engine topology takes several seconds) with PostgreSQL's own 57014.
+CREATE TEMP TABLE big AS
+SELECT array_agg(ST_AsEWKB(g)) AS geoms
+  FROM generate_series(0, 300) i, generate_series(0, 299) j,
+       LATERAL (VALUES (ST_MakeLine(ST_MakePoint(j * 10, i * 10 + (j % 3)), ST_MakePoint((j + 1) * 10, i * 10 + ((j + 1) % 3)))),
+                       (ST_MakeLine(ST_MakePoint(i * 10, j * 10), ST_MakePoint(i * 10, (j + 1) * 10)))) AS v(g);
+CREATE FUNCTION pg_temp.sqlstate_and_seconds(query text, OUT state text, OUT seconds double precision)
+  LANGUAGE plpgsql AS $f$
+DECLARE
+  started timestamptz := clock_timestamp();
+BEGIN
+  EXECUTE query;
+  state := '00000';
+  seconds := extract(epoch FROM clock_timestamp() - started);
+EXCEPTION WHEN query_canceled OR others THEN  -- OTHERS alone does not catch query_canceled
+  state := SQLSTATE;
+  seconds := extract(epoch FROM clock_timestamp() - started);
+END
+$f$;
+CREATE TEMP TABLE outcome (state text, seconds double precision);
+SET LOCAL statement_timeout = '300ms';
+INSERT INTO outcome SELECT * FROM pg_temp.sqlstate_and_seconds(
+  $$SELECT (streetgen._streetgen_network_stats(geoms, 0.5, NULL, true, false, true, '{}')).node_count FROM big$$);
+RESET statement_timeout;
+SELECT is((SELECT state FROM outcome), '57014', 'statement_timeout cancels network_stats with 57014');
+SELECT cmp_ok((SELECT seconds FROM outcome), '<', 3.0::double precision,
+              'within the computation, not after it (it runs for several seconds)');
+SELECT is((SELECT node_count FROM streetgen.network_stats('LINESTRING(0 0, 1 0)'::geometry)), 2::bigint,
+          'the session computes again after the cancel');
+
 SELECT * FROM finish();
 ROLLBACK;
