@@ -81,6 +81,8 @@ SELECT results_eq(
       'MULTILINESTRING((0 0, 100 0), (100.3 0, 200 0), (100 0, 100.2 0.1))'::geometry, 0.5)$$,
   $$VALUES (3::bigint, 1::bigint)$$,
   'node tolerance: near ends merge, an edge inside a merged node collapses');
+SELECT is((SELECT node_count FROM streetgen.network_stats((SELECT ST_Collect(geom) FROM grid WHERE false))), 0::bigint,
+          'a NULL geometry (ST_Collect of no rows) is the empty set');
 SELECT is((SELECT node_count FROM streetgen.network_stats('SELECT geom FROM grid WHERE geom IS NULL OR id < 3
                                                           UNION ALL SELECT NULL::geometry')), 3::bigint,
           'NULL geometries are skipped');
