@@ -37,6 +37,13 @@ SELECT set_eq(
     ('streetgen.osm_axis_attributes(jsonb)', 'record', 's', false),
     ('streetgen._osm_axis_attributes(jsonb)', 'TABLE(roadway_width double precision, lanes smallint, speed_kmh double precision, road_class text, oneway boolean, reverse_geometry boolean, layer smallint, structure text, sidewalk_width double precision, estimated text[])', 's', false),
     ('streetgen.utm_srid(geometry)', 'integer', 's', false),
+    ('streetgen._streetgen_network_stats(bytea[],double precision,bytea,boolean,boolean,boolean,integer[])', 'streetgen.network_metrics', 'i', false),
+    ('streetgen._streetgen_compare_networks(streetgen.network_metrics,streetgen.network_metrics)', 'SETOF record', 'i', false),
+    ('streetgen._network_stats(bytea[],integer,double precision,geometry,boolean,boolean,boolean,integer[])', 'streetgen.network_metrics', 's', false),
+    ('streetgen.network_stats(geometry,double precision,geometry,boolean,boolean,boolean)', 'streetgen.network_metrics', 's', false),
+    ('streetgen.network_stats(text,double precision,geometry,boolean,boolean,boolean)', 'streetgen.network_metrics', 'v', false),
+    ('streetgen.model_network_stats(text,double precision,geometry,boolean,boolean)', 'streetgen.network_metrics', 's', false),
+    ('streetgen.compare_networks(streetgen.network_metrics,streetgen.network_metrics)', 'SETOF record', 'i', false),
     ('streetgen.load_osm_ways(text,regclass)', 'record', 'v', false),
     ('streetgen._settings_vector(jsonb)', 'double precision[]', 's', false),
     ('streetgen._create_output_tables(text,integer)', 'void', 'v', false),
@@ -72,6 +79,9 @@ SELECT is(pg_temp.argument_names('streetgen.roadway_borders(geometry,double prec
 SELECT is(pg_temp.argument_names('streetgen.load_osm_ways(text,regclass)'), 'model,staging,loaded,not_driveable,degenerate',
           'load_osm_ways(model, staging) -> (loaded, not_driveable, degenerate)');
 SELECT is(pg_temp.argument_names('streetgen.create_model(text,integer)'), 'name,srid', 'create_model(name, srid)');
+SELECT is(pg_temp.argument_names('streetgen.compare_networks(streetgen.network_metrics,streetgen.network_metrics)'),
+          'reference,candidate,metric,kind,reference_value,candidate_value,relative_difference,ks,wasserstein,score',
+          'compare_networks(reference, candidate) -> (metric, kind, reference_value, candidate_value, relative_difference, ks, wasserstein, score)');
 SELECT is(pg_temp.argument_names('streetgen.generate(text)'), 'model,kind,status,count', 'generate(model) -> (kind, status, count)');
 SELECT is(pg_temp.argument_names('streetgen.street_surfaces(text,jsonb)'), 'axes,settings,kind,node_id,axis_id,part,status,geom',
           'street_surfaces(axes, settings) -> (kind, node_id, axis_id, part, status, geom)');
