@@ -243,12 +243,26 @@ BEGIN
     PERFORM streetgen._compute_model(model, context);
 
     INSERT INTO pg_temp._sg_q (axis_id, part, from_node, to_node)
-    WITH unvetted AS (
+    -- (the sections that may be rewritten, and the narrowed ones at their ends: a junction may
+    -- be cut from those, and what narrowed them must be right)
+    WITH ends (id) AS (SELECT from_node FROM pg_temp._sg_s2 UNION SELECT to_node FROM pg_temp._sg_s2
+                       UNION SELECT id FROM pg_temp._sg_k_nodes),
+    scope_out AS MATERIALIZED (
+      SELECT ST_GeomFromEWKB(o.geom) AS geom FROM pg_temp._streetgen_out o
+       WHERE o.kind = 'section' AND o.geom IS NOT NULL
+         AND (o.axis_id = ANY (changed)
+              OR EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE k.axis_id = o.axis_id AND k.part = o.part)
+              OR (o.status = 'narrowed' AND (o.node_id IN (SELECT id FROM ends) OR o.to_node IN (SELECT id FROM ends))))),
+    candidates AS MATERIALIZED (
       SELECT o.axis_id, ST_GeomFromEWKB(o.geom) AS geom FROM pg_temp._streetgen_out o
        WHERE o.kind = 'section' AND o.geom IS NOT NULL
          AND NOT EXISTS (SELECT 1 FROM pg_temp._sg_q q WHERE q.axis_id = o.axis_id AND q.part = o.part)
-         AND NOT (o.axis_id = ANY (changed))
-         AND EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE ST_GeomFromEWKB(o.geom) && k.envelope))
+         AND NOT (o.axis_id = ANY (changed))),
+    -- (what was split with a section of the scope touches it in the output; boxes alone, long
+    -- diagonal sections' especially, called for many needless runs)
+    unvetted AS (
+      SELECT c.axis_id, c.geom FROM candidates c
+       WHERE EXISTS (SELECT 1 FROM scope_out k WHERE c.geom && k.geom AND ST_DWithin(c.geom, k.geom, 1e-3)))
     SELECT p.axis_id, p.part, p.from_node, p.to_node FROM section p
      WHERE p.axis_id IN (SELECT axis_id FROM unvetted)
        AND (EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE p.geom && ST_Expand(k.envelope, max_width))
