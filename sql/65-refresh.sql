@@ -470,7 +470,9 @@ BEGIN
 END
 $$;
 
--- New settings change everything: a full recompute.
+-- New settings change everything, and a TRUNCATE of the axes (with CASCADE, which empties the
+-- tables that refer to them without their triggers) leaves nodes and junctions behind: a full
+-- recompute.
 CREATE FUNCTION streetgen._settings_changed()
   RETURNS trigger
   LANGUAGE plpgsql
@@ -492,8 +494,10 @@ CREATE FUNCTION streetgen._create_triggers(name text)
   AS $$
 BEGIN
   EXECUTE format($ddl$
-    CREATE TRIGGER axis_lock_outputs BEFORE INSERT OR UPDATE OR DELETE ON %1$I.axis
+    CREATE TRIGGER axis_lock_outputs BEFORE INSERT OR UPDATE OR DELETE OR TRUNCATE ON %1$I.axis
       FOR EACH STATEMENT EXECUTE FUNCTION streetgen._lock_outputs_first();
+    CREATE TRIGGER axis_refresh_truncate AFTER TRUNCATE ON %1$I.axis
+      FOR EACH STATEMENT EXECUTE FUNCTION streetgen._settings_changed();
     CREATE TRIGGER corner_lock_outputs BEFORE UPDATE ON %1$I.corner
       FOR EACH STATEMENT EXECUTE FUNCTION streetgen._lock_outputs_first();
     CREATE TRIGGER settings_lock_outputs BEFORE UPDATE ON %1$I.settings
