@@ -116,7 +116,10 @@ $$;
 --
 -- The statements name the model's tables without a schema, under a search_path that puts the
 -- model first (after pg_catalog), so that they are static SQL: PL/pgSQL plans each once per
--- session (and again for another model) instead of on every edit. Generic plans: the work
+-- session (and again for another model) instead of on every edit. (The model's schema before
+-- PostGIS's lets whoever can create objects in it, its owner, shadow a function for the
+-- editors' sessions; the owner of the axis table can run code in them anyway, with a trigger.
+-- After PostGIS's, a table of the same name there, a "node" in public, would be read instead.) Generic plans: the work
 -- tables hold a few dozen rows and the lookups go by index whatever the arrays hold.
 CREATE FUNCTION streetgen._refresh(model text, changed bigint[], old_geoms geometry[])
   RETURNS void
