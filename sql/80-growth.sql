@@ -79,14 +79,14 @@ BEGIN
     RAISE EXCEPTION 'obstacles must have the SRID of the region' USING ERRCODE = 'invalid_parameter_value',
       DETAIL = format('The obstacles have SRID %s, the region %s.', ST_SRID(obstacles), ST_SRID(region));
   END IF;
-  SELECT array_agg(ST_X(d.geom) ORDER BY d.path), array_agg(ST_Y(d.geom) ORDER BY d.path),
-         array_agg(DISTINCT ST_GeometryType(d.geom)) FILTER (WHERE ST_GeometryType(d.geom) <> 'ST_Point')
-    INTO xs, ys, seed_types
-    FROM ST_Dump(seeds) AS d;
+  SELECT array_agg(DISTINCT ST_GeometryType(d.geom)) INTO seed_types
+    FROM ST_Dump(seeds) AS d WHERE ST_GeometryType(d.geom) <> 'ST_Point';
   IF seed_types IS NOT NULL THEN
     RAISE EXCEPTION 'seeds must be points' USING ERRCODE = 'invalid_parameter_value',
       DETAIL = format('They hold %s.', array_to_string(seed_types, ', '));
   END IF;
+  SELECT array_agg(ST_X(d.geom) ORDER BY d.path), array_agg(ST_Y(d.geom) ORDER BY d.path) INTO xs, ys
+    FROM ST_Dump(seeds) AS d;
   SELECT array_agg(ST_AsEWKB(d.geom) ORDER BY d.path) INTO obstacle_geoms FROM ST_Dump(obstacles) AS d;
   -- road_class and id are optional columns of the example query.
   FOR variant IN 1 .. 4 LOOP

@@ -503,7 +503,9 @@ class Grower {
     std::vector<Match> out;
     const std::size_t dv = incident.size();
     if (dv >= pools_.size()) return out;
-    const std::vector<std::uint32_t>& pool = pools_[dv];
+    // A seed starts at a junction of the example when it has one: a start on a dead end or a
+    // shape point often grows one edge and stops.
+    const std::vector<std::uint32_t>& pool = dv == 0 && pools_.size() > 3 && !pools_[2].empty() ? pools_[2] : pools_[dv];
     if (pool.empty()) return out;
     const std::size_t want = params_.candidates;
     const std::size_t tries = std::min<std::size_t>(64 * want, 4 * pool.size());
