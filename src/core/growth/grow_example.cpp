@@ -268,6 +268,7 @@ class Grower {
     // Pools of example nodes by degree: a node of degree d is matched against nodes of degree > d.
     std::size_t max_degree = 0;
     for (const ExNode& n : ex_nodes_) max_degree = std::max(max_degree, n.halves.size());
+    max_degree_ = std::max<std::size_t>(max_degree, 3);  // snapping never makes a node busier than the example's
     pools_.assign(max_degree + 2, {});
     for (std::uint32_t i = 0; i < ex_nodes_.size(); ++i) {
       for (std::size_t d = 0; d < ex_nodes_[i].halves.size(); ++d) pools_[d].push_back(i);
@@ -639,7 +640,9 @@ class Grower {
     Contact c = first_contact(p, e, v);
     if (c.found) {
       double at = c.t * length;
-      if (dead_end || at < min_length_) {
+      // A proposal stopped in its first half would leave a stub and a sliver block, which the
+      // example does not have: only one that nearly reaches across joins the edge it meets.
+      if (dead_end || at < 0.5 * length) {
         // Keep the dead end: stop a snap distance short of the crossed edge.
         double l = at - snap_;
         if (!dead_end || l < min_length_) {
@@ -717,7 +720,7 @@ class Grower {
 
   bool try_connect_node(std::uint32_t v, std::uint32_t w, int level, std::int64_t example_id) {
     Point p = nodes_[v].p, q = nodes_[w].p;
-    if (has_edge(v, w) || distance(p, q) < min_length_) return false;
+    if (has_edge(v, w) || distance(p, q) < min_length_ || nodes_[w].edges.size() >= max_degree_) return false;
     double angle = std::atan2(q.y - p.y, q.x - p.x);
     if (!angle_free(v, angle) || !angle_free(w, wrap(angle + kPi))) return false;
     if (first_contact(p, q, v, w).found || !legal(p, q)) return false;
@@ -760,6 +763,7 @@ class Grower {
   std::vector<ExNode> ex_nodes_;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> ex_segments_;
   std::vector<std::vector<std::uint32_t>> pools_;
+  std::size_t max_degree_ = 4;
   BoxTree ex_tree_;
   PreparedPtr region_;
   GeomPtr obstacles_{nullptr, GeomDeleter{}};
