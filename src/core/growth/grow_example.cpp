@@ -159,8 +159,8 @@ class Grower {
     build_example(input.example);
     prepare_legal_area(input);
     radius_ = params.radius > 0.0 ? params.radius : 3.0 * mean_length_;
-    snap_ = params.snap > 0.0 ? params.snap : 0.3 * mean_length_;
-    min_length_ = 0.5 * snap_;
+    snap_ = params.snap > 0.0 ? params.snap : 0.45 * mean_length_;
+    min_length_ = 0.15 * mean_length_;
     epsilon_ = params.epsilon * kPi / 180.0;
     min_angle_ = params.min_angle * kPi / 180.0;
     add_seeds(input.seeds);
@@ -173,7 +173,11 @@ class Grower {
       std::uint32_t v = unfinished_[pick];
       unfinished_[pick] = unfinished_.back();
       unfinished_.pop_back();
+      std::size_t before = stats_.accepted;
       step(v);
+      // A front whose random candidates all failed gets a few more draws before it is left as a
+      // dead end (a growth that stops after its first edges is the common failure otherwise).
+      if (stats_.accepted == before && ++attempts_[v] < kAttempts) unfinished_.push_back(v);
     }
     GrowResult out;
     out.stats = stats_;
@@ -371,6 +375,7 @@ class Grower {
   std::uint32_t add_node(Point p) {
     auto id = static_cast<std::uint32_t>(nodes_.size());
     nodes_.push_back({p, {}});
+    attempts_.push_back(0);
     node_tree_.insert(PointValue(BPoint(p.x, p.y), id));
     return id;
   }
@@ -778,6 +783,8 @@ class Grower {
   BoxTree edge_tree_;
   PointTree node_tree_;
   std::vector<std::uint32_t> unfinished_;
+  std::vector<std::uint8_t> attempts_;
+  static constexpr std::uint8_t kAttempts = 4;
   std::vector<BoxValue> hits_;
   std::vector<PointValue> point_hits_;
   GrowStats stats_;
