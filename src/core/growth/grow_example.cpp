@@ -272,6 +272,13 @@ class Grower {
     // Pools of example nodes by degree: a node of degree d is matched against nodes of degree > d.
     std::size_t max_degree = 0;
     for (const ExNode& n : ex_nodes_) max_degree = std::max(max_degree, n.halves.size());
+    // P(degree > d | degree >= d) in the example: how often a node that has d edges gets one more.
+    std::vector<double> at_least(max_degree + 2, 0.0);
+    for (const ExNode& n : ex_nodes_) {
+      for (std::size_t d = 0; d <= n.halves.size(); ++d) at_least[d] += 1.0;
+    }
+    more_.assign(max_degree + 2, 0.0);
+    for (std::size_t d = 0; d + 1 < at_least.size(); ++d) more_[d] = at_least[d] > 0 ? at_least[d + 1] / at_least[d] : 0.0;
     max_degree_ = std::max<std::size_t>(max_degree, 3);  // snapping never makes a node busier than the example's
     pools_.assign(max_degree + 2, {});
     for (std::uint32_t i = 0; i < ex_nodes_.size(); ++i) {
@@ -729,6 +736,7 @@ class Grower {
   bool try_connect_node(std::uint32_t v, std::uint32_t w, int level, std::int64_t example_id) {
     Point p = nodes_[v].p, q = nodes_[w].p;
     if (has_edge(v, w) || distance(p, q) < min_length_ || nodes_[w].edges.size() >= max_degree_) return false;
+    if (nodes_[w].edges.size() >= 2 && !example_allows_one_more(nodes_[w].edges.size())) return false;
     double angle = std::atan2(q.y - p.y, q.x - p.x);
     if (!angle_free(v, angle) || !angle_free(w, wrap(angle + kPi))) return false;
     if (first_contact(p, q, v, w).found || !legal(p, q)) return false;
@@ -752,7 +760,7 @@ class Grower {
     double along = std::atan2(a.y - x.y, a.x - x.x);
     double back = wrap(angle + kPi);
     if (std::abs(wrap(back - along)) < min_angle_ || std::abs(wrap(back - along - kPi)) < min_angle_ ||
-        edges_.size() + 2 > params_.max_edges) {
+        edges_.size() + 2 > params_.max_edges || !example_allows_one_more(2)) {
       ++stats_.rejected;
       return;
     }
@@ -774,6 +782,13 @@ class Grower {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> ex_segments_;
   std::vector<std::vector<std::uint32_t>> pools_;
   std::size_t max_degree_ = 4;
+  std::vector<double> more_;
+  // Joining a node (or splitting an edge, d = 2) adds an edge there: done as often as the
+  // example's nodes of that degree have one more, so the junction mix follows the example.
+  bool example_allows_one_more(std::size_t d) {
+    double p = d < more_.size() ? more_[d] : 0.0;
+    return uniform01() < p;
+  }
   BoxTree ex_tree_;
   PreparedPtr region_;
   GeomPtr obstacles_{nullptr, GeomDeleter{}};
