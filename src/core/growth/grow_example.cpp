@@ -177,7 +177,13 @@ class Grower {
       step(v);
       // A front whose random candidates all failed gets a few more draws before it is left as a
       // dead end (a growth that stops after its first edges is the common failure otherwise).
-      if (stats_.accepted == before && ++attempts_[v] < kAttempts) unfinished_.push_back(v);
+      if (stats_.accepted == before) {
+        if (++attempts_[v] < kAttempts) {
+          unfinished_.push_back(v);
+        } else {
+          close_front(v);
+        }
+      }
     }
     GrowResult out;
     out.stats = stats_;
@@ -719,6 +725,31 @@ class Grower {
       return;
     }
     finish_free_end(v, e, outside || dead_end, level, example_id);
+  }
+
+  // A street end that found nothing to copy goes straight on to the edge ahead if one is within
+  // 1.5 mean segment lengths, rather than stopping in a dead end the example did not ask for.
+  void close_front(std::uint32_t v) {
+    if (nodes_[v].edges.size() != 1 || edges_.size() + 2 > params_.max_edges) return;
+    const std::uint32_t e = nodes_[v].edges[0];
+    const Point p = nodes_[v].p;
+    const Point u = unit(p - other_end(e, v));
+    const double reach = 1.5 * mean_length_;
+    Point end = p + reach * u;
+    if (!legal(p, end)) return;
+    Contact c = first_contact(p, end, v);
+    if (!c.found || c.t * reach < min_length_) return;
+    const OEdge& hit = edges_[c.edge];
+    Point x = p + (c.t * reach) * u;
+    std::uint32_t near = distance(nodes_[hit.a].p, x) <= distance(nodes_[hit.b].p, x) ? hit.a : hit.b;
+    if (distance(nodes_[near].p, x) <= snap_) {
+      try_connect_node(v, near, edges_[e].level, edges_[e].example_id);
+      return;
+    }
+    std::uint32_t m = split_edge(c.edge, x);
+    add_edge(v, m, edges_[e].level, edges_[e].example_id);
+    ++stats_.accepted;
+    ++stats_.snapped;
   }
 
   // A new end node at q; it stays unfinished unless `finished`.
