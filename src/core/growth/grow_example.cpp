@@ -167,6 +167,28 @@ class Grower {
   }
 
   GrowResult run() {
+    // A growth that dies within its first few edges (a start among the example's shortest
+    // segments crowds itself out) starts again from the seeds with the next random draws.
+    for (int restart = 0;; ++restart) {
+      grow();
+      if (edges_.size() >= std::min<std::size_t>(kMinGrowth, params_.max_edges) || restart == kRestarts) break;
+      ++stats_.restarts;
+      nodes_.clear();
+      edges_.clear();
+      attempts_.clear();
+      unfinished_.clear();
+      edge_tree_.clear();
+      node_tree_.clear();
+      for (Point p : seed_points_) unfinished_.push_back(add_node(p));
+    }
+    return result();
+  }
+
+ private:
+  static constexpr std::size_t kMinGrowth = 20;
+  static constexpr int kRestarts = 5;
+
+  void grow() {
     while (!unfinished_.empty() && edges_.size() < params_.max_edges) {
       poll_interrupts();
       std::size_t pick = uniform(unfinished_.size());
@@ -185,6 +207,9 @@ class Grower {
         }
       }
     }
+  }
+
+  GrowResult result() const {
     GrowResult out;
     out.stats = stats_;
     out.stats.radius = radius_;
@@ -205,7 +230,6 @@ class Grower {
     return out;
   }
 
- private:
   // ---- set-up -------------------------------------------------------------------------------
   void check_params() const {
     auto positive = [](double v, const char* name, const char* unit) {
@@ -376,6 +400,7 @@ class Grower {
       bool duplicate = false;
       for (const ONode& n : nodes_) duplicate = duplicate || distance(n.p, p) <= snap_;
       if (duplicate) continue;  // two seeds on one spot grow one node
+      seed_points_.push_back(p);
       unfinished_.push_back(add_node(p));
     }
   }
@@ -828,6 +853,7 @@ class Grower {
   std::vector<OEdge> edges_;
   BoxTree edge_tree_;
   PointTree node_tree_;
+  std::vector<Point> seed_points_;
   std::vector<std::uint32_t> unfinished_;
   std::vector<std::uint8_t> attempts_;
   static constexpr std::uint8_t kAttempts = 4;

@@ -63,6 +63,7 @@ struct GrowStats {
   std::size_t snapped = 0;         // proposals ending on an existing node or edge
   std::size_t clipped = 0;         // proposals shortened by the region or an obstacle
   std::size_t rejected = 0;
+  std::size_t restarts = 0;        // growths that died within their first 20 edges and began again
   double radius = 0.0;             // the r and snap distance used
   double snap = 0.0;
 };
