@@ -5,7 +5,7 @@
 CREATE FUNCTION streetgen._streetgen_grow_example(example_geoms bytea[], example_classes text[], example_ids bigint[],
     region bytea, seeds_x double precision[], seeds_y double precision[], obstacles bytea[],
     epsilon double precision, r double precision, rotation boolean, seed bigint, max_edges integer,
-    match_levels boolean, snap double precision, min_angle double precision, candidates integer,
+    match_levels boolean, snap double precision, min_angle double precision, candidates integer, existing bytea[],
     OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text, OUT geom bytea)
   RETURNS SETOF record
   LANGUAGE c IMMUTABLE PARALLEL SAFE
@@ -16,7 +16,7 @@ CREATE FUNCTION streetgen._streetgen_grow_example(example_geoms bytea[], example
 -- optionally road_class (levels: matched separately) and id (kept in origin). It runs with the
 -- caller's rights. A model's axes are 'SELECT id, geom, road_class FROM <model>.axis'.
 CREATE FUNCTION streetgen.grow_example(example text, region geometry, seeds geometry,
-    obstacles geometry DEFAULT NULL, params jsonb DEFAULT '{}',
+    obstacles geometry DEFAULT NULL, params jsonb DEFAULT '{}', existing text DEFAULT NULL,
     OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text,
     OUT geom geometry)
   RETURNS SETOF record
@@ -39,6 +39,8 @@ DECLARE
   obstacle_geoms bytea[];
   seed_types text[];
   variant integer;
+  existing_geoms bytea[];
+  existing_srids integer[];
 BEGIN
   IF example IS NULL THEN
     RAISE EXCEPTION 'example must not be null' USING ERRCODE = 'null_value_not_allowed';
@@ -104,6 +106,21 @@ BEGIN
       END IF;
     END;
   END LOOP;
+  IF existing IS NOT NULL THEN
+    BEGIN
+      EXECUTE format('SELECT array_agg(ST_AsEWKB(q.geom)), array_agg(DISTINCT ST_SRID(q.geom)) FROM (%s) AS q', existing)
+        INTO existing_geoms, existing_srids;
+    EXCEPTION WHEN undefined_column THEN
+      RAISE EXCEPTION 'the existing query must return a geometry column named geom' USING ERRCODE = 'invalid_parameter_value',
+        DETAIL = SQLERRM;
+    END;
+    existing_srids := array_remove(existing_srids, NULL);
+    IF cardinality(existing_srids) > 1 OR existing_srids[1] <> ST_SRID(region) THEN
+      RAISE EXCEPTION 'the existing network must have the SRID of the region' USING ERRCODE = 'invalid_parameter_value',
+        DETAIL = format('The query returns SRIDs %s, the region has %s.', array_to_string(existing_srids, ', '),
+                        ST_SRID(region));
+    END IF;
+  END IF;
   IF cardinality(array_remove(srids, NULL)) > 1 THEN
     RAISE EXCEPTION 'example edges must share one SRID' USING ERRCODE = 'invalid_parameter_value',
       DETAIL = format('The query returns SRIDs %s.', array_to_string(srids, ', '));
@@ -117,8 +134,8 @@ BEGIN
            coalesce((p ->> 'rotation')::boolean, true), coalesce((p ->> 'seed')::bigint, 0),
            coalesce((p ->> 'max_edges')::integer, 10000), coalesce((p ->> 'match_levels')::boolean, true),
            coalesce((p ->> 'snap')::double precision, 0), coalesce((p ->> 'min_angle')::double precision, 20),
-           coalesce((p ->> 'candidates')::integer, 16)) AS g;
+           coalesce((p ->> 'candidates')::integer, 16), coalesce(existing_geoms, '{}')) AS g;
 END
 $$;
-COMMENT ON FUNCTION streetgen.grow_example(text, geometry, geometry, geometry, jsonb) IS
-  'Grows a road network inside region from seeds by example (Yu & Steed): node matching of incident edge angles under a rotation within epsilon, neighbourhood matching by weighted line-segment Hausdorff distance within r, copied edges adapted to the region, obstacles, snapping, no crossings and example dead ends; params: epsilon (deg, 30), r (m, 3 x mean example segment), rotation (true), seed (0), max_edges (10000), match_levels (true), snap (m, 0.45 x mean segment), min_angle (deg, 20), candidates (16). Returns rows for a model''s axis table';
+COMMENT ON FUNCTION streetgen.grow_example(text, geometry, geometry, geometry, jsonb, text) IS
+  'Grows a road network inside region from seeds by example (Yu & Steed): node matching of incident edge angles under a rotation within epsilon, neighbourhood matching by weighted line-segment Hausdorff distance within r, copied edges adapted to the region, obstacles, snapping, no crossings and example dead ends; params: epsilon (deg, 30), r (m, 3 x mean example segment), rotation (true), seed (0), max_edges (10000), match_levels (true), snap (m, 0.45 x mean segment), min_angle (deg, 20), candidates (16). existing: a query of a network to extend (column geom), respected and joined but not returned; seeds on its nodes grow it. Returns rows for a model''s axis table';

@@ -62,7 +62,7 @@ void append_lines(core::GeosContext& geos, const GEOSGeometry* g, const std::str
   out.push_back(std::move(line));
 }
 
-constexpr int kArgs = 15;
+constexpr int kArgs = 16;
 constexpr int kColumns = 6;
 
 }  // namespace
@@ -73,7 +73,7 @@ PG_FUNCTION_INFO_V1(_streetgen_grow_example);
 // (example_geoms bytea[], example_classes text[], example_ids int8[], region bytea,
 //  seeds_x float8[], seeds_y float8[], obstacles bytea[], epsilon float8, r float8,
 //  rotation bool, seed int8, max_edges int4, match_levels bool, snap float8, min_angle float8,
-//  candidates int4) -> SETOF (id, from_node, to_node, road_class, origin, geom bytea)
+//  candidates int4, existing bytea[]) -> SETOF (id, from_node, to_node, road_class, origin, geom bytea)
 Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   // Phase 1.
   if (PG_NARGS() != kArgs + 1) {
@@ -83,9 +83,15 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   }
   static const char* const names[] = {"example", "example road classes", "example ids", "region", "seeds x",
                                       "seeds y", "obstacles", "epsilon", "r", "rotation", "seed", "max_edges",
-                                      "match_levels", "snap", "min_angle", "candidates"};
-  for (int a = 3; a <= kArgs; ++a) {
+                                      "match_levels", "snap", "min_angle", "candidates", "existing"};
+  for (int a = 3; a < kArgs; ++a) {
     if (a != 6 && PG_ARGISNULL(a)) pg::raise_null_argument(names[a]);
+  }
+  pg::ArrayArg existing_arg = pg::array_arg(fcinfo, 16, BYTEAOID, "existing");
+  auto* existing = static_cast<Blob*>(palloc0(sizeof(Blob) * (existing_arg.count > 0 ? existing_arg.count : 1)));
+  int existing_count = 0;
+  for (int i = 0; i < existing_arg.count; ++i) {
+    if (!existing_arg.nulls[i]) existing[existing_count++] = blob_of(existing_arg.values[i]);
   }
   pg::ArrayArg geoms = pg::array_arg(fcinfo, 0, BYTEAOID, "example");
   pg::ArrayArg classes = pg::array_arg(fcinfo, 1, TEXTOID, "example road classes");
@@ -172,6 +178,12 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
       obstacle_geoms.push_back(core::read_ewkb(geos, obstacles[i].data, obstacles[i].size, name.c_str()));
       core::require_finite_coordinates(geos, obstacle_geoms.back().geom.get(), name.c_str());
       input.obstacles.push_back(obstacle_geoms.back().geom.get());
+    }
+    for (int i = 0; i < existing_count; ++i) {
+      poller.tick();
+      std::string name = "existing edge " + std::to_string(i + 1);
+      core::SridGeometry g = core::read_ewkb(geos, existing[i].data, existing[i].size, name.c_str());
+      append_lines(geos, g.geom.get(), name, input.existing);
     }
     for (int i = 0; i < seed_count; ++i) input.seeds.push_back({seed_xy[2 * i], seed_xy[2 * i + 1]});
     core::GrowResult result = core::grow_example(geos, input, params);

@@ -112,6 +112,34 @@ SELECT geom, CASE road_class WHEN 'avenue' THEN 12 ELSE 6 END, CASE road_class W
 SELECT is((SELECT count(*) FROM grown_tokyo.axis), 200::bigint, 'grown edges inserted into a model''s axis table');
 SELECT ok((SELECT count(*) FROM grown_tokyo.section) >= 200, 'and the model''s sections follow');
 
+-- Extending an existing network (the paper's Figure 3): tokyo with a 500 m hole cut out; growth
+-- starts from the nodes on the hole's border and must respect and join the streets around it.
+CREATE TEMP TABLE hole AS SELECT ST_MakeEnvelope(2800, 200, 3300, 700, 0) AS geom;
+CREATE TEMP TABLE around AS
+SELECT p.id, (ST_Dump(ST_Difference(p.geom, h.geom))).geom AS geom FROM patch p, hole h WHERE p.name = 'tokyo';
+CREATE TEMP TABLE border_nodes AS
+SELECT DISTINCT ST_AsEWKB(q.pt) AS key, q.pt
+  FROM around a, hole h, LATERAL (VALUES (ST_StartPoint(a.geom)), (ST_EndPoint(a.geom))) AS q(pt)
+ WHERE ST_DWithin(q.pt, ST_Boundary(h.geom), 1e-6);
+SELECT ok((SELECT count(*) FROM border_nodes) >= 20, 'the hole cuts at least 20 streets');
+CREATE TEMP TABLE filled AS
+SELECT g.* FROM hole h, streetgen.grow_example(
+  $$SELECT id, road_class, geom FROM patch WHERE name = 'tokyo'$$, h.geom, (SELECT ST_Collect(pt) FROM border_nodes),
+  NULL, '{"seed": 3, "rotation": false}', 'SELECT geom FROM around') AS g;
+SELECT ok((SELECT count(*) FROM filled) >= 100, 'the hole fills (at least 100 edges)');
+SELECT is((SELECT count(*) FROM filled f, hole h WHERE NOT ST_CoveredBy(f.geom, h.geom)), 0::bigint,
+          'the new edges stay in the hole');
+SELECT is((SELECT count(*) FROM filled f JOIN around a ON ST_Intersects(f.geom, a.geom)
+            WHERE NOT ST_Equals(ST_Intersection(f.geom, a.geom), ST_StartPoint(f.geom))
+              AND NOT ST_Equals(ST_Intersection(f.geom, a.geom), ST_EndPoint(f.geom))), 0::bigint,
+          'new edges meet the existing streets only at their own ends (no crossing)');
+SELECT ok((SELECT count(DISTINCT b.key) FROM border_nodes b JOIN filled f
+             ON ST_Equals(ST_StartPoint(f.geom), b.pt) OR ST_Equals(ST_EndPoint(f.geom), b.pt)) >= 10,
+          'the streets around the hole are continued into it (at least 10 border nodes joined)');
+SELECT is((SELECT count(*) FROM filled a JOIN filled b ON a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
+          0::bigint, 'the filled hole is planar');
+
 -- Bad input, by SQLSTATE.
 CREATE TEMP VIEW tokyo AS SELECT geom, road_class FROM patch WHERE name = 'tokyo';
 CREATE FUNCTION pg_temp.grow(example text, region text DEFAULT 'POLYGON((2300 -400, 3700 -400, 3700 1390, 2300 1390, 2300 -400))',
@@ -169,6 +197,10 @@ SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '[1, 
                  'params must be a json object', 'params that is not an object');
 SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"seed": "abc"}')$$, '22P02', NULL,
                  'a params value of the wrong type');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo') FROM streetgen.grow_example('SELECT geom FROM tokyo',
+                   'POLYGON((2300 -400, 3700 -400, 3700 1390, 2300 1390, 2300 -400))', 'POINT(3000 500)', NULL, '{}',
+                   'SELECT ''SRID=3857;LINESTRING(0 0, 1 1)''::geometry AS geom')$$, '22023',
+                 'the existing network must have the SRID of the region', 'existing network in another SRID');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_example(NULL, 'POLYGON((0 0, 1 0, 1 1, 0 0))', 'POINT(0.5 0.2)')$$,
                  '22004', 'example must not be null', 'NULL example');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_example('SELECT geom FROM tokyo', NULL, 'POINT(0.5 0.2)')$$,

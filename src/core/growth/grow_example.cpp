@@ -112,7 +112,7 @@ struct ONode {
 };
 struct OEdge {
   std::uint32_t a, b;
-  int level;
+  int level;  // -1: an edge of the existing network (matches any level, never emitted)
   std::int64_t example_id;
 };
 
@@ -163,7 +163,10 @@ class Grower {
     min_length_ = 0.15 * mean_length_;
     epsilon_ = params.epsilon * kPi / 180.0;
     min_angle_ = params.min_angle * kPi / 180.0;
+    existing_ = &input.existing;
+    load_existing();
     add_seeds(input.seeds);
+    place_seeds();
   }
 
   GrowResult run() {
@@ -171,7 +174,7 @@ class Grower {
     // segments crowds itself out) starts again from the seeds with the next random draws.
     for (int restart = 0;; ++restart) {
       grow();
-      if (edges_.size() >= std::min<std::size_t>(kMinGrowth, params_.max_edges) || restart == kRestarts) break;
+      if (new_edges_ >= std::min<std::size_t>(kMinGrowth, params_.max_edges) || restart == kRestarts) break;
       ++stats_.restarts;
       nodes_.clear();
       edges_.clear();
@@ -179,7 +182,9 @@ class Grower {
       unfinished_.clear();
       edge_tree_.clear();
       node_tree_.clear();
-      for (Point p : seed_points_) unfinished_.push_back(add_node(p));
+      new_edges_ = 0;
+      load_existing();
+      place_seeds();
     }
     return result();
   }
@@ -189,7 +194,7 @@ class Grower {
   static constexpr int kRestarts = 5;
 
   void grow() {
-    while (!unfinished_.empty() && edges_.size() < params_.max_edges) {
+    while (!unfinished_.empty() && new_edges_ < params_.max_edges) {
       poll_interrupts();
       std::size_t pick = uniform(unfinished_.size());
       std::uint32_t v = unfinished_[pick];
@@ -214,11 +219,13 @@ class Grower {
     out.stats = stats_;
     out.stats.radius = radius_;
     out.stats.snap = snap_;
-    out.edges.reserve(edges_.size());
+    out.edges.reserve(new_edges_);
+    std::int64_t id = 0;
     for (std::size_t i = 0; i < edges_.size(); ++i) {
       const OEdge& e = edges_[i];
+      if (e.level < 0) continue;
       GrownEdge g;
-      g.id = static_cast<std::int64_t>(i + 1);
+      g.id = ++id;
       g.from_node = e.a + 1;
       g.to_node = e.b + 1;
       g.road_class = level_names_[e.level];
@@ -378,12 +385,63 @@ class Grower {
     }
   }
 
+  // The existing network: fixed edges the growth must respect and may join, never emitted.
+  void load_existing() {
+    struct KeyHash {
+      std::size_t operator()(const std::pair<std::int64_t, std::int64_t>& k) const noexcept {
+        return static_cast<std::size_t>(static_cast<std::uint64_t>(k.first) * 0x9E3779B97F4A7C15ULL ^
+                                        static_cast<std::uint64_t>(k.second));
+      }
+    };
+    std::unordered_map<std::pair<std::int64_t, std::int64_t>, std::uint32_t, KeyHash> index;
+    auto node_of = [&](Point p) {
+      std::pair<std::int64_t, std::int64_t> key{std::llround(p.x * 1000.0), std::llround(p.y * 1000.0)};
+      auto it = index.find(key);
+      if (it != index.end()) return it->second;
+      std::uint32_t id = add_node(p);
+      index.emplace(key, id);
+      return id;
+    };
+    InterruptPoller poller(1024);
+    for (const Polyline& line : *existing_) {
+      poller.tick();
+      for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+        std::uint32_t a = node_of(line[i]), b = node_of(line[i + 1]);
+        if (a != b && !has_edge(a, b)) add_edge(a, b, -1, 0);
+      }
+    }
+  }
+
+  // The node a seed starts from: an existing node within snap, or none.
+  std::uint32_t existing_node_near(Point p) {
+    point_hits_.clear();
+    node_tree_.query(bgi::nearest(BPoint(p.x, p.y), 1), std::back_inserter(point_hits_));
+    if (!point_hits_.empty() && distance(nodes_[point_hits_[0].second].p, p) <= snap_) return point_hits_[0].second;
+    return UINT32_MAX;
+  }
+
+  void place_seeds() {
+    for (Point p : seed_points_) {
+      std::uint32_t n = existing_node_near(p);
+      if (n == UINT32_MAX) {
+        unfinished_.push_back(add_node(p));
+      } else if (std::find(unfinished_.begin(), unfinished_.end(), n) == unfinished_.end()) {
+        unfinished_.push_back(n);  // extend the existing network from this node
+      }
+    }
+  }
+
   void add_seeds(const std::vector<Point>& seeds) {
     if (seeds.empty()) throw_invalid_argument("seeds must hold at least one point");
     GEOSContextHandle_t h = geos_.handle();
     for (std::size_t i = 0; i < seeds.size(); ++i) {
       Point p = seeds[i];
       if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw_invalid_argument("seed has a non-finite coordinate");
+      // A seed on a node of the existing network may sit on the region's border (a hole's edge).
+      if (existing_node_near(p) != UINT32_MAX) {
+        seed_points_.push_back(p);
+        continue;
+      }
       GeomPtr g = own(geos_, GEOSGeom_createPointFromXY_r(h, p.x, p.y), "seed point");
       char inside = GEOSPreparedContains_r(h, region_.get(), g.get());
       if (inside == 2) geos_.fail("seed in region");
@@ -398,10 +456,9 @@ class Grower {
         if (hit == 1) throw_invalid_argument("seed " + std::to_string(i + 1) + " lies in an obstacle");
       }
       bool duplicate = false;
-      for (const ONode& n : nodes_) duplicate = duplicate || distance(n.p, p) <= snap_;
+      for (Point q : seed_points_) duplicate = duplicate || distance(q, p) <= snap_;
       if (duplicate) continue;  // two seeds on one spot grow one node
       seed_points_.push_back(p);
-      unfinished_.push_back(add_node(p));
     }
   }
 
@@ -419,6 +476,7 @@ class Grower {
   }
   void add_edge(std::uint32_t a, std::uint32_t b, int level, std::int64_t example_id) {
     auto id = static_cast<std::uint32_t>(edges_.size());
+    if (level >= 0) ++new_edges_;
     edges_.push_back({a, b, level, example_id});
     nodes_[a].edges.push_back(id);
     nodes_[b].edges.push_back(id);
@@ -534,7 +592,7 @@ class Grower {
     const ExNode& s = ex_nodes_[best.node];
     for (std::size_t k = 0; k < s.halves.size(); ++k) {
       if (best.used[k]) continue;
-      if (edges_.size() >= params_.max_edges) return;
+      if (new_edges_ >= params_.max_edges) return;
       const ExHalf& half = s.halves[k];
       bool dead_end = ex_nodes_[half.to].halves.size() == 1;
       propose(v, wrap(half.angle + best.theta), half.length, dead_end, half.level, half.example_id);
@@ -562,7 +620,9 @@ class Grower {
       }
       const std::size_t alignments = params_.rotation ? hs.size() : 1;
       for (std::size_t j = 0; j < alignments && out.size() < want; ++j) {
-        if (params_.rotation && params_.match_levels && hs[j].level != incident[0].second) continue;
+        if (params_.rotation && params_.match_levels && incident[0].second >= 0 && hs[j].level != incident[0].second) {
+          continue;
+        }
         double theta0 = params_.rotation ? wrap(incident[0].first - hs[j].angle) : 0.0;
         std::vector<char> used(hs.size(), 0);
         double sum = 0.0;
@@ -571,7 +631,9 @@ class Grower {
           std::size_t best = SIZE_MAX;
           double best_gamma = 0.0;
           for (std::size_t k = 0; k < hs.size(); ++k) {
-            if (used[k] || (params_.match_levels && hs[k].level != incident[i].second)) continue;
+            if (used[k] || (params_.match_levels && incident[i].second >= 0 && hs[k].level != incident[i].second)) {
+              continue;
+            }
             double gamma = wrap(hs[k].angle + theta0 - incident[i].first);
             if (best == SIZE_MAX || std::abs(gamma) < std::abs(best_gamma)) {
               best = k;
@@ -755,7 +817,7 @@ class Grower {
   // A street end that found nothing to copy goes straight on to the edge ahead if one is within
   // 1.5 mean segment lengths, rather than stopping in a dead end the example did not ask for.
   void close_front(std::uint32_t v) {
-    if (nodes_[v].edges.size() != 1 || edges_.size() + 2 > params_.max_edges) return;
+    if (nodes_[v].edges.size() != 1 || new_edges_ + 1 > params_.max_edges) return;
     const std::uint32_t e = nodes_[v].edges[0];
     const Point p = nodes_[v].p;
     const Point u = unit(p - other_end(e, v));
@@ -768,11 +830,11 @@ class Grower {
     Point x = p + (c.t * reach) * u;
     std::uint32_t near = distance(nodes_[hit.a].p, x) <= distance(nodes_[hit.b].p, x) ? hit.a : hit.b;
     if (distance(nodes_[near].p, x) <= snap_) {
-      try_connect_node(v, near, edges_[e].level, edges_[e].example_id);
+      try_connect_node(v, near, std::max(0, edges_[e].level), edges_[e].example_id);
       return;
     }
     std::uint32_t m = split_edge(c.edge, x);
-    add_edge(v, m, edges_[e].level, edges_[e].example_id);
+    add_edge(v, m, std::max(0, edges_[e].level), edges_[e].example_id);
     ++stats_.accepted;
     ++stats_.snapped;
   }
@@ -816,7 +878,7 @@ class Grower {
     double along = std::atan2(a.y - x.y, a.x - x.x);
     double back = wrap(angle + kPi);
     if (std::abs(wrap(back - along)) < min_angle_ || std::abs(wrap(back - along - kPi)) < min_angle_ ||
-        edges_.size() + 2 > params_.max_edges || !example_allows_one_more(2)) {
+        new_edges_ + 1 > params_.max_edges || !example_allows_one_more(2)) {
       ++stats_.rejected;
       return;
     }
@@ -854,6 +916,8 @@ class Grower {
   BoxTree edge_tree_;
   PointTree node_tree_;
   std::vector<Point> seed_points_;
+  const std::vector<Polyline>* existing_ = nullptr;
+  std::size_t new_edges_ = 0;
   std::vector<std::uint32_t> unfinished_;
   std::vector<std::uint8_t> attempts_;
   static constexpr std::uint8_t kAttempts = 4;

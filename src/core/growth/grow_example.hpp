@@ -43,7 +43,9 @@ struct GrowInput {
   std::vector<ExampleEdge> example;
   const GEOSGeometry* region = nullptr;  // Polygon or MultiPolygon, valid, non-empty
   std::vector<const GEOSGeometry*> obstacles;  // polygonal; may be empty
-  std::vector<Point> seeds;              // start nodes; inside the region, outside obstacles
+  std::vector<Point> seeds;              // start nodes; inside the region, outside obstacles, or on
+                                         // a node of `existing` (then the region may just touch it)
+  std::vector<Polyline> existing;        // a network to extend: respected and joined, never emitted
 };
 
 struct GrownEdge {
