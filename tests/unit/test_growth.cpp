@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -38,6 +39,12 @@ bool crosses_without_node(const GrownEdge& a, const GrownEdge& b) {
   return d1 * d2 <= 0 && d3 * d4 <= 0 &&
          std::max(std::min(a.a.x, a.b.x), std::min(b.a.x, b.b.x)) <= std::min(std::max(a.a.x, a.b.x), std::max(b.a.x, b.b.x)) &&
          std::max(std::min(a.a.y, a.b.y), std::min(b.a.y, b.b.y)) <= std::min(std::max(a.a.y, a.b.y), std::max(b.a.y, b.b.y));
+}
+
+double point_segment_distance_for_test(Point p, Point a, Point b) {
+  Point d = b - a;
+  double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
+  return distance(p, a + t * d);
 }
 
 struct Fixture {
@@ -180,4 +187,50 @@ TEST(GrowExample, BadInputIsRejected) {
   bad = p;
   bad.radius = -1;
   EXPECT_TRUE(rejects(f.input(), bad));
+}
+
+TEST(GrowExample, ExtendsAnExistingNetworkWithoutCrossingIt) {
+  // A 100 m grid over 1 km with a 400 m hole; growth starts on the nodes of the hole's border.
+  Fixture f;
+  GeomPtr hole = wkt(f.geos, "POLYGON((300 300, 700 300, 700 700, 300 700, 300 300))");
+  GrowInput in = f.input();
+  in.region = hole.get();
+  in.seeds.clear();
+  auto inside_hole = [](Point a, Point b) {
+    Point m = 0.5 * (a + b);
+    return m.x > 300 && m.x < 700 && m.y > 300 && m.y < 700;
+  };
+  for (const ExampleEdge& e : grid(10, 100.0)) {
+    if (inside_hole(e.line.front(), e.line.back())) continue;
+    in.existing.push_back(e.line);
+    for (Point p : e.line) {
+      bool on_border = (p.x == 300 || p.x == 700) ? p.y >= 300 && p.y <= 700 : (p.y == 300 || p.y == 700) && p.x >= 300 && p.x <= 700;
+      if (on_border) in.seeds.push_back(p);
+    }
+  }
+  GrowParams p;
+  p.seed = 4;
+  p.rotation = false;
+  GrowResult r = grow_example(f.geos, in, p);
+  ASSERT_GT(r.edges.size(), 10u);
+  std::size_t touching_border = 0;
+  for (const GrownEdge& e : r.edges) {
+    for (Point q : {e.a, e.b}) {
+      EXPECT_TRUE(q.x >= 300 && q.x <= 700 && q.y >= 300 && q.y <= 700) << q.x << " " << q.y;
+      touching_border += q.x == 300 || q.x == 700 || q.y == 300 || q.y == 700;
+    }
+    EXPECT_FALSE(e.road_class.empty());
+    // No existing edge is returned, and none is crossed: existing edges lie outside the hole or
+    // on its border, so a new edge may only touch them at its own ends.
+    for (const std::vector<Point>& x : in.existing) {
+      GrownEdge other{0, -1, -2, "", 0, x.front(), x.back()};
+      EXPECT_FALSE(e.a.x == x.front().x && e.a.y == x.front().y && e.b.x == x.back().x && e.b.y == x.back().y);
+      if (crosses_without_node(e, other)) {
+        bool at_own_end = point_segment_distance_for_test(e.a, x.front(), x.back()) < 1e-9 ||
+                          point_segment_distance_for_test(e.b, x.front(), x.back()) < 1e-9;
+        EXPECT_TRUE(at_own_end);
+      }
+    }
+  }
+  EXPECT_GT(touching_border, 5u);  // the growth is attached to the network around the hole
 }
