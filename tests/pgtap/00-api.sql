@@ -64,7 +64,9 @@ SELECT set_eq(
     ('streetgen._empty_work_tables()', 'void', 'v', false),
     ('streetgen.generate(text)', 'SETOF record', 'v', false),
     ('streetgen.street_surfaces(text,jsonb)', 'SETOF record', 'v', false),
-    ('streetgen.surface_quality(text)', 'record', 's', false)
+    ('streetgen.surface_quality(text)', 'record', 's', false),
+    ('streetgen._streetgen_grow_example(bytea[],text[],bigint[],bytea,double precision[],double precision[],bytea[],double precision,double precision,boolean,bigint,integer,boolean,double precision,double precision,integer,bytea[])', 'SETOF record', 'i', false),
+    ('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)', 'SETOF record', 'v', false)
   $$,
   'the extension ships exactly the documented functions, with these results and volatilities');
 
@@ -85,6 +87,10 @@ SELECT is(pg_temp.argument_names('streetgen.compare_networks(streetgen.network_m
 SELECT is(pg_temp.argument_names('streetgen.generate(text)'), 'model,kind,status,count', 'generate(model) -> (kind, status, count)');
 SELECT is(pg_temp.argument_names('streetgen.street_surfaces(text,jsonb)'), 'axes,settings,kind,node_id,axis_id,part,status,geom',
           'street_surfaces(axes, settings) -> (kind, node_id, axis_id, part, status, geom)');
+
+SELECT is(pg_temp.argument_names('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)'),
+          'example,region,seeds,obstacles,params,existing,id,from_node,to_node,road_class,origin,geom',
+          'grow_example(example, region, seeds, obstacles, params, existing) -> (id, from_node, to_node, road_class, origin, geom)');
 
 SELECT is_empty(
   'SELECT signature FROM streetgen_functions WHERE security_definer',

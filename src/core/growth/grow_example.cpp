@@ -1,0 +1,936 @@
+#include "core/growth/grow_example.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+
+// GCC 12 reports a false maybe-uninitialized inside Boost's R-tree k-nearest heap once it is
+// inlined here; the warning is about Boost's storage, not ours.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+
+#include "core/error.hpp"
+#include "core/geometry_checks.hpp"
+#include "core/interrupts.hpp"
+
+namespace streetgen::core {
+namespace {
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
+using Box = bg::model::box<BPoint>;
+using BoxValue = std::pair<Box, std::uint32_t>;
+using PointValue = std::pair<BPoint, std::uint32_t>;
+// Dynamic R*-trees: the output grows edge by edge, and an edge split replaces one value by two.
+using BoxTree = bgi::rtree<BoxValue, bgi::rstar<16>>;
+using PointTree = bgi::rtree<PointValue, bgi::rstar<16>>;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kContact = 1e-6;  // metres: closer than this counts as touching
+
+double wrap(double a) {  // to (-pi, pi]
+  a = std::fmod(a, 2.0 * kPi);
+  if (a <= -kPi) a += 2.0 * kPi;
+  if (a > kPi) a -= 2.0 * kPi;
+  return a;
+}
+
+Box box_of(Point a, Point b) {
+  return Box(BPoint(std::min(a.x, b.x), std::min(a.y, b.y)), BPoint(std::max(a.x, b.x), std::max(a.y, b.y)));
+}
+Box box_around(Point p, double r) { return Box(BPoint(p.x - r, p.y - r), BPoint(p.x + r, p.y + r)); }
+
+double point_segment_distance(Point p, Point a, Point b) {
+  Point d = b - a;
+  double l2 = dot(d, d);
+  double t = l2 > 0.0 ? std::clamp(dot(p - a, d) / l2, 0.0, 1.0) : 0.0;
+  return distance(p, a + t * d);
+}
+
+// Proper or touching intersection of segments ab and cd, by orientations.
+bool segments_intersect(Point a, Point b, Point c, Point d) {
+  double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
+  double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
+}
+
+double segment_distance(Point a, Point b, Point c, Point d) {
+  if (segments_intersect(a, b, c, d)) return 0.0;
+  return std::min(std::min(point_segment_distance(a, c, d), point_segment_distance(b, c, d)),
+                  std::min(point_segment_distance(c, a, b), point_segment_distance(d, a, b)));
+}
+
+// Hausdorff distance between two segments: the distance to a segment is convex along the
+// other, so the largest one is reached at an endpoint.
+double segment_hausdorff(Point a, Point b, Point c, Point d) {
+  return std::max(std::max(point_segment_distance(a, c, d), point_segment_distance(b, c, d)),
+                  std::max(point_segment_distance(c, a, b), point_segment_distance(d, a, b)));
+}
+
+// Where along p->e (fraction in [0, 1]) segment p->e first touches segment qa-qb (they touch).
+double contact_fraction(Point p, Point e, Point qa, Point qb) {
+  Point r = e - p, s = qb - qa;
+  double denom = cross(r, s);
+  double rl = norm(r), sl = norm(s);
+  double t;
+  if (std::abs(denom) > 1e-12 * rl * sl) {
+    t = cross(qa - p, s) / denom;
+  } else {  // parallel: the nearer end of qa-qb along p->e
+    double l2 = dot(r, r);
+    t = std::min(dot(qa - p, r), dot(qb - p, r)) / l2;
+  }
+  return std::clamp(t, 0.0, 1.0);
+}
+
+struct ExHalf {
+  double angle;
+  double length;
+  std::uint32_t to;
+  int level;
+  std::int64_t example_id;
+};
+struct ExNode {
+  Point p;
+  std::vector<ExHalf> halves;
+};
+
+struct Match {
+  std::uint32_t node;
+  double theta;
+  std::vector<char> used;  // halves of the example node already present at the output node
+};
+
+struct ONode {
+  Point p;
+  std::vector<std::uint32_t> edges;
+};
+struct OEdge {
+  std::uint32_t a, b;
+  int level;  // -1: an edge of the existing network (matches any level, never emitted)
+  std::int64_t example_id;
+};
+
+class GeosLine {  // a reusable two-point GEOS LineString for the region/obstacle predicates
+ public:
+  explicit GeosLine(GeosContext& geos) : geos_(geos) {}
+  GeomPtr make(Point a, Point b) {
+    GEOSContextHandle_t h = geos_.handle();
+    GEOSCoordSequence* seq = GEOSCoordSeq_create_r(h, 2, 2);
+    if (seq == nullptr) geos_.fail("coordinate sequence");
+    GEOSCoordSeq_setXY_r(h, seq, 0, a.x, a.y);
+    GEOSCoordSeq_setXY_r(h, seq, 1, b.x, b.y);
+    return own(geos_, GEOSGeom_createLineString_r(h, seq), "line construction");
+  }
+
+ private:
+  GeosContext& geos_;
+};
+
+struct PreparedDeleter {
+  GEOSContextHandle_t handle = nullptr;
+  void operator()(const GEOSPreparedGeometry* p) const noexcept {
+    if (p != nullptr) GEOSPreparedGeom_destroy_r(handle, p);
+  }
+};
+using PreparedPtr = std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter>;
+
+bool is_polygonal(GEOSContextHandle_t h, const GEOSGeometry* g) {
+  int t = GEOSGeomTypeId_r(h, g);
+  if (t == GEOS_POLYGON || t == GEOS_MULTIPOLYGON) return true;
+  if (t != GEOS_GEOMETRYCOLLECTION) return false;
+  int n = GEOSGetNumGeometries_r(h, g);
+  for (int i = 0; i < n; ++i) {
+    if (!is_polygonal(h, GEOSGetGeometryN_r(h, g, i))) return false;
+  }
+  return true;
+}
+
+class Grower {
+ public:
+  Grower(GeosContext& geos, const GrowInput& input, const GrowParams& params)
+      : geos_(geos), params_(params), rng_(params.seed), line_(geos) {
+    check_params();
+    build_example(input.example);
+    prepare_legal_area(input);
+    radius_ = params.radius > 0.0 ? params.radius : 3.0 * mean_length_;
+    snap_ = params.snap > 0.0 ? params.snap : 0.45 * mean_length_;
+    min_length_ = 0.15 * mean_length_;
+    epsilon_ = params.epsilon * kPi / 180.0;
+    min_angle_ = params.min_angle * kPi / 180.0;
+    existing_ = &input.existing;
+    load_existing();
+    add_seeds(input.seeds);
+    place_seeds();
+  }
+
+  GrowResult run() {
+    // A growth that dies within its first few edges (a start among the example's shortest
+    // segments crowds itself out) starts again from the seeds with the next random draws.
+    for (int restart = 0;; ++restart) {
+      grow();
+      if (new_edges_ >= std::min<std::size_t>(kMinGrowth, params_.max_edges) || restart == kRestarts) break;
+      ++stats_.restarts;
+      nodes_.clear();
+      edges_.clear();
+      attempts_.clear();
+      unfinished_.clear();
+      edge_tree_.clear();
+      node_tree_.clear();
+      new_edges_ = 0;
+      load_existing();
+      place_seeds();
+    }
+    return result();
+  }
+
+ private:
+  static constexpr std::size_t kMinGrowth = 20;
+  static constexpr int kRestarts = 5;
+
+  void grow() {
+    while (!unfinished_.empty() && new_edges_ < params_.max_edges) {
+      poll_interrupts();
+      std::size_t pick = uniform(unfinished_.size());
+      std::uint32_t v = unfinished_[pick];
+      unfinished_[pick] = unfinished_.back();
+      unfinished_.pop_back();
+      std::size_t before = stats_.accepted;
+      step(v);
+      // A front whose random candidates all failed gets a few more draws before it is left as a
+      // dead end (a growth that stops after its first edges is the common failure otherwise).
+      if (stats_.accepted == before) {
+        if (++attempts_[v] < kAttempts) {
+          unfinished_.push_back(v);
+        } else {
+          close_front(v);
+        }
+      }
+    }
+  }
+
+  GrowResult result() const {
+    GrowResult out;
+    out.stats = stats_;
+    out.stats.radius = radius_;
+    out.stats.snap = snap_;
+    out.edges.reserve(new_edges_);
+    std::int64_t id = 0;
+    for (std::size_t i = 0; i < edges_.size(); ++i) {
+      const OEdge& e = edges_[i];
+      if (e.level < 0) continue;
+      GrownEdge g;
+      g.id = ++id;
+      g.from_node = e.a + 1;
+      g.to_node = e.b + 1;
+      g.road_class = level_names_[e.level];
+      g.example_id = e.example_id;
+      g.a = nodes_[e.a].p;
+      g.b = nodes_[e.b].p;
+      out.edges.push_back(std::move(g));
+    }
+    return out;
+  }
+
+  // ---- set-up -------------------------------------------------------------------------------
+  void check_params() const {
+    auto positive = [](double v, const char* name, const char* unit) {
+      if (!std::isfinite(v) || v <= 0.0) {
+        throw_invalid_argument(std::string(name) + " must be a finite number > 0",
+                               "It is " + std::to_string(v) + " " + unit + ".");
+      }
+    };
+    positive(params_.epsilon, "epsilon", "degrees");
+    if (params_.epsilon >= 180.0) throw_invalid_argument("epsilon must be below 180 degrees");
+    if (!std::isfinite(params_.radius) || params_.radius < 0.0) {
+      throw_invalid_argument("r must be a finite number > 0", "It is " + std::to_string(params_.radius) + " m.");
+    }
+    if (!std::isfinite(params_.snap) || params_.snap < 0.0) {
+      throw_invalid_argument("snap must be a finite number > 0", "It is " + std::to_string(params_.snap) + " m.");
+    }
+    if (!std::isfinite(params_.min_angle) || params_.min_angle < 0.0 || params_.min_angle >= 90.0) {
+      throw_invalid_argument("min_angle must be in [0, 90) degrees");
+    }
+    if (params_.max_edges == 0) throw_invalid_argument("max_edges must be > 0");
+    if (params_.candidates == 0) throw_invalid_argument("candidates must be > 0");
+  }
+
+  void build_example(const std::vector<ExampleEdge>& example) {
+    if (example.empty()) {
+      throw_invalid_argument("example has no edges", "The example query returned no LineString.",
+                             "Pass a query (or model) whose rows hold the example's road edges.");
+    }
+    // Shape points and junctions closer than a millimetre are one node.
+    struct KeyHash {
+      std::size_t operator()(const std::pair<std::int64_t, std::int64_t>& k) const noexcept {
+        return static_cast<std::size_t>(static_cast<std::uint64_t>(k.first) * 0x9E3779B97F4A7C15ULL ^
+                                        static_cast<std::uint64_t>(k.second));
+      }
+    };
+    std::unordered_map<std::pair<std::int64_t, std::int64_t>, std::uint32_t, KeyHash> index;
+    auto node_of = [&](Point p) {
+      std::pair<std::int64_t, std::int64_t> key{std::llround(p.x * 1000.0), std::llround(p.y * 1000.0)};
+      auto [it, added] = index.emplace(key, static_cast<std::uint32_t>(ex_nodes_.size()));
+      if (added) ex_nodes_.push_back({p, {}});
+      return it->second;
+    };
+    std::unordered_set<std::uint64_t> seen;
+    std::vector<BoxValue> boxes;
+    double total = 0.0;
+    InterruptPoller poller(1024);
+    for (const ExampleEdge& edge : example) {
+      poller.tick();
+      int level = level_of(edge.road_class);
+      for (std::size_t i = 0; i + 1 < edge.line.size(); ++i) {
+        std::uint32_t a = node_of(edge.line[i]), b = node_of(edge.line[i + 1]);
+        if (a == b) continue;
+        std::uint64_t key = (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+        if (!seen.insert(key).second) continue;  // a two-way street mapped twice
+        Point pa = ex_nodes_[a].p, pb = ex_nodes_[b].p;
+        double len = distance(pa, pb);
+        ex_nodes_[a].halves.push_back({std::atan2(pb.y - pa.y, pb.x - pa.x), len, b, level, edge.id});
+        ex_nodes_[b].halves.push_back({std::atan2(pa.y - pb.y, pa.x - pb.x), len, a, level, edge.id});
+        boxes.emplace_back(box_of(pa, pb), static_cast<std::uint32_t>(ex_segments_.size()));
+        ex_segments_.push_back({a, b});
+        total += len;
+      }
+    }
+    if (ex_segments_.empty()) {
+      throw_invalid_argument("example has fewer than two distinct nodes",
+                             "Every example edge starts and ends at the same point (within 1 mm).");
+    }
+    mean_length_ = total / static_cast<double>(ex_segments_.size());
+    ex_tree_ = BoxTree(boxes.begin(), boxes.end());  // bulk-loaded once
+    // Pools of example nodes by degree: a node of degree d is matched against nodes of degree > d.
+    std::size_t max_degree = 0;
+    for (const ExNode& n : ex_nodes_) max_degree = std::max(max_degree, n.halves.size());
+    // P(degree > d | degree >= d) in the example: how often a node that has d edges gets one more.
+    std::vector<double> at_least(max_degree + 2, 0.0);
+    for (const ExNode& n : ex_nodes_) {
+      for (std::size_t d = 0; d <= n.halves.size(); ++d) at_least[d] += 1.0;
+    }
+    more_.assign(max_degree + 2, 0.0);
+    for (std::size_t d = 0; d + 1 < at_least.size(); ++d) more_[d] = at_least[d] > 0 ? at_least[d + 1] / at_least[d] : 0.0;
+    max_degree_ = std::max<std::size_t>(max_degree, 3);  // snapping never makes a node busier than the example's
+    pools_.assign(max_degree + 2, {});
+    for (std::uint32_t i = 0; i < ex_nodes_.size(); ++i) {
+      for (std::size_t d = 0; d < ex_nodes_[i].halves.size(); ++d) pools_[d].push_back(i);
+    }
+  }
+
+  int level_of(const std::string& name) {
+    for (std::size_t i = 0; i < level_names_.size(); ++i) {
+      if (level_names_[i] == name) return static_cast<int>(i);
+    }
+    level_names_.push_back(name);
+    return static_cast<int>(level_names_.size() - 1);
+  }
+
+  void prepare_legal_area(const GrowInput& input) {
+    GEOSContextHandle_t h = geos_.handle();
+    if (input.region == nullptr) throw_invalid_argument("region must not be null");
+    if (!is_polygonal(h, input.region) || GEOSGeomTypeId_r(h, input.region) == GEOS_GEOMETRYCOLLECTION) {
+      throw_invalid_argument("region must be a Polygon or MultiPolygon",
+                             "It is a " + geometry_type_name(geos_, input.region) + ".");
+    }
+    if (GEOSisEmpty_r(h, input.region) == 1) throw_invalid_argument("region is empty");
+    require_finite_coordinates(geos_, input.region, "region");
+    char valid = GEOSisValid_r(h, input.region);
+    if (valid == 2) geos_.fail("validity check");
+    if (valid == 0) {
+      char* reason = GEOSisValidReason_r(h, input.region);
+      std::string detail = reason != nullptr ? reason : "";
+      if (reason != nullptr) GEOSFree_r(h, reason);
+      throw_invalid_argument("region is not a valid polygon", "GEOS says: " + detail + ".",
+                             "Repair it with ST_MakeValid.");
+    }
+    double area = 0.0;
+    if (GEOSArea_r(h, input.region, &area) == 0) geos_.fail("area");
+    if (!(area > 0.0)) throw_invalid_argument("region has zero area");
+    region_ = PreparedPtr(GEOSPrepare_r(h, input.region), PreparedDeleter{h});
+    if (!region_) geos_.fail("prepare region");
+    if (!input.obstacles.empty()) {
+      std::vector<GEOSGeometry*> parts;
+      for (std::size_t i = 0; i < input.obstacles.size(); ++i) {
+        const GEOSGeometry* o = input.obstacles[i];
+        std::string name = "obstacle " + std::to_string(i + 1);
+        if (!is_polygonal(h, o)) {
+          for (GEOSGeometry* p : parts) GEOSGeom_destroy_r(h, p);
+          throw_invalid_argument("obstacles must be polygons",
+                                 "The " + name + " is a " + geometry_type_name(geos_, o) + ".");
+        }
+        if (GEOSisEmpty_r(h, o) == 1) continue;
+        GEOSGeometry* c = GEOSGeom_clone_r(h, o);
+        if (c == nullptr) {
+          for (GEOSGeometry* p : parts) GEOSGeom_destroy_r(h, p);
+          geos_.fail("clone obstacle");
+        }
+        parts.push_back(c);
+      }
+      if (!parts.empty()) {
+        GeomPtr collection = own(geos_,
+                                 GEOSGeom_createCollection_r(h, GEOS_GEOMETRYCOLLECTION, parts.data(),
+                                                             static_cast<unsigned int>(parts.size())),
+                                 "obstacle collection");
+        // Overlapping or invalid obstacles are fine: intersects only needs the covered area.
+        obstacles_ = own(geos_, GEOSMakeValid_r(h, collection.get()), "obstacle repair");
+        obstacles_prepared_ = PreparedPtr(GEOSPrepare_r(h, obstacles_.get()), PreparedDeleter{h});
+        if (!obstacles_prepared_) geos_.fail("prepare obstacles");
+      }
+    }
+  }
+
+  // The existing network: fixed edges the growth must respect and may join, never emitted.
+  void load_existing() {
+    struct KeyHash {
+      std::size_t operator()(const std::pair<std::int64_t, std::int64_t>& k) const noexcept {
+        return static_cast<std::size_t>(static_cast<std::uint64_t>(k.first) * 0x9E3779B97F4A7C15ULL ^
+                                        static_cast<std::uint64_t>(k.second));
+      }
+    };
+    std::unordered_map<std::pair<std::int64_t, std::int64_t>, std::uint32_t, KeyHash> index;
+    auto node_of = [&](Point p) {
+      std::pair<std::int64_t, std::int64_t> key{std::llround(p.x * 1000.0), std::llround(p.y * 1000.0)};
+      auto it = index.find(key);
+      if (it != index.end()) return it->second;
+      std::uint32_t id = add_node(p);
+      index.emplace(key, id);
+      return id;
+    };
+    InterruptPoller poller(1024);
+    for (const Polyline& line : *existing_) {
+      poller.tick();
+      for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+        std::uint32_t a = node_of(line[i]), b = node_of(line[i + 1]);
+        if (a != b && !has_edge(a, b)) add_edge(a, b, -1, 0);
+      }
+    }
+  }
+
+  // The node a seed starts from: an existing node within snap, or none.
+  std::uint32_t existing_node_near(Point p) {
+    point_hits_.clear();
+    node_tree_.query(bgi::nearest(BPoint(p.x, p.y), 1), std::back_inserter(point_hits_));
+    if (!point_hits_.empty() && distance(nodes_[point_hits_[0].second].p, p) <= snap_) return point_hits_[0].second;
+    return UINT32_MAX;
+  }
+
+  void place_seeds() {
+    for (Point p : seed_points_) {
+      std::uint32_t n = existing_node_near(p);
+      if (n == UINT32_MAX) {
+        unfinished_.push_back(add_node(p));
+      } else if (std::find(unfinished_.begin(), unfinished_.end(), n) == unfinished_.end()) {
+        unfinished_.push_back(n);  // extend the existing network from this node
+      }
+    }
+  }
+
+  void add_seeds(const std::vector<Point>& seeds) {
+    if (seeds.empty()) throw_invalid_argument("seeds must hold at least one point");
+    GEOSContextHandle_t h = geos_.handle();
+    for (std::size_t i = 0; i < seeds.size(); ++i) {
+      Point p = seeds[i];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw_invalid_argument("seed has a non-finite coordinate");
+      // A seed on a node of the existing network may sit on the region's border (a hole's edge).
+      if (existing_node_near(p) != UINT32_MAX) {
+        seed_points_.push_back(p);
+        continue;
+      }
+      GeomPtr g = own(geos_, GEOSGeom_createPointFromXY_r(h, p.x, p.y), "seed point");
+      char inside = GEOSPreparedContains_r(h, region_.get(), g.get());
+      if (inside == 2) geos_.fail("seed in region");
+      if (inside == 0) {
+        throw_invalid_argument("seed " + std::to_string(i + 1) + " is outside the region",
+                               "It is at (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ").",
+                               "Seeds must lie strictly inside the region.");
+      }
+      if (obstacles_prepared_) {
+        char hit = GEOSPreparedIntersects_r(h, obstacles_prepared_.get(), g.get());
+        if (hit == 2) geos_.fail("seed in obstacle");
+        if (hit == 1) throw_invalid_argument("seed " + std::to_string(i + 1) + " lies in an obstacle");
+      }
+      bool duplicate = false;
+      for (Point q : seed_points_) duplicate = duplicate || distance(q, p) <= snap_;
+      if (duplicate) continue;  // two seeds on one spot grow one node
+      seed_points_.push_back(p);
+    }
+  }
+
+  // ---- randomness: std::mt19937_64 is specified bit for bit; the distributions are not --------
+  std::size_t uniform(std::size_t n) { return static_cast<std::size_t>(rng_() % n); }
+  double uniform01() { return static_cast<double>(rng_() >> 11) * (1.0 / 9007199254740992.0); }
+
+  // ---- output graph -------------------------------------------------------------------------
+  std::uint32_t add_node(Point p) {
+    auto id = static_cast<std::uint32_t>(nodes_.size());
+    nodes_.push_back({p, {}});
+    attempts_.push_back(0);
+    node_tree_.insert(PointValue(BPoint(p.x, p.y), id));
+    return id;
+  }
+  void add_edge(std::uint32_t a, std::uint32_t b, int level, std::int64_t example_id) {
+    auto id = static_cast<std::uint32_t>(edges_.size());
+    if (level >= 0) ++new_edges_;
+    edges_.push_back({a, b, level, example_id});
+    nodes_[a].edges.push_back(id);
+    nodes_[b].edges.push_back(id);
+    edge_tree_.insert(BoxValue(box_of(nodes_[a].p, nodes_[b].p), id));
+  }
+  // Splits edge e at a new node placed at x; returns the node.
+  std::uint32_t split_edge(std::uint32_t e, Point x) {
+    OEdge old = edges_[e];
+    edge_tree_.remove(BoxValue(box_of(nodes_[old.a].p, nodes_[old.b].p), e));
+    std::uint32_t m = add_node(x);
+    auto& b_edges = nodes_[old.b].edges;
+    b_edges.erase(std::find(b_edges.begin(), b_edges.end(), e));
+    edges_[e].b = m;
+    nodes_[m].edges.push_back(e);
+    edge_tree_.insert(BoxValue(box_of(nodes_[old.a].p, x), e));
+    add_edge(m, old.b, old.level, old.example_id);
+    return m;
+  }
+  Point other_end(std::uint32_t e, std::uint32_t v) const {
+    const OEdge& edge = edges_[e];
+    return nodes_[edge.a == v ? edge.b : edge.a].p;
+  }
+  bool has_edge(std::uint32_t v, std::uint32_t w) const {
+    for (std::uint32_t e : nodes_[v].edges) {
+      if (edges_[e].a == w || edges_[e].b == w) return true;
+    }
+    return false;
+  }
+  // The direction `angle` leaves node v at least min_angle away from v's edges.
+  bool angle_free(std::uint32_t v, double angle) const {
+    Point p = nodes_[v].p;
+    for (std::uint32_t e : nodes_[v].edges) {
+      Point q = other_end(e, v);
+      if (std::abs(wrap(std::atan2(q.y - p.y, q.x - p.x) - angle)) < min_angle_) return false;
+    }
+    return true;
+  }
+
+  // ---- legal area ---------------------------------------------------------------------------
+  bool legal(Point a, Point b) {
+    GEOSContextHandle_t h = geos_.handle();
+    GeomPtr line = line_.make(a, b);
+    char inside = GEOSPreparedContains_r(h, region_.get(), line.get());
+    if (inside == 2) geos_.fail("region check");
+    if (inside == 0) return false;
+    if (!obstacles_prepared_) return true;
+    char hit = GEOSPreparedIntersects_r(h, obstacles_prepared_.get(), line.get());
+    if (hit == 2) geos_.fail("obstacle check");
+    return hit == 0;
+  }
+
+  // ---- crossings ----------------------------------------------------------------------------
+  struct Contact {
+    bool found = false;
+    double t = 2.0;
+    std::uint32_t edge = 0;
+  };
+  // The first edge that segment p->e touches, ignoring the edges incident to the nodes in `skip`.
+  Contact first_contact(Point p, Point e, std::uint32_t skip1, std::uint32_t skip2 = UINT32_MAX,
+                        std::uint32_t skip_edge = UINT32_MAX) {
+    Contact c;
+    hits_.clear();
+    Box b = box_of(p, e);
+    bg::expand(b, box_around(p, kContact));
+    bg::expand(b, box_around(e, kContact));
+    edge_tree_.query(bgi::intersects(b), std::back_inserter(hits_));
+    for (const BoxValue& v : hits_) {
+      std::uint32_t id = v.second;
+      const OEdge& edge = edges_[id];
+      if (id == skip_edge) continue;
+      if (edge.a == skip1 || edge.b == skip1 || (skip2 != UINT32_MAX && (edge.a == skip2 || edge.b == skip2))) continue;
+      Point qa = nodes_[edge.a].p, qb = nodes_[edge.b].p;
+      if (segment_distance(p, e, qa, qb) > kContact) continue;
+      double t = contact_fraction(p, e, qa, qb);
+      if (!c.found || t < c.t || (t == c.t && id < c.edge)) c = {true, t, id};
+    }
+    return c;
+  }
+  // Any node or edge (other than v and its edges) within `d` of point q.
+  bool crowded(Point q, double d, std::uint32_t v) {
+    hits_.clear();
+    edge_tree_.query(bgi::intersects(box_around(q, d)), std::back_inserter(hits_));
+    for (const BoxValue& hv : hits_) {
+      const OEdge& edge = edges_[hv.second];
+      if (edge.a == v || edge.b == v) continue;
+      if (point_segment_distance(q, nodes_[edge.a].p, nodes_[edge.b].p) <= d) return true;
+    }
+    point_hits_.clear();
+    node_tree_.query(bgi::intersects(box_around(q, d)), std::back_inserter(point_hits_));
+    for (const PointValue& pv : point_hits_) {
+      if (pv.second != v && distance(nodes_[pv.second].p, q) <= d) return true;
+    }
+    return false;
+  }
+
+  // ---- one step at an unfinished node -------------------------------------------------------
+  void step(std::uint32_t v) {
+    ++stats_.steps;
+    const Point p = nodes_[v].p;
+    std::vector<std::pair<double, int>> incident;  // angle, level
+    for (std::uint32_t e : nodes_[v].edges) {
+      Point q = other_end(e, v);
+      incident.emplace_back(std::atan2(q.y - p.y, q.x - p.x), edges_[e].level);
+    }
+    // A seed that an edge has come to pass closely would start a T without a node: leave it.
+    if (incident.empty() && crowded(p, min_length_, v)) return;
+    std::vector<Match> candidates = node_matches(incident);
+    if (candidates.empty()) {
+      ++stats_.unmatched;
+      return;
+    }
+    const Match& best = candidates[best_match(v, candidates)];
+    const ExNode& s = ex_nodes_[best.node];
+    for (std::size_t k = 0; k < s.halves.size(); ++k) {
+      if (best.used[k]) continue;
+      if (new_edges_ >= params_.max_edges) return;
+      const ExHalf& half = s.halves[k];
+      bool dead_end = ex_nodes_[half.to].halves.size() == 1;
+      propose(v, wrap(half.angle + best.theta), half.length, dead_end, half.level, half.example_id);
+    }
+  }
+
+  // Node matching: example nodes whose incident edges cover v's under a rotation within epsilon.
+  // Up to `candidates` matches, drawn at random from the example (bounded work per step).
+  std::vector<Match> node_matches(const std::vector<std::pair<double, int>>& incident) {
+    std::vector<Match> out;
+    const std::size_t dv = incident.size();
+    if (dv >= pools_.size()) return out;
+    // A seed starts at a junction of the example when it has one: a start on a dead end or a
+    // shape point often grows one edge and stops.
+    const std::vector<std::uint32_t>& pool = dv == 0 && pools_.size() > 3 && !pools_[2].empty() ? pools_[2] : pools_[dv];
+    if (pool.empty()) return out;
+    const std::size_t want = params_.candidates;
+    const std::size_t tries = std::min<std::size_t>(64 * want, 4 * pool.size());
+    for (std::size_t attempt = 0; attempt < tries && out.size() < want; ++attempt) {
+      std::uint32_t sid = pool[uniform(pool.size())];
+      const std::vector<ExHalf>& hs = ex_nodes_[sid].halves;
+      if (dv == 0) {
+        out.push_back({sid, params_.rotation ? (uniform01() * 2.0 - 1.0) * kPi : 0.0, std::vector<char>(hs.size(), 0)});
+        continue;
+      }
+      const std::size_t alignments = params_.rotation ? hs.size() : 1;
+      for (std::size_t j = 0; j < alignments && out.size() < want; ++j) {
+        if (params_.rotation && params_.match_levels && incident[0].second >= 0 && hs[j].level != incident[0].second) {
+          continue;
+        }
+        double theta0 = params_.rotation ? wrap(incident[0].first - hs[j].angle) : 0.0;
+        std::vector<char> used(hs.size(), 0);
+        double sum = 0.0;
+        bool ok = true;
+        for (std::size_t i = 0; i < dv && ok; ++i) {
+          std::size_t best = SIZE_MAX;
+          double best_gamma = 0.0;
+          for (std::size_t k = 0; k < hs.size(); ++k) {
+            if (used[k] || (params_.match_levels && incident[i].second >= 0 && hs[k].level != incident[i].second)) {
+              continue;
+            }
+            double gamma = wrap(hs[k].angle + theta0 - incident[i].first);
+            if (best == SIZE_MAX || std::abs(gamma) < std::abs(best_gamma)) {
+              best = k;
+              best_gamma = gamma;
+            }
+          }
+          if (best == SIZE_MAX || std::abs(best_gamma) > epsilon_) {
+            ok = false;
+          } else {
+            used[best] = 1;
+            sum += best_gamma;
+          }
+        }
+        if (!ok) continue;
+        // The paper's refinement: spread the residual angles evenly (delta = -mean gamma).
+        double theta = params_.rotation ? wrap(theta0 - sum / static_cast<double>(dv)) : 0.0;
+        out.push_back({sid, theta, std::move(used)});
+      }
+    }
+    return out;
+  }
+
+  // Neighbourhood matching: the output edges within r of v, moved into each candidate's frame,
+  // against the example: E(m) = sum w_i min_j D(e_i, e_j) / sum w_i, w_i = 1 / dist(v, e_i),
+  // D the Hausdorff distance of two segments. Returns the index of the cheapest candidate.
+  std::size_t best_match(std::uint32_t v, const std::vector<Match>& candidates) {
+    if (candidates.size() == 1) return 0;
+    const Point p = nodes_[v].p;
+    hits_.clear();
+    edge_tree_.query(bgi::intersects(box_around(p, radius_)), std::back_inserter(hits_));
+    struct Near {
+      double dist;
+      std::uint32_t edge;
+    };
+    std::vector<Near> near;
+    for (const BoxValue& hv : hits_) {
+      const OEdge& e = edges_[hv.second];
+      double d = point_segment_distance(p, nodes_[e.a].p, nodes_[e.b].p);
+      if (d <= radius_) near.push_back({d, hv.second});
+    }
+    if (near.empty()) return uniform(candidates.size());
+    // The nearest 32 carry nearly all the weight; capping keeps a step's cost bounded.
+    std::sort(near.begin(), near.end(),
+              [](const Near& a, const Near& b) { return a.dist < b.dist || (a.dist == b.dist && a.edge < b.edge); });
+    if (near.size() > 32) near.resize(32);
+    const double floor = 0.1 * mean_length_;  // edges at v (dist 0) would otherwise weigh infinitely
+    std::size_t best = 0;
+    double best_cost = INFINITY;
+    std::vector<BoxValue> found;
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      const Match& m = candidates[c];
+      const Point s = ex_nodes_[m.node].p;
+      const double cs = std::cos(-m.theta), sn = std::sin(-m.theta);
+      auto to_example = [&](Point q) {
+        Point d = q - p;
+        return Point{s.x + cs * d.x - sn * d.y, s.y + sn * d.x + cs * d.y};
+      };
+      double cost = 0.0;
+      for (const Near& n : near) {
+        const OEdge& e = edges_[n.edge];
+        Point a = to_example(nodes_[e.a].p), b = to_example(nodes_[e.b].p);
+        found.clear();
+        ex_tree_.query(bgi::nearest(box_of(a, b), 4), std::back_inserter(found));
+        double dmin = INFINITY;
+        for (const BoxValue& fv : found) {
+          const auto& seg = ex_segments_[fv.second];
+          dmin = std::min(dmin, segment_hausdorff(a, b, ex_nodes_[seg.first].p, ex_nodes_[seg.second].p));
+        }
+        cost += dmin / std::max(n.dist, floor);
+        if (cost >= best_cost) break;  // the weight sum is the same for every candidate
+      }
+      if (cost < best_cost) {
+        best_cost = cost;
+        best = c;
+      }
+    }
+    return best;
+  }
+
+  // Local constraints on one proposed edge from v: legal area, no crossing (connect or clip),
+  // snapping of free ends, dead ends kept.
+  void propose(std::uint32_t v, double angle, double length, bool dead_end, int level, std::int64_t example_id) {
+    ++stats_.proposals;
+    const Point p = nodes_[v].p;
+    if (!angle_free(v, angle) || length < min_length_) {
+      ++stats_.rejected;
+      return;
+    }
+    const Point u{std::cos(angle), std::sin(angle)};
+    Point e = p + length * u;
+    bool outside = false;
+    if (!legal(p, e)) {
+      // The longest legal prefix: legality of p->p+t(e-p) only gets lost as t grows.
+      double lo = 0.0, hi = 1.0;
+      for (int i = 0; i < 30; ++i) {
+        double mid = 0.5 * (lo + hi);
+        if (legal(p, p + (mid * length) * u)) lo = mid; else hi = mid;
+      }
+      double l = lo * length;
+      if (l < min_length_) {
+        ++stats_.rejected;
+        return;
+      }
+      e = p + l * u;
+      length = l;
+      outside = true;
+      ++stats_.clipped;
+    }
+    Contact c = first_contact(p, e, v);
+    if (c.found) {
+      double at = c.t * length;
+      // A branch stopped in its first half would leave a stub and a sliver block, which the
+      // example does not have: only one that nearly reaches across joins the edge it meets. A
+      // street's continuation (v has only the edge it came by) joins it anyway: dropping it
+      // would end the street in a dead end the example does not have.
+      bool continuation = nodes_[v].edges.size() == 1;
+      if (dead_end || (at < 0.5 * length && !continuation)) {
+        // Keep the dead end: stop a snap distance short of the crossed edge.
+        double l = at - snap_;
+        if (!dead_end || l < min_length_) {
+          ++stats_.rejected;
+          return;
+        }
+        finish_free_end(v, p + l * u, true, level, example_id);
+        return;
+      }
+      connect_at_contact(v, p + at * u, c.edge, level, example_id);
+      return;
+    }
+    if (dead_end || outside) {
+      finish_free_end(v, e, true, level, example_id);
+      return;
+    }
+    // A free end near the network snaps to it: the nearest node, else the nearest edge.
+    point_hits_.clear();
+    node_tree_.query(bgi::nearest(BPoint(e.x, e.y), 3), std::back_inserter(point_hits_));
+    std::uint32_t w = UINT32_MAX;
+    double wd = INFINITY;
+    for (const PointValue& pv : point_hits_) {
+      double d = distance(nodes_[pv.second].p, e);
+      if (pv.second != v && d <= snap_ && (d < wd || (d == wd && pv.second < w))) {
+        w = pv.second;
+        wd = d;
+      }
+    }
+    if (w != UINT32_MAX) {
+      if (try_connect_node(v, w, level, example_id)) return;
+      ++stats_.rejected;
+      return;
+    }
+    hits_.clear();
+    edge_tree_.query(bgi::intersects(box_around(e, snap_)), std::back_inserter(hits_));
+    std::uint32_t target = UINT32_MAX;
+    double td = INFINITY;
+    for (const BoxValue& hv : hits_) {
+      const OEdge& edge = edges_[hv.second];
+      if (edge.a == v || edge.b == v) continue;
+      double d = point_segment_distance(e, nodes_[edge.a].p, nodes_[edge.b].p);
+      if (d <= snap_ && (d < td || (d == td && hv.second < target))) {
+        target = hv.second;
+        td = d;
+      }
+    }
+    if (target != UINT32_MAX) {
+      const OEdge& edge = edges_[target];
+      Point a = nodes_[edge.a].p, b = nodes_[edge.b].p;
+      Point ab = b - a;
+      double t = std::clamp(dot(e - a, ab) / dot(ab, ab), 0.0, 1.0);
+      Point x = a + t * ab;
+      if (distance(x, p) >= min_length_ && first_contact(p, x, v, UINT32_MAX, target).found == false &&
+          legal(p, x)) {
+        connect_at_contact(v, x, target, level, example_id);
+        return;
+      }
+      ++stats_.rejected;
+      return;
+    }
+    finish_free_end(v, e, outside || dead_end, level, example_id);
+  }
+
+  // A street end that found nothing to copy goes straight on to the edge ahead if one is within
+  // 1.5 mean segment lengths, rather than stopping in a dead end the example did not ask for.
+  void close_front(std::uint32_t v) {
+    if (nodes_[v].edges.size() != 1 || new_edges_ + 1 > params_.max_edges) return;
+    const std::uint32_t e = nodes_[v].edges[0];
+    const Point p = nodes_[v].p;
+    const Point u = unit(p - other_end(e, v));
+    const double reach = 1.5 * mean_length_;
+    Point end = p + reach * u;
+    if (!legal(p, end)) return;
+    Contact c = first_contact(p, end, v);
+    if (!c.found || c.t * reach < min_length_) return;
+    const OEdge& hit = edges_[c.edge];
+    Point x = p + (c.t * reach) * u;
+    std::uint32_t near = distance(nodes_[hit.a].p, x) <= distance(nodes_[hit.b].p, x) ? hit.a : hit.b;
+    if (distance(nodes_[near].p, x) <= snap_) {
+      try_connect_node(v, near, std::max(0, edges_[e].level), edges_[e].example_id);
+      return;
+    }
+    std::uint32_t m = split_edge(c.edge, x);
+    add_edge(v, m, std::max(0, edges_[e].level), edges_[e].example_id);
+    ++stats_.accepted;
+    ++stats_.snapped;
+  }
+
+  // A new end node at q; it stays unfinished unless `finished`.
+  void finish_free_end(std::uint32_t v, Point q, bool finished, int level, std::int64_t example_id) {
+    if (crowded(q, min_length_, v)) {  // a free end must not graze the network
+      ++stats_.rejected;
+      return;
+    }
+    std::uint32_t n = add_node(q);
+    add_edge(v, n, level, example_id);
+    ++stats_.accepted;
+    if (!finished) unfinished_.push_back(n);
+  }
+
+  bool try_connect_node(std::uint32_t v, std::uint32_t w, int level, std::int64_t example_id) {
+    Point p = nodes_[v].p, q = nodes_[w].p;
+    if (has_edge(v, w) || distance(p, q) < min_length_ || nodes_[w].edges.size() >= max_degree_) return false;
+    if (nodes_[w].edges.size() >= 2 && !example_allows_one_more(nodes_[w].edges.size())) return false;
+    double angle = std::atan2(q.y - p.y, q.x - p.x);
+    if (!angle_free(v, angle) || !angle_free(w, wrap(angle + kPi))) return false;
+    if (first_contact(p, q, v, w).found || !legal(p, q)) return false;
+    add_edge(v, w, level, example_id);
+    ++stats_.accepted;
+    ++stats_.snapped;
+    return true;
+  }
+
+  // The proposal from v meets edge `edge` at x: end on one of its nodes if near, else split it.
+  void connect_at_contact(std::uint32_t v, Point x, std::uint32_t edge, int level, std::int64_t example_id) {
+    const OEdge& e = edges_[edge];
+    std::uint32_t near = distance(nodes_[e.a].p, x) <= distance(nodes_[e.b].p, x) ? e.a : e.b;
+    if (distance(nodes_[near].p, x) <= snap_) {
+      if (!try_connect_node(v, near, level, example_id)) ++stats_.rejected;
+      return;
+    }
+    Point p = nodes_[v].p;
+    double angle = std::atan2(x.y - p.y, x.x - p.x);
+    Point a = nodes_[e.a].p;
+    double along = std::atan2(a.y - x.y, a.x - x.x);
+    double back = wrap(angle + kPi);
+    if (std::abs(wrap(back - along)) < min_angle_ || std::abs(wrap(back - along - kPi)) < min_angle_ ||
+        new_edges_ + 1 > params_.max_edges || !example_allows_one_more(2)) {
+      ++stats_.rejected;
+      return;
+    }
+    std::uint32_t m = split_edge(edge, x);
+    add_edge(v, m, level, example_id);
+    ++stats_.accepted;
+    ++stats_.snapped;
+    // The split node stays finished, unlike the paper's new nodes: letting streets go on across
+    // (4-way junctions) measured denser and further from every example (bench/growth).
+  }
+
+  GeosContext& geos_;
+  const GrowParams& params_;
+  std::mt19937_64 rng_;
+  GeosLine line_;
+  double mean_length_ = 0.0, radius_ = 0.0, snap_ = 0.0, min_length_ = 0.0, epsilon_ = 0.0, min_angle_ = 0.0;
+  std::vector<std::string> level_names_;
+  std::vector<ExNode> ex_nodes_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> ex_segments_;
+  std::vector<std::vector<std::uint32_t>> pools_;
+  std::size_t max_degree_ = 4;
+  std::vector<double> more_;
+  // Joining a node (or splitting an edge, d = 2) adds an edge there: done as often as the
+  // example's nodes of that degree have one more, so the junction mix follows the example.
+  bool example_allows_one_more(std::size_t d) {
+    double p = d < more_.size() ? more_[d] : 0.0;
+    return uniform01() < p;
+  }
+  BoxTree ex_tree_;
+  PreparedPtr region_;
+  GeomPtr obstacles_{nullptr, GeomDeleter{}};
+  PreparedPtr obstacles_prepared_;
+  std::vector<ONode> nodes_;
+  std::vector<OEdge> edges_;
+  BoxTree edge_tree_;
+  PointTree node_tree_;
+  std::vector<Point> seed_points_;
+  const std::vector<Polyline>* existing_ = nullptr;
+  std::size_t new_edges_ = 0;
+  std::vector<std::uint32_t> unfinished_;
+  std::vector<std::uint8_t> attempts_;
+  static constexpr std::uint8_t kAttempts = 4;
+  std::vector<BoxValue> hits_;
+  std::vector<PointValue> point_hits_;
+  GrowStats stats_;
+};
+
+}  // namespace
+
+GrowResult grow_example(GeosContext& geos, const GrowInput& input, const GrowParams& params) {
+  Grower grower(geos, input, params);
+  return grower.run();
+}
+
+}  // namespace streetgen::core

@@ -1,0 +1,218 @@
+// Example-based growth: example edges in as parallel arrays (EWKB, road class, id), the region and
+// obstacles as EWKB, seeds as coordinates, parameters as plain values (sql/80-growth.sql reads and
+// checks the jsonb); grown edges out as rows ready for a model's axis table.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/ewkb.hpp"
+#include "core/geometry_checks.hpp"
+#include "core/growth/grow_example.hpp"
+#include "core/interrupts.hpp"
+#include "pg/array_args.hpp"
+#include "pg/boundary.hpp"
+#include "pg/owned_result.hpp"
+
+extern "C" {
+#include "catalog/pg_type.h"
+#include "utils/array.h"
+#include "utils/builtins.h"
+}
+
+using namespace streetgen;
+
+namespace {
+
+struct Blob {
+  const std::uint8_t* data;
+  std::size_t size;
+};
+
+Blob blob_of(Datum d) {
+  bytea* b = DatumGetByteaPP(d);
+  return {reinterpret_cast<const std::uint8_t*>(VARDATA_ANY(b)), VARSIZE_ANY_EXHDR(b)};
+}
+
+struct OutRow {
+  std::int64_t id, from_node, to_node;
+  std::string road_class, origin;
+  core::Bytes geom;
+};
+
+void append_lines(core::GeosContext& geos, const GEOSGeometry* g, const std::string& name, std::vector<core::Polyline>& out) {
+  GEOSContextHandle_t h = geos.handle();
+  int type = GEOSGeomTypeId_r(h, g);
+  if (type == GEOS_MULTILINESTRING) {
+    int n = GEOSGetNumGeometries_r(h, g);
+    for (int i = 0; i < n; ++i) append_lines(geos, GEOSGetGeometryN_r(h, g, i), name, out);
+    return;
+  }
+  if (type != GEOS_LINESTRING) {
+    core::throw_invalid_argument("example edges must be LineStrings or MultiLineStrings",
+                                 "The " + name + " is a " + core::geometry_type_name(geos, g) + ".");
+  }
+  if (GEOSisEmpty_r(h, g) != 0) return;
+  core::require_finite_coordinates(geos, g, name.c_str());
+  const GEOSCoordSequence* seq = GEOSGeom_getCoordSeq_r(h, g);
+  unsigned int n = 0;
+  GEOSCoordSeq_getSize_r(h, seq, &n);
+  core::Polyline line(n);
+  for (unsigned int i = 0; i < n; ++i) GEOSCoordSeq_getXY_r(h, seq, i, &line[i].x, &line[i].y);
+  out.push_back(std::move(line));
+}
+
+constexpr int kArgs = 16;
+constexpr int kColumns = 6;
+
+}  // namespace
+
+extern "C" {
+
+PG_FUNCTION_INFO_V1(_streetgen_grow_example);
+// (example_geoms bytea[], example_classes text[], example_ids int8[], region bytea,
+//  seeds_x float8[], seeds_y float8[], obstacles bytea[], epsilon float8, r float8,
+//  rotation bool, seed int8, max_edges int4, match_levels bool, snap float8, min_angle float8,
+//  candidates int4, existing bytea[]) -> SETOF (id, from_node, to_node, road_class, origin, geom bytea)
+Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
+  // Phase 1.
+  if (PG_NARGS() != kArgs + 1) {
+    ereport(ERROR, (errcode(ERRCODE_OBJECT_NOT_IN_PREREQUISITE_STATE),
+                    errmsg("_streetgen_grow_example expects %d arguments, got %d", kArgs + 1, PG_NARGS()),
+                    errhint("Run ALTER EXTENSION streetgen UPDATE, or re-create the extension.")));
+  }
+  static const char* const names[] = {"example", "example road classes", "example ids", "region", "seeds x",
+                                      "seeds y", "obstacles", "epsilon", "r", "rotation", "seed", "max_edges",
+                                      "match_levels", "snap", "min_angle", "candidates", "existing"};
+  for (int a = 3; a < kArgs; ++a) {
+    if (a != 6 && PG_ARGISNULL(a)) pg::raise_null_argument(names[a]);
+  }
+  pg::ArrayArg existing_arg = pg::array_arg(fcinfo, 16, BYTEAOID, "existing");
+  auto* existing = static_cast<Blob*>(palloc0(sizeof(Blob) * (existing_arg.count > 0 ? existing_arg.count : 1)));
+  int existing_count = 0;
+  for (int i = 0; i < existing_arg.count; ++i) {
+    if (!existing_arg.nulls[i]) existing[existing_count++] = blob_of(existing_arg.values[i]);
+  }
+  pg::ArrayArg geoms = pg::array_arg(fcinfo, 0, BYTEAOID, "example");
+  pg::ArrayArg classes = pg::array_arg(fcinfo, 1, TEXTOID, "example road classes");
+  pg::ArrayArg ids = pg::array_arg(fcinfo, 2, INT8OID, "example ids");
+  pg::ArrayArg xs = pg::array_arg(fcinfo, 4, FLOAT8OID, "seeds x");
+  pg::ArrayArg ys = pg::array_arg(fcinfo, 5, FLOAT8OID, "seeds y");
+  pg::ArrayArg obstacle_arg = pg::array_arg(fcinfo, 6, BYTEAOID, "obstacles");
+  if (classes.count != 0) pg::require_same_length(geoms, "example", classes, "example road classes");
+  if (ids.count != 0) pg::require_same_length(geoms, "example", ids, "example ids");
+  pg::require_same_length(xs, "seeds x", ys, "seeds y");
+
+  struct ExampleArg {
+    Blob geom;
+    const char* road_class;
+    std::int64_t id;
+  };
+  auto* example = static_cast<ExampleArg*>(palloc0(sizeof(ExampleArg) * (geoms.count > 0 ? geoms.count : 1)));
+  int example_count = 0;
+  for (int i = 0; i < geoms.count; ++i) {
+    if (geoms.nulls[i]) continue;  // like an aggregate, NULL edges are skipped
+    ExampleArg& e = example[example_count++];
+    e.geom = blob_of(geoms.values[i]);
+    e.road_class = classes.count != 0 && !classes.nulls[i] ? TextDatumGetCString(classes.values[i]) : "unclassified";
+    e.id = ids.count != 0 && !ids.nulls[i] ? DatumGetInt64(ids.values[i]) : i + 1;
+  }
+  auto* seed_xy = static_cast<double*>(palloc0(sizeof(double) * 2 * (xs.count > 0 ? xs.count : 1)));
+  for (int i = 0; i < xs.count; ++i) {
+    if (xs.nulls[i] || ys.nulls[i]) pg::raise_null_argument("a seed coordinate");
+    seed_xy[2 * i] = DatumGetFloat8(xs.values[i]);
+    seed_xy[2 * i + 1] = DatumGetFloat8(ys.values[i]);
+  }
+  auto* obstacles = static_cast<Blob*>(palloc0(sizeof(Blob) * (obstacle_arg.count > 0 ? obstacle_arg.count : 1)));
+  int obstacle_count = 0;
+  for (int i = 0; i < obstacle_arg.count; ++i) {
+    if (!obstacle_arg.nulls[i]) obstacles[obstacle_count++] = blob_of(obstacle_arg.values[i]);
+  }
+  Blob region = blob_of(PG_GETARG_DATUM(3));
+  int seed_count = xs.count;
+  core::GrowParams params;
+  params.epsilon = PG_GETARG_FLOAT8(7);
+  params.radius = PG_GETARG_FLOAT8(8);
+  params.rotation = PG_GETARG_BOOL(9);
+  params.seed = static_cast<std::uint64_t>(PG_GETARG_INT64(10));
+  int max_edges = PG_GETARG_INT32(11);
+  params.match_levels = PG_GETARG_BOOL(12);
+  params.snap = PG_GETARG_FLOAT8(13);
+  params.min_angle = PG_GETARG_FLOAT8(14);
+  int candidates = PG_GETARG_INT32(15);
+  if (max_edges <= 0) {
+    ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("max_edges must be > 0"),
+                    errdetail("It is %d.", max_edges)));
+  }
+  if (candidates <= 0) {
+    ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("candidates must be > 0"),
+                    errdetail("It is %d.", candidates)));
+  }
+  params.max_edges = static_cast<std::size_t>(max_edges);
+  params.candidates = static_cast<std::size_t>(candidates);
+  InitMaterializedSRF(fcinfo, 0);
+  auto rows = pg::OwnedResult<std::vector<OutRow>>::create();
+
+  // Phase 2.
+  pg::CallError error;
+  pg::guarded_call(error, [&] {
+    core::GeosContext& geos = pg::backend_geos();
+    core::GrowInput input;
+    input.example.reserve(example_count);
+    core::InterruptPoller poller(1024);
+    for (int i = 0; i < example_count; ++i) {
+      poller.tick();
+      std::string name = "example edge " + std::to_string(i + 1);
+      core::SridGeometry g = core::read_ewkb(geos, example[i].geom.data, example[i].geom.size, name.c_str());
+      std::vector<core::Polyline> lines;
+      append_lines(geos, g.geom.get(), name, lines);
+      for (core::Polyline& line : lines) {
+        input.example.push_back({std::move(line), example[i].road_class, example[i].id});
+      }
+    }
+    core::SridGeometry reg = core::read_ewkb(geos, region.data, region.size, "region");
+    input.region = reg.geom.get();
+    std::vector<core::SridGeometry> obstacle_geoms;
+    for (int i = 0; i < obstacle_count; ++i) {
+      std::string name = "obstacle " + std::to_string(i + 1);
+      obstacle_geoms.push_back(core::read_ewkb(geos, obstacles[i].data, obstacles[i].size, name.c_str()));
+      core::require_finite_coordinates(geos, obstacle_geoms.back().geom.get(), name.c_str());
+      input.obstacles.push_back(obstacle_geoms.back().geom.get());
+    }
+    for (int i = 0; i < existing_count; ++i) {
+      poller.tick();
+      std::string name = "existing edge " + std::to_string(i + 1);
+      core::SridGeometry g = core::read_ewkb(geos, existing[i].data, existing[i].size, name.c_str());
+      append_lines(geos, g.geom.get(), name, input.existing);
+    }
+    for (int i = 0; i < seed_count; ++i) input.seeds.push_back({seed_xy[2 * i], seed_xy[2 * i + 1]});
+    core::GrowResult result = core::grow_example(geos, input, params);
+    std::vector<OutRow> out;
+    out.reserve(result.edges.size());
+    for (const core::GrownEdge& e : result.edges) {
+      double xy[4] = {e.a.x, e.a.y, e.b.x, e.b.y};
+      out.push_back({e.id, e.from_node, e.to_node, e.road_class, "grow_example:" + std::to_string(e.example_id),
+                     core::write_ewkb_coordinates(core::WkbType::line_string, xy, 2, reg.srid)});
+    }
+    rows.emplace(std::move(out));
+  });
+  pg::raise_if_failed(error);
+
+  // Phase 3.
+  auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
+  for (const OutRow& row : *rows) {
+    Datum v[kColumns];
+    bool null[kColumns] = {false, false, false, false, false, false};
+    v[0] = Int64GetDatum(row.id);
+    v[1] = Int64GetDatum(row.from_node);
+    v[2] = Int64GetDatum(row.to_node);
+    v[3] = CStringGetTextDatum(row.road_class.c_str());
+    v[4] = CStringGetTextDatum(row.origin.c_str());
+    v[5] = PointerGetDatum(pg::to_bytea(row.geom));
+    tuplestore_putvalues(rsinfo->setResult, rsinfo->setDesc, v, null);
+  }
+  rows.release();
+  PG_RETURN_NULL();
+}
+
+}  // extern "C"

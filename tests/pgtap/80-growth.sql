@@ -1,0 +1,237 @@
+-- Example-based growth (grow_example) on real example patches of ../shared/data/examples/patches
+-- (Nishida et al.'s crops of OpenStreetMap, © OpenStreetMap contributors, ODbL 1.0): planarity,
+-- region and obstacles, determinism, dead ends, levels, insertion into a model, and every bad
+-- input of the issue by SQLSTATE. run-pgtap.sh passes the data folder as streetgen_test.shared_data.
+BEGIN;
+SELECT * FROM no_plan();
+
+CREATE TEMP TABLE patch AS
+SELECT n AS name, row_number() OVER (PARTITION BY n) AS id, f -> 'properties' ->> 'type' AS road_class,
+       ST_SetSRID(ST_GeomFromGeoJSON(f -> 'geometry'), 0) AS geom
+  FROM unnest(ARRAY['tokyo', 'canberra_south_large', 'new-york']) AS n,
+       jsonb_array_elements(pg_read_file(current_setting('streetgen_test.shared_data') || '/examples/patches/' || n
+                                         || '.geojson')::jsonb -> 'features') AS f;
+SELECT ok((SELECT count(DISTINCT name) = 3 AND count(*) > 2000 FROM patch), 'three real example patches loaded');
+
+-- Regions the size of each example's extent (patch coordinates are local metres, SRID 0); a lake
+-- in the middle of the canberra region.
+CREATE TEMP TABLE region AS
+SELECT name, ST_SetSRID(ST_Expand(ST_Extent(geom)::geometry, 0), 0) AS geom,
+       ST_SetSRID(ST_Centroid(ST_Extent(geom)::geometry), 0) AS centre
+  FROM patch GROUP BY name;
+CREATE TEMP TABLE lake AS
+SELECT ST_Buffer(ST_Translate(centre, 300, 200), 250) AS geom FROM region WHERE name = 'canberra_south_large';
+
+CREATE TEMP TABLE grown AS
+SELECT 'tokyo'::text AS name, g.* FROM region r, streetgen.grow_example(
+  $$SELECT id, road_class, geom FROM patch WHERE name = 'tokyo'$$, r.geom, r.centre, NULL,
+  '{"seed": 11, "rotation": false, "max_edges": 1500}') AS g WHERE r.name = 'tokyo'
+UNION ALL
+SELECT 'canberra', g.* FROM region r, lake l, streetgen.grow_example(
+  $$SELECT id, road_class, geom FROM patch WHERE name = 'canberra_south_large'$$, r.geom,
+  ST_Collect(ST_Translate(r.centre, -600, -300), ST_Translate(r.centre, 900, 900)), l.geom,
+  '{"seed": 11, "max_edges": 1500}') AS g WHERE r.name = 'canberra_south_large'
+UNION ALL
+SELECT 'new-york', g.* FROM region r, streetgen.grow_example(
+  $$SELECT id, road_class, geom FROM patch WHERE name = 'new-york'$$, r.geom, r.centre, NULL,
+  '{"seed": 11, "max_edges": 1500, "epsilon": 20}') AS g WHERE r.name = 'new-york';
+CREATE INDEX ON grown USING gist (geom);
+ANALYZE grown;
+
+SELECT ok((SELECT bool_and(n >= 500) FROM (SELECT count(*) AS n FROM grown GROUP BY name) c)
+          AND (SELECT count(DISTINCT name) FROM grown) = 3, 'each example grows at least 500 edges');
+SELECT is((SELECT max(n) FROM (SELECT count(*) AS n FROM grown GROUP BY name) c), 1500::bigint,
+          'max_edges bounds the output');
+SELECT is((SELECT count(*) FROM grown WHERE geom IS NULL OR ST_GeometryType(geom) <> 'ST_LineString'
+                                        OR ST_Length(geom) = 0 OR ST_SRID(geom) <> 0), 0::bigint,
+          'every edge is a non-degenerate LineString in the region''s SRID');
+
+-- Planarity: two edges meet only at a node they share, and then only at that node.
+SELECT is((SELECT count(*) FROM grown a JOIN grown b ON a.name = b.name AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
+          0::bigint, 'planarity: no two edges cross or touch without a shared node');
+SELECT is((SELECT count(*) FROM grown a JOIN grown b ON a.name = b.name AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE ST_Dimension(ST_Intersection(a.geom, b.geom)) > 0 OR ST_NPoints(ST_Intersection(a.geom, b.geom)) > 1),
+          0::bigint, 'planarity: edges sharing a node do not overlap');
+SELECT is((SELECT count(*) FROM grown g JOIN region r ON r.name = CASE g.name WHEN 'canberra' THEN 'canberra_south_large'
+                                                                               ELSE g.name END
+            WHERE NOT ST_CoveredBy(g.geom, r.geom)), 0::bigint, 'no edge leaves the region');
+SELECT is((SELECT count(*) FROM grown g, lake l WHERE g.name = 'canberra' AND ST_Intersects(g.geom, l.geom)), 0::bigint,
+          'no edge enters the obstacle');
+SELECT ok((SELECT count(*) FROM grown g, lake l WHERE g.name = 'canberra' AND ST_DWithin(g.geom, l.geom, 60)) > 0,
+          'the obstacle was in the way (edges reach up to it)');
+-- Nodes: one position per id, so from_node / to_node are a graph's node ids.
+SELECT is((SELECT count(*) FROM (
+             SELECT name, node FROM (SELECT name, from_node AS node, ST_StartPoint(geom) AS p FROM grown
+                                     UNION ALL SELECT name, to_node, ST_EndPoint(geom) FROM grown) e
+              GROUP BY name, node HAVING count(DISTINCT ST_AsBinary(p)) > 1) bad), 0::bigint,
+          'each node id has one position');
+SELECT ok((SELECT count(*) FROM (SELECT name, node FROM (SELECT name, from_node AS node FROM grown
+                                                         UNION ALL SELECT name, to_node FROM grown) e
+                                  GROUP BY name, node HAVING count(*) = 1) dead) > 0,
+          'dead ends are kept (the examples have them)');
+SELECT ok((SELECT count(*) FROM (SELECT name, node FROM (SELECT name, from_node AS node FROM grown
+                                                         UNION ALL SELECT name, to_node FROM grown) e
+                                  GROUP BY name, node HAVING count(*) >= 3) j) > 300,
+          'junctions are made (snapping and splitting connect the network)');
+SELECT is((SELECT count(*) FROM grown g WHERE g.road_class NOT IN (SELECT DISTINCT road_class FROM patch)), 0::bigint,
+          'road classes come from the example');
+SELECT is((SELECT count(*) FROM grown g
+            WHERE NOT EXISTS (SELECT 1 FROM patch p
+                               WHERE p.name = CASE g.name WHEN 'canberra' THEN 'canberra_south_large' ELSE g.name END
+                                 AND 'grow_example:' || p.id = g.origin)), 0::bigint,
+          'origin names the example edge each grown edge was copied from');
+-- Determinism.
+CREATE TEMP VIEW ny AS SELECT geom, road_class FROM patch WHERE name = 'new-york';
+SELECT results_eq(
+  $$SELECT id, from_node, to_node, road_class, origin, ST_AsEWKB(geom) FROM streetgen.grow_example(
+      'SELECT geom, road_class FROM ny', (SELECT geom FROM region WHERE name = 'new-york'),
+      (SELECT centre FROM region WHERE name = 'new-york'), NULL, '{"seed": 5, "max_edges": 400}') ORDER BY id$$,
+  $$SELECT id, from_node, to_node, road_class, origin, ST_AsEWKB(geom) FROM streetgen.grow_example(
+      'SELECT geom, road_class FROM ny', (SELECT geom FROM region WHERE name = 'new-york'),
+      (SELECT centre FROM region WHERE name = 'new-york'), NULL, '{"seed": 5, "max_edges": 400}') ORDER BY id$$,
+  'the same seed gives the same edges');
+SELECT ok((SELECT count(*) FROM (
+             (SELECT ST_AsEWKB(geom) FROM streetgen.grow_example('SELECT geom, road_class FROM ny',
+                (SELECT geom FROM region WHERE name = 'new-york'), (SELECT centre FROM region WHERE name = 'new-york'),
+                NULL, '{"seed": 5, "max_edges": 400}'))
+             EXCEPT
+             (SELECT ST_AsEWKB(geom) FROM streetgen.grow_example('SELECT geom, road_class FROM ny',
+                (SELECT geom FROM region WHERE name = 'new-york'), (SELECT centre FROM region WHERE name = 'new-york'),
+                NULL, '{"seed": 6, "max_edges": 400}'))) d) > 100,
+          'different seeds give different edges');
+
+-- Output goes into a model's axis table in one statement, and the surfaces follow.
+SELECT streetgen.create_model('grown_tokyo', 0);
+INSERT INTO grown_tokyo.axis (geom, roadway_width, speed_kmh, road_class, source)
+SELECT geom, CASE road_class WHEN 'avenue' THEN 12 ELSE 6 END, CASE road_class WHEN 'avenue' THEN 50 ELSE 30 END,
+       road_class, origin
+  FROM streetgen.grow_example($$SELECT id, road_class, geom FROM patch WHERE name = 'tokyo'$$,
+                              'POLYGON((2500 0, 3100 0, 3100 600, 2500 600, 2500 0))', 'POINT(2800 300)',
+                              NULL, '{"seed": 2, "rotation": false, "max_edges": 200}');
+SELECT is((SELECT count(*) FROM grown_tokyo.axis), 200::bigint, 'grown edges inserted into a model''s axis table');
+SELECT ok((SELECT count(*) FROM grown_tokyo.section) >= 200, 'and the model''s sections follow');
+
+-- Extending an existing network (the paper's Figure 3): tokyo with a 500 m hole cut out; growth
+-- starts from the nodes on the hole's border and must respect and join the streets around it.
+CREATE TEMP TABLE hole AS SELECT ST_MakeEnvelope(2800, 200, 3300, 700, 0) AS geom;
+CREATE TEMP TABLE around AS
+SELECT p.id, (ST_Dump(ST_Difference(p.geom, h.geom))).geom AS geom FROM patch p, hole h WHERE p.name = 'tokyo';
+CREATE TEMP TABLE border_nodes AS
+SELECT DISTINCT ST_AsEWKB(q.pt) AS key, q.pt
+  FROM around a, hole h, LATERAL (VALUES (ST_StartPoint(a.geom)), (ST_EndPoint(a.geom))) AS q(pt)
+ WHERE ST_DWithin(q.pt, ST_Boundary(h.geom), 1e-6);
+SELECT ok((SELECT count(*) FROM border_nodes) >= 20, 'the hole cuts at least 20 streets');
+CREATE TEMP TABLE filled AS
+SELECT g.* FROM hole h, streetgen.grow_example(
+  $$SELECT id, road_class, geom FROM patch WHERE name = 'tokyo'$$, h.geom, (SELECT ST_Collect(pt) FROM border_nodes),
+  NULL, '{"seed": 3, "rotation": false}', 'SELECT geom FROM around') AS g;
+SELECT ok((SELECT count(*) FROM filled) >= 100, 'the hole fills (at least 100 edges)');
+SELECT is((SELECT count(*) FROM filled f, hole h WHERE NOT ST_CoveredBy(f.geom, h.geom)), 0::bigint,
+          'the new edges stay in the hole');
+SELECT is((SELECT count(*) FROM filled f JOIN around a ON ST_Intersects(f.geom, a.geom)
+            WHERE NOT ST_Equals(ST_Intersection(f.geom, a.geom), ST_StartPoint(f.geom))
+              AND NOT ST_Equals(ST_Intersection(f.geom, a.geom), ST_EndPoint(f.geom))), 0::bigint,
+          'new edges meet the existing streets only at their own ends (no crossing)');
+SELECT ok((SELECT count(DISTINCT b.key) FROM border_nodes b JOIN filled f
+             ON ST_Equals(ST_StartPoint(f.geom), b.pt) OR ST_Equals(ST_EndPoint(f.geom), b.pt)) >= 10,
+          'the streets around the hole are continued into it (at least 10 border nodes joined)');
+SELECT is((SELECT count(*) FROM filled a JOIN filled b ON a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
+          0::bigint, 'the filled hole is planar');
+
+-- Bad input, by SQLSTATE.
+CREATE TEMP VIEW tokyo AS SELECT geom, road_class FROM patch WHERE name = 'tokyo';
+CREATE FUNCTION pg_temp.grow(example text, region text DEFAULT 'POLYGON((2300 -400, 3700 -400, 3700 1390, 2300 1390, 2300 -400))',
+                             seeds text DEFAULT 'POINT(3000 500)', params jsonb DEFAULT '{}', obstacles text DEFAULT NULL)
+  RETURNS bigint LANGUAGE sql AS $$
+  SELECT count(*) FROM streetgen.grow_example(example, region::geometry, seeds::geometry, obstacles::geometry, params)
+$$;
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo WHERE false')$$, '22023', 'example has no edges',
+                 'empty example');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT ''LINESTRING(5 5, 5 5)''::geometry AS geom')$$, '22023',
+                 'example has fewer than two distinct nodes', 'example with one node');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT ''POINT(5 5)''::geometry AS geom')$$, '22023', NULL,
+                 'example of points');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT 1 AS x')$$, '22023',
+                 'the example query must return a geometry column named geom', 'example query without geom');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', 'POLYGON EMPTY')$$, '22023', 'region is empty',
+                 'empty region');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', 'POLYGON((2300 -400, 3700 1390, 3700 -400, 2300 1390, 2300 -400))')$$,
+                 '22023', 'region is not a valid polygon', 'invalid (self-intersecting) region');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', 'LINESTRING(0 0, 10 10)')$$, '22023',
+                 'region must be a Polygon or MultiPolygon', 'region that is not a polygon');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', 'SRID=4326;POLYGON((2 48, 3 48, 3 49, 2 48))', 'SRID=4326;POINT(2.7 48.3)')$$,
+                 '22023', NULL, 'geographic region');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', seeds => 'POINT(0 0)')$$, '22023',
+                 'seed 1 is outside the region', 'seed outside the region');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', seeds => 'MULTIPOINT(3000 500, 9000 9000)')$$, '22023',
+                 'seed 2 is outside the region', 'second seed outside the region');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', seeds => 'MULTIPOINT EMPTY')$$, '22023',
+                 'seeds must hold at least one point', 'no seed');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', seeds => 'LINESTRING(3000 500, 3010 500)')$$, '22023',
+                 'seeds must be points', 'seeds that are not points');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', seeds => 'SRID=3857;POINT(3000 500)')$$, '22023',
+                 'seeds must have the SRID of the region', 'seeds in another SRID');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', obstacles => 'POLYGON((2900 400, 3100 400, 3100 600, 2900 600, 2900 400))')$$,
+                 '22023', 'seed 1 lies in an obstacle', 'seed inside an obstacle');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', obstacles => 'LINESTRING(0 0, 1 1)')$$, '22023',
+                 'obstacles must be polygons', 'obstacle that is not a polygon');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"epsilon": 0}')$$, '22023',
+                 'epsilon must be a number > 0 (degrees)', 'epsilon = 0');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"epsilon": -10}')$$, '22023',
+                 'epsilon must be a number > 0 (degrees)', 'epsilon < 0');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"epsilon": 200}')$$, '22023',
+                 'epsilon must be below 180 degrees', 'epsilon >= 180');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"r": 0}')$$, '22023',
+                 'r must be a number > 0', 'r = 0');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"r": -50}')$$, '22023',
+                 'r must be a number > 0', 'r < 0');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"snap": 0}')$$, '22023',
+                 'snap must be a number > 0', 'snap = 0');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"max_edges": 0}')$$, '22023',
+                 'max_edges must be > 0', 'max_edges = 0');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"epslion": 30}')$$, '22023',
+                 'unknown params key: epslion', 'unknown params key rejected, not ignored');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '[1, 2]')$$, '22023',
+                 'params must be a json object', 'params that is not an object');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"seed": "abc"}')$$, '22P02', NULL,
+                 'a params value of the wrong type');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo') FROM streetgen.grow_example('SELECT geom FROM tokyo',
+                   'POLYGON((2300 -400, 3700 -400, 3700 1390, 2300 1390, 2300 -400))', 'POINT(3000 500)', NULL, '{}',
+                   'SELECT ''SRID=3857;LINESTRING(0 0, 1 1)''::geometry AS geom')$$, '22023',
+                 'the existing network must have the SRID of the region', 'existing network in another SRID');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_example(NULL, 'POLYGON((0 0, 1 0, 1 1, 0 0))', 'POINT(0.5 0.2)')$$,
+                 '22004', 'example must not be null', 'NULL example');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_example('SELECT geom FROM tokyo', NULL, 'POINT(0.5 0.2)')$$,
+                 '22004', 'region must not be null', 'NULL region');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_example('SELECT geom FROM tokyo', 'POLYGON((0 0, 1 0, 1 1, 0 0))', NULL)$$,
+                 '22004', 'seeds must not be null', 'NULL seeds');
+
+-- A long growth is cancelled by statement_timeout with 57014 (inside the C++ loop, which polls
+-- once per step), and the session grows again.
+CREATE FUNCTION pg_temp.sqlstate_and_seconds(query text, OUT state text, OUT seconds double precision)
+  LANGUAGE plpgsql AS $f$
+DECLARE
+  started timestamptz := clock_timestamp();
+BEGIN
+  EXECUTE query;
+  state := '00000';
+  seconds := extract(epoch FROM clock_timestamp() - started);
+EXCEPTION WHEN query_canceled OR others THEN  -- OTHERS alone does not catch query_canceled
+  state := SQLSTATE;
+  seconds := extract(epoch FROM clock_timestamp() - started);
+END
+$f$;
+CREATE TEMP TABLE outcome (state text, seconds double precision);
+SET LOCAL statement_timeout = '200ms';
+INSERT INTO outcome SELECT * FROM pg_temp.sqlstate_and_seconds(
+  $$SELECT pg_temp.grow('SELECT geom, road_class FROM tokyo', params => '{"max_edges": 1000000, "candidates": 500}')$$);
+RESET statement_timeout;
+SELECT is((SELECT state FROM outcome), '57014', 'statement_timeout cancels a long growth with 57014');
+SELECT cmp_ok((SELECT seconds FROM outcome), '<', 2.0::double precision, 'within the growth, not after it');
+SELECT is(pg_temp.grow('SELECT geom, road_class FROM tokyo', params => '{"max_edges": 10}'), 10::bigint,
+          'and the session grows again');
+
+SELECT * FROM finish();
+ROLLBACK;

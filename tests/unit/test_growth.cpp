@@ -1,0 +1,236 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "core/error.hpp"
+#include "core/growth/grow_example.hpp"
+#include "test_support.hpp"
+
+using namespace streetgen::core;
+using streetgen::test::wkt;
+
+namespace {
+
+// A square grid of n x n blocks of `size` m, one edge per block side; rows are "avenue" every
+// third line, "street" otherwise.
+std::vector<ExampleEdge> grid(int n, double size) {
+  std::vector<ExampleEdge> out;
+  std::int64_t id = 0;
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const char* cls = i % 3 == 0 ? "avenue" : "street";
+      out.push_back({{{j * size, i * size}, {(j + 1) * size, i * size}}, cls, ++id});
+      out.push_back({{{i * size, j * size}, {i * size, (j + 1) * size}}, cls, ++id});
+    }
+  }
+  return out;
+}
+
+bool crosses_without_node(const GrownEdge& a, const GrownEdge& b) {
+  auto orient = [](Point p, Point q, Point r) { return cross(q - p, r - p); };
+  bool shared = a.from_node == b.from_node || a.from_node == b.to_node || a.to_node == b.from_node ||
+                a.to_node == b.to_node;
+  if (shared) return false;
+  double d1 = orient(a.a, a.b, b.a), d2 = orient(a.a, a.b, b.b);
+  double d3 = orient(b.a, b.b, a.a), d4 = orient(b.a, b.b, a.b);
+  return d1 * d2 <= 0 && d3 * d4 <= 0 &&
+         std::max(std::min(a.a.x, a.b.x), std::min(b.a.x, b.b.x)) <= std::min(std::max(a.a.x, a.b.x), std::max(b.a.x, b.b.x)) &&
+         std::max(std::min(a.a.y, a.b.y), std::min(b.a.y, b.b.y)) <= std::min(std::max(a.a.y, a.b.y), std::max(b.a.y, b.b.y));
+}
+
+double point_segment_distance_for_test(Point p, Point a, Point b) {
+  Point d = b - a;
+  double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
+  return distance(p, a + t * d);
+}
+
+struct Fixture {
+  GeosContext geos;
+  GeomPtr region = wkt(geos, "POLYGON((0 0, 1000 0, 1000 1000, 0 1000, 0 0))");
+  GeomPtr lake = wkt(geos, "POLYGON((600 600, 800 600, 800 800, 600 800, 600 600))");
+  GrowInput input() {
+    GrowInput in;
+    in.example = grid(8, 80.0);
+    in.region = region.get();
+    in.seeds = {{500.0, 500.0}};
+    return in;
+  }
+};
+
+}  // namespace
+
+TEST(GrowExample, GridExampleGrowsAPlanarNetworkInsideTheRegion) {
+  Fixture f;
+  GrowInput in = f.input();
+  in.obstacles = {f.lake.get()};
+  GrowParams p;
+  p.seed = 7;
+  p.rotation = false;
+  p.max_edges = 400;
+  GrowResult r = grow_example(f.geos, in, p);
+  ASSERT_GT(r.edges.size(), 100u);
+  EXPECT_LE(r.edges.size(), 400u);
+  for (const GrownEdge& e : r.edges) {
+    for (Point q : {e.a, e.b}) {
+      EXPECT_GE(q.x, 0.0);
+      EXPECT_LE(q.x, 1000.0);
+      EXPECT_GE(q.y, 0.0);
+      EXPECT_LE(q.y, 1000.0);
+    }
+    // No edge enters the lake: both ends outside it and the segment misses its box edges.
+    bool in_lake = std::max(e.a.x, e.b.x) > 600 && std::min(e.a.x, e.b.x) < 800 && std::max(e.a.y, e.b.y) > 600 &&
+                   std::min(e.a.y, e.b.y) < 800;
+    // Rotation off on a grid: every edge is axis-parallel, so box overlap means entering.
+    EXPECT_FALSE(in_lake) << e.a.x << " " << e.a.y << " -> " << e.b.x << " " << e.b.y;
+  }
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < r.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < r.edges.size(); ++j) bad += crosses_without_node(r.edges[i], r.edges[j]);
+  }
+  EXPECT_EQ(bad, 0u);
+  // Rotation off on a grid: edges keep the grid's two directions (within epsilon of them).
+  for (const GrownEdge& e : r.edges) {
+    double a = std::fmod(std::abs(std::atan2(e.b.y - e.a.y, e.b.x - e.a.x)) * 180.0 / M_PI, 90.0);
+    EXPECT_TRUE(a < 1e-6 || a > 90.0 - 1e-6) << a;
+  }
+}
+
+TEST(GrowExample, SameSeedSameOutputDifferentSeedsDiffer) {
+  Fixture f;
+  GrowInput in = f.input();
+  GrowParams p;
+  p.max_edges = 200;
+  p.seed = 1;
+  GrowResult a = grow_example(f.geos, in, p);
+  GrowResult b = grow_example(f.geos, in, p);
+  p.seed = 2;
+  GrowResult c = grow_example(f.geos, in, p);
+  ASSERT_EQ(a.edges.size(), b.edges.size());
+  for (std::size_t i = 0; i < a.edges.size(); ++i) {
+    EXPECT_EQ(a.edges[i].a.x, b.edges[i].a.x);
+    EXPECT_EQ(a.edges[i].b.y, b.edges[i].b.y);
+    EXPECT_EQ(a.edges[i].to_node, b.edges[i].to_node);
+  }
+  bool differ = a.edges.size() != c.edges.size();
+  for (std::size_t i = 0; !differ && i < a.edges.size(); ++i) differ = a.edges[i].b.x != c.edges[i].b.x;
+  EXPECT_TRUE(differ);
+}
+
+TEST(GrowExample, DeadEndsOfTheExampleStayDeadEnds) {
+  // A comb: a spine with teeth that end in dead ends.
+  Fixture f;
+  GrowInput in = f.input();
+  in.example.clear();
+  for (int i = 0; i < 10; ++i) {
+    in.example.push_back({{{i * 50.0, 0.0}, {(i + 1) * 50.0, 0.0}}, "street", i + 1});
+    in.example.push_back({{{i * 50.0, 0.0}, {i * 50.0, 40.0}}, "street", 100 + i});
+  }
+  GrowParams p;
+  p.seed = 3;
+  p.rotation = false;  // a straight comb: the spine runs to the region's border both ways
+  p.max_edges = 300;
+  GrowResult r = grow_example(f.geos, in, p);
+  ASSERT_GT(r.edges.size(), 20u);
+  std::map<std::int64_t, int> degree;
+  for (const GrownEdge& e : r.edges) {
+    ++degree[e.from_node];
+    ++degree[e.to_node];
+  }
+  std::size_t dead = 0;
+  for (auto& [node, d] : degree) dead += d == 1;
+  EXPECT_GT(dead, r.edges.size() / 5);  // teeth keep ending
+  EXPECT_GT(r.stats.proposals, r.edges.size() / 2);
+}
+
+TEST(GrowExample, BadInputIsRejected) {
+  Fixture f;
+  GrowParams p;
+  auto rejects = [&](GrowInput in, GrowParams params) {
+    try {
+      grow_example(f.geos, in, params);
+    } catch (const Error& e) {
+      return e.kind() == ErrorKind::invalid_argument;
+    }
+    return false;
+  };
+  GrowInput empty = f.input();
+  empty.example.clear();
+  EXPECT_TRUE(rejects(empty, p));
+  GrowInput one_node = f.input();
+  one_node.example = {{{{5, 5}, {5, 5}}, "street", 1}};
+  EXPECT_TRUE(rejects(one_node, p));
+  GrowInput outside = f.input();
+  outside.seeds = {{2000, 2000}};
+  EXPECT_TRUE(rejects(outside, p));
+  GrowInput no_seed = f.input();
+  no_seed.seeds.clear();
+  EXPECT_TRUE(rejects(no_seed, p));
+  GeomPtr bowtie = wkt(f.geos, "POLYGON((0 0, 10 10, 10 0, 0 10, 0 0))");
+  GrowInput invalid = f.input();
+  invalid.region = bowtie.get();
+  invalid.seeds = {{2, 5}};
+  EXPECT_TRUE(rejects(invalid, p));
+  GeomPtr empty_region = wkt(f.geos, "POLYGON EMPTY");
+  GrowInput no_area = f.input();
+  no_area.region = empty_region.get();
+  EXPECT_TRUE(rejects(no_area, p));
+  GrowInput in_lake = f.input();
+  in_lake.obstacles = {f.lake.get()};
+  in_lake.seeds = {{700, 700}};
+  EXPECT_TRUE(rejects(in_lake, p));
+  GrowParams bad = p;
+  bad.epsilon = 0;
+  EXPECT_TRUE(rejects(f.input(), bad));
+  bad = p;
+  bad.radius = -1;
+  EXPECT_TRUE(rejects(f.input(), bad));
+}
+
+TEST(GrowExample, ExtendsAnExistingNetworkWithoutCrossingIt) {
+  // A 100 m grid over 1 km with a 400 m hole; growth starts on the nodes of the hole's border.
+  Fixture f;
+  GeomPtr hole = wkt(f.geos, "POLYGON((300 300, 700 300, 700 700, 300 700, 300 300))");
+  GrowInput in = f.input();
+  in.region = hole.get();
+  in.seeds.clear();
+  auto inside_hole = [](Point a, Point b) {
+    Point m = 0.5 * (a + b);
+    return m.x > 300 && m.x < 700 && m.y > 300 && m.y < 700;
+  };
+  for (const ExampleEdge& e : grid(10, 100.0)) {
+    if (inside_hole(e.line.front(), e.line.back())) continue;
+    in.existing.push_back(e.line);
+    for (Point p : e.line) {
+      bool on_border = (p.x == 300 || p.x == 700) ? p.y >= 300 && p.y <= 700 : (p.y == 300 || p.y == 700) && p.x >= 300 && p.x <= 700;
+      if (on_border) in.seeds.push_back(p);
+    }
+  }
+  GrowParams p;
+  p.seed = 4;
+  p.rotation = false;
+  GrowResult r = grow_example(f.geos, in, p);
+  ASSERT_GT(r.edges.size(), 10u);
+  std::size_t touching_border = 0;
+  for (const GrownEdge& e : r.edges) {
+    for (Point q : {e.a, e.b}) {
+      EXPECT_TRUE(q.x >= 300 && q.x <= 700 && q.y >= 300 && q.y <= 700) << q.x << " " << q.y;
+      touching_border += q.x == 300 || q.x == 700 || q.y == 300 || q.y == 700;
+    }
+    EXPECT_FALSE(e.road_class.empty());
+    // No existing edge is returned, and none is crossed: existing edges lie outside the hole or
+    // on its border, so a new edge may only touch them at its own ends.
+    for (const std::vector<Point>& x : in.existing) {
+      GrownEdge other{0, -1, -2, "", 0, x.front(), x.back()};
+      EXPECT_FALSE(e.a.x == x.front().x && e.a.y == x.front().y && e.b.x == x.back().x && e.b.y == x.back().y);
+      if (crosses_without_node(e, other)) {
+        bool at_own_end = point_segment_distance_for_test(e.a, x.front(), x.back()) < 1e-9 ||
+                          point_segment_distance_for_test(e.b, x.front(), x.back()) < 1e-9;
+        EXPECT_TRUE(at_own_end);
+      }
+    }
+  }
+  EXPECT_GT(touching_border, 5u);  // the growth is attached to the network around the hole
+}
