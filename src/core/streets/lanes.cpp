@@ -161,6 +161,14 @@ LanePlan plan_lanes(const LaneInput& in, double width, const LaneRules& rules) {
     if (fwd && bwd) {
       ok = *fwd >= 1 && *bwd >= 1 && *fwd + *bwd == rest;
       if (ok) { f = *fwd; b = *bwd; }
+      // lanes=3, lanes:forward=1, lanes:backward=1 without lanes:both_ways: the lane left over
+      // is a shared centre lane (a two-way turn lane), as OSM's lanes:both_ways would say.
+      if (!ok && !both && *fwd >= 1 && *bwd >= 1 && *fwd + *bwd < rest) {
+        ok = true;
+        f = *fwd;
+        b = *bwd;
+        middle = rest - f - b;
+      }
     } else if (fwd) {
       ok = *fwd >= 1 && *fwd < rest;
       if (ok) { f = *fwd; b = rest - f; }
@@ -279,8 +287,9 @@ LanePlan plan_lanes(const LaneInput& in, double width, const LaneRules& rules) {
         break;
       }
       // Which lane goes: a shared middle lane first, else one of the direction with more lanes
-      // (forward on a tie): its bus lane, else its outermost lane.
-      std::string dir = nboth > 0 ? "both" : nf >= nb ? "forward" : "backward";
+      // (backward on a tie, as the even split gives forward the odd lane): its bus lane, else its
+      // outermost lane.
+      std::string dir = nboth > 0 ? "both" : nf > nb ? "forward" : "backward";
       auto it = std::find_if(lanes.begin(), lanes.end(), [&](const LaneSpec& l) { return l.direction == dir && l.type == "bus"; });
       if (it == lanes.end()) {
         if (dir == "backward") {
@@ -414,6 +423,21 @@ void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, co
       const GEOSPreparedGeometry* p;
       ~PreparedDeleter() { GEOSPreparedGeom_destroy_r(h, p); }
     } prepared_guard{ctx.handle(), prepared};
+    auto lane_of = [&](const GEOSGeometry* point) {
+      double x = 0, y = 0;
+      GEOSGeomGetX_r(ctx.handle(), point, &x);
+      GEOSGeomGetY_r(ctx.handle(), point, &y);
+      double s = signed_offset(prolonged, {x, y});
+      std::size_t k = 0;
+      while (k + 1 < specs.size() && s < edges[k + 1]) ++k;
+      return k;
+    };
+    auto area = [&](const GEOSGeometry* g) {
+      double a = 0.0;
+      if (GEOSArea_r(ctx.handle(), g, &a) == 0) ctx.fail("area");
+      return a;
+    };
+    double kept_area = 0.0;
     int n = GEOSGetNumGeometries_r(ctx.handle(), faces.get());
     for (int i = 0; i < n; ++i) {
       const GEOSGeometry* face = GEOSGetGeometryN_r(ctx.handle(), faces.get(), i);
@@ -422,13 +446,29 @@ void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, co
       char in = GEOSPreparedContains_r(ctx.handle(), prepared, inside.get());
       if (in == 2) ctx.fail("contains");
       if (in == 0) continue;  // a face outside (a hole, or beside a narrowed section)
-      double x = 0, y = 0;
-      GEOSGeomGetX_r(ctx.handle(), inside.get(), &x);
-      GEOSGeomGetY_r(ctx.handle(), inside.get(), &y);
-      double s = signed_offset(prolonged, {x, y});
-      std::size_t k = 0;
-      while (k + 1 < specs.size() && s < edges[k + 1]) ++k;
-      faces_of[k].push_back(own(ctx, GEOSGeom_clone_r(ctx.handle(), face), "clone"));
+      faces_of[lane_of(inside.get())].push_back(own(ctx, GEOSGeom_clone_r(ctx.handle(), face), "clone"));
+      kept_area += area(face);
+    }
+    // Polygonize drops a face whose ring touches itself (a narrowed section whose hole touches
+    // its shell): what the faces miss goes to the lanes by the same rule, so the lanes still
+    // cover the section.
+    double surface_area = area(surface);
+    if (std::abs(surface_area - kept_area) > 1e-9 * std::max(1.0, surface_area)) {
+      std::vector<GeomPtr> kept;
+      for (std::vector<GeomPtr>& lane_faces : faces_of) {
+        for (GeomPtr& f : lane_faces) kept.push_back(own(ctx, GEOSGeom_clone_r(ctx.handle(), f.get()), "clone"));
+      }
+      GeomPtr kept_all = collection(ctx, GEOS_GEOMETRYCOLLECTION, kept);
+      GeomPtr kept_union = own(ctx, GEOSUnaryUnion_r(ctx.handle(), kept_all.get()), "union");
+      GeomPtr missing = own(ctx, GEOSDifference_r(ctx.handle(), surface, kept_union.get()), "difference");
+      int m = GEOSGetNumGeometries_r(ctx.handle(), missing.get());
+      for (int i = 0; i < m; ++i) {
+        const GEOSGeometry* piece = GEOSGetGeometryN_r(ctx.handle(), missing.get(), i);
+        if (GEOSGeomTypeId_r(ctx.handle(), piece) != GEOS_POLYGON || area(piece) <= 0.0) continue;
+        GeomPtr inside = own(ctx, GEOSPointOnSurface_r(ctx.handle(), piece), "point on surface");
+        if (is_empty(ctx, inside.get())) continue;
+        faces_of[lane_of(inside.get())].push_back(own(ctx, GEOSGeom_clone_r(ctx.handle(), piece), "clone"));
+      }
     }
   }
   for (std::size_t k = 0; k < specs.size(); ++k) {
