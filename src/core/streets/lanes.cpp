@@ -373,12 +373,28 @@ GeomPtr offset_curve(GeosContext& ctx, const GEOSGeometry* line, double offset) 
 
 // The line clipped to the section (a narrowed section is cut along the midline with its
 // neighbour); null when nothing of it is left.
+// Only its lines: where the line touches the boundary the clip also gives points, which are no
+// marking (and which the stored MultiLineString could not hold).
 GeomPtr clipped(GeosContext& ctx, GeomPtr line, const GEOSGeometry* surface) {
   GeomPtr inside = own(ctx, GEOSIntersection_r(ctx.handle(), line.get(), surface), "marking clip");
-  double len = 0.0;
-  GEOSLength_r(ctx.handle(), inside.get(), &len);
-  if (is_empty(ctx, inside.get()) || len <= 1e-6) return nullptr;
-  return inside;
+  std::vector<GeomPtr> lines;
+  std::vector<const GEOSGeometry*> stack{inside.get()};
+  while (!stack.empty()) {
+    const GEOSGeometry* g = stack.back();
+    stack.pop_back();
+    int type = GEOSGeomTypeId_r(ctx.handle(), g);
+    if (type == GEOS_LINESTRING) {
+      double len = 0.0;
+      GEOSLength_r(ctx.handle(), g, &len);
+      if (len > 1e-6) lines.push_back(own(ctx, GEOSGeom_clone_r(ctx.handle(), g), "clone"));
+    } else if (type == GEOS_MULTILINESTRING || type == GEOS_GEOMETRYCOLLECTION) {
+      int n = GEOSGetNumGeometries_r(ctx.handle(), g);
+      for (int i = n - 1; i >= 0; --i) stack.push_back(GEOSGetGeometryN_r(ctx.handle(), g, i));
+    }
+  }
+  if (lines.empty()) return nullptr;
+  if (lines.size() == 1) return std::move(lines[0]);
+  return collection(ctx, GEOS_MULTILINESTRING, lines);
 }
 
 }  // namespace
