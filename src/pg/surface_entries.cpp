@@ -103,7 +103,8 @@ core::Polyline read_axis_line(core::GeosContext& geos, const AxisArg& arg, int& 
 
 std::vector<OutRow> to_rows(core::GeosContext& geos, core::SurfaceResult& r, int srid) {
   std::vector<OutRow> rows;
-  rows.reserve(r.nodes.size() + r.sections.size() + r.corners.size() + r.intersections.size() + r.issues.size());
+  rows.reserve(r.nodes.size() + r.sections.size() + r.corners.size() + r.intersections.size() + r.issues.size() +
+               r.lanes.size() + r.markings.size());
   std::vector<std::vector<std::int64_t>> axes_of_node;
   for (const core::NodeResult& n : r.nodes) {
     OutRow row{"node"};

@@ -145,5 +145,13 @@ SELECT results_eq(
                                              8.0 AS roadway_width, 50 AS speed_kmh$q$)$$,
   $$VALUES (2::bigint, 1::bigint)$$, 'street_surfaces without lane columns: lanes from the width (2 of 4 m), a centre line');
 
+-- Six lanes from the width (16.7 m / 2.75 m): the boundary on the centre line comes out of the
+-- width sums as about 1e-15 m, which GEOS 3.11's OffsetCurve failed on (a whole city failed).
+SELECT results_eq(
+  $$SELECT count(*) FILTER (WHERE kind = 'lane'), count(*) FILTER (WHERE kind = 'marking' AND status = 'centre_line')
+      FROM streetgen.street_surfaces($q$SELECT 1 AS id, 'SRID=32611;LINESTRING(260601.33 4375529.23, 260604.10 4375547.52, 260640.11 4375784.81)'::geometry AS geom,
+                                             16.7 AS roadway_width, 50 AS speed_kmh$q$)$$,
+  $$VALUES (6::bigint, 1::bigint)$$, 'six lanes of a sixth of the width: a centre line on the axis');
+
 SELECT * FROM finish();
 ROLLBACK;

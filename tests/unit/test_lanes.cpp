@@ -229,3 +229,27 @@ TEST(SectionLanes, TileTheSectionOnAPolyline) {
   EXPECT_EQ(solid_sep, 1);
   EXPECT_EQ(stop, 1);
 }
+
+// Six lanes of a sixth of the width: the centre boundary comes out of the sums as about 1e-15 m,
+// a distance GEOS 3.11's OffsetCurve fails on; it is the centre line itself.
+TEST(SectionLanes, CentreBoundaryFromInexactWidths) {
+  GeosContext ctx;
+  for (double w : {16.7, 17.3, 19.9, 21.1}) {
+    LanePlan plan = plan_lanes(input(6, false), w);
+    ASSERT_EQ(plan.lanes.size(), 6u);
+    Polyline centre{{0, 0}, {40, 3}, {80, 0}};
+    GEOSGeometry* seq_line = nullptr;
+    {
+      GEOSCoordSequence* seq = GEOSCoordSeq_create_r(ctx.handle(), 3, 2);
+      for (unsigned i = 0; i < 3; ++i) GEOSCoordSeq_setXY_r(ctx.handle(), seq, i, centre[i].x, centre[i].y);
+      seq_line = GEOSGeom_createLineString_r(ctx.handle(), seq);
+    }
+    GeomPtr line(seq_line, GeomDeleter{ctx.handle()});
+    GeomPtr surface = own(ctx, GEOSBufferWithStyle_r(ctx.handle(), line.get(), w / 2, 8, GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_ROUND, 5.0), "buffer");
+    std::vector<LaneResult> lanes;
+    std::vector<MarkingResult> markings;
+    ASSERT_NO_THROW(section_lanes(ctx, 1, 0, centre, surface.get(), false, plan, true, true, lanes, markings)) << w;
+    EXPECT_EQ(lanes.size(), 6u);
+    EXPECT_EQ(std::count_if(markings.begin(), markings.end(), [](const MarkingResult& m) { return m.kind == "centre_line"; }), 1);
+  }
+}

@@ -367,12 +367,12 @@ GeomPtr collection(GeosContext& ctx, int type, std::vector<GeomPtr>& parts) {
 bool is_empty(GeosContext& ctx, const GEOSGeometry* g) { return GEOSisEmpty_r(ctx.handle(), g) != 0; }
 
 GeomPtr offset_curve(GeosContext& ctx, const GEOSGeometry* line, double offset) {
-  if (offset == 0.0) return own(ctx, GEOSGeom_clone_r(ctx.handle(), line), "clone");
+  // (a boundary on the centre line comes out of the width sums as +-1e-16 or so, and GEOS 3.11's
+  // OffsetCurve fails on such distances)
+  if (std::abs(offset) < 1e-9) return own(ctx, GEOSGeom_clone_r(ctx.handle(), line), "clone");
   return own(ctx, GEOSOffsetCurve_r(ctx.handle(), line, offset, kQuadrantSegments, GEOSBUF_JOIN_ROUND, 5.0), "offset curve");
 }
 
-// The line clipped to the section (a narrowed section is cut along the midline with its
-// neighbour); null when nothing of it is left.
 // Only its lines: where the line touches the boundary the clip also gives points, which are no
 // marking (and which the stored MultiLineString could not hold).
 GeomPtr clipped(GeosContext& ctx, GeomPtr line, const GEOSGeometry* surface) {
@@ -400,8 +400,8 @@ GeomPtr clipped(GeosContext& ctx, GeomPtr line, const GEOSGeometry* surface) {
 }  // namespace
 
 void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, const Polyline& centre,
-                   const GEOSGeometry* surface, const LanePlan& plan, bool junction_at_start, bool junction_at_end,
-                   std::vector<LaneResult>& lanes, std::vector<MarkingResult>& markings) {
+                   const GEOSGeometry* surface, bool clip, const LanePlan& plan, bool junction_at_start,
+                   bool junction_at_end, std::vector<LaneResult>& lanes, std::vector<MarkingResult>& markings) {
   const std::vector<LaneSpec>& specs = plan.lanes;
   if (specs.empty() || surface == nullptr || centre.size() < 2) return;
   double total = 0.0;
@@ -528,8 +528,11 @@ void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, co
       m.kind = "lane_separator";
       m.style = l.type == "driving" && r.type == "driving" ? "dashed" : "solid";
     }
-    m.line = clipped(ctx, offset_curve(ctx, centre_geom.get(), edges[k]), surface);
-    if (m.line) markings.push_back(std::move(m));
+    m.line = offset_curve(ctx, centre_geom.get(), edges[k]);
+    // (inside an unsplit section by construction: every point is |offset| < half width from
+    // the centre line, and the curve ends on the flat ends)
+    if (clip) m.line = clipped(ctx, std::move(m.line), surface);
+    if (m.line && !is_empty(ctx, m.line.get())) markings.push_back(std::move(m));
   }
 
   // Stop lines: across the lanes that drive into a junction, a little inside the section.
@@ -550,8 +553,8 @@ void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, co
     Point p = point_at(centre, s);
     Point nrm = left_normal(tangent_at(centre, s));
     // A little beyond the roadway's edges, so that the clip, not rounding, decides where it ends.
-    double extra_top = top >= total / 2 - 1e-9 ? 0.5 : 0.0;
-    double extra_bottom = bottom <= -total / 2 + 1e-9 ? 0.5 : 0.0;
+    double extra_top = clip && top >= total / 2 - 1e-9 ? 0.5 : 0.0;
+    double extra_bottom = clip && bottom <= -total / 2 + 1e-9 ? 0.5 : 0.0;
     Polyline seg{p + (top + extra_top) * nrm, p + (bottom - extra_bottom) * nrm};
     MarkingResult m;
     m.axis_id = axis_id;
@@ -559,7 +562,7 @@ void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, co
     m.kind = "stop_line";
     m.position = at_end;
     m.style = "solid";
-    m.line = clipped(ctx, line_of(ctx, seg), surface);
+    m.line = clip ? clipped(ctx, line_of(ctx, seg), surface) : line_of(ctx, seg);
     if (m.line) markings.push_back(std::move(m));
   }
 }

@@ -71,11 +71,13 @@ struct MarkingResult {
 };
 
 // Lanes and markings of one section: `centre` is its centre line between the border lines,
-// `surface` its (possibly narrowed) polygon. Stop lines where the section meets a junction
-// (`junction_at_start` / `_at_end`) across the lanes that drive into it.
+// `surface` its polygon: the centre line buffered by half the width with flat ends, or, with
+// `clip`, anything else (a narrowed section): markings are then clipped to it. Stop lines where
+// the section meets a junction (`junction_at_start` / `_at_end`) across the lanes that drive
+// into it.
 void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, const Polyline& centre,
-                   const GEOSGeometry* surface, const LanePlan& plan, bool junction_at_start, bool junction_at_end,
-                   std::vector<LaneResult>& lanes, std::vector<MarkingResult>& markings);
+                   const GEOSGeometry* surface, bool clip, const LanePlan& plan, bool junction_at_start,
+                   bool junction_at_end, std::vector<LaneResult>& lanes, std::vector<MarkingResult>& markings);
 
 // Signed distance of p from the polyline: positive on its left.
 double signed_offset(const Polyline& line, Point p);

@@ -799,9 +799,21 @@ class SurfaceBuilder {
       if (it == plans.end()) it = plans.emplace(edge.axis_index, plan_lanes(axis.lane_input, axis.roadway_width)).first;
       const LanePlan& plan = it->second;
       for (const LaneNote& note : plan.notes) result_.issues.push_back({sec.axis_id, note.kind, note.detail, sec.part});
-      section_lanes(ctx_, sec.axis_id, sec.part, substring(sec.centre_line, sec.start_border, sec.end_border),
-                    sec.surface.get(), plan, degree_of(edge.from_node) >= 3, degree_of(edge.to_node) >= 3,
-                    result_.lanes, result_.markings);
+      // One section GEOS cannot split is reported, not allowed to fail the whole model: it
+      // keeps its surface without lanes.
+      std::vector<LaneResult> lanes;
+      std::vector<MarkingResult> markings;
+      try {
+        section_lanes(ctx_, sec.axis_id, sec.part, substring(sec.centre_line, sec.start_border, sec.end_border),
+                      sec.surface.get(), sec.status != "ok", plan, degree_of(edge.from_node) >= 3,
+                      degree_of(edge.to_node) >= 3, lanes, markings);
+      } catch (const Error& e) {
+        if (e.kind() != ErrorKind::geometry_engine) throw;
+        result_.issues.push_back({sec.axis_id, "lanes_failed", e.what() + std::string(": ") + e.detail(), sec.part});
+        continue;
+      }
+      for (LaneResult& l : lanes) result_.lanes.push_back(std::move(l));
+      for (MarkingResult& m : markings) result_.markings.push_back(std::move(m));
     }
   }
 
