@@ -324,13 +324,15 @@ COMMENT ON FUNCTION streetgen.surface_quality(text) IS
 
 -- How sound a model's lanes and markings are, the acceptance measures of issue 5: per section the
 -- symmetric difference between the section and the union of its lanes (relative to the section's
--- area), the overlap of lanes of one section (sum of their areas minus their union's), and the
--- area of lanes inside another section on the same layer.
+-- area), the overlap of lanes of one section (sum of their areas minus their union's), the area
+-- of lanes outside their own section, and the area of lanes inside a section of another axis on
+-- the same layer (parts of one axis that overlap at a tight bend are the surfaces' matter:
+-- surface_quality).
 CREATE FUNCTION streetgen.lane_quality(model text,
     OUT sections bigint, OUT sections_without_lanes bigint, OUT lanes bigint, OUT markings bigint,
     OUT invalid_geometries bigint, OUT max_coverage_difference double precision,
     OUT sections_over_tolerance bigint, OUT lane_overlap_area double precision,
-    OUT foreign_overlap_area double precision)
+    OUT outside_section_area double precision, OUT foreign_overlap_area double precision)
   RETURNS record
   LANGUAGE plpgsql STABLE
   SET search_path FROM CURRENT
@@ -356,15 +358,17 @@ BEGIN
            coalesce((SELECT max(difference / area) FROM per_section WHERE area > 0), 0),
            (SELECT count(*) FROM per_section WHERE area > 0 AND difference / area >= 0.005),
            coalesce((SELECT sum(lane_area - union_area) FROM per_section), 0),
+           coalesce((SELECT sum(ST_Area(ST_Difference(x.geom, s.geom)))
+                       FROM %1$I.lane x JOIN %1$I.section s USING (axis_id, part)), 0),
            coalesce((SELECT sum(ST_Area(ST_Intersection(x.geom, s.geom)))
                        FROM %1$I.lane x
                        JOIN %1$I.axis xa ON xa.id = x.axis_id
-                       JOIN %1$I.section s ON s.geom && x.geom AND (s.axis_id, s.part) <> (x.axis_id, x.part)
+                       JOIN %1$I.section s ON s.geom && x.geom AND s.axis_id <> x.axis_id
                        JOIN %1$I.axis sa ON sa.id = s.axis_id AND sa.layer = xa.layer), 0)
   $q$, model)
   INTO sections, sections_without_lanes, lanes, markings, invalid_geometries, max_coverage_difference,
-       sections_over_tolerance, lane_overlap_area, foreign_overlap_area;
+       sections_over_tolerance, lane_overlap_area, outside_section_area, foreign_overlap_area;
 END
 $$;
 COMMENT ON FUNCTION streetgen.lane_quality(text) IS
-  'Checks a model''s lanes and markings: validity, how exactly the lanes of each section cover it, overlaps between lanes and into other sections';
+  'Checks a model''s lanes and markings: validity, how exactly the lanes of each section cover it, overlaps between lanes, lanes outside their section or inside another axis'' section';

@@ -36,7 +36,8 @@ pg_prove -d "$db" "$SRC/tests/lanes/check-lanes.sql" || status=$?
 psql -X -c "SELECT d.model, q.sections, q.lanes, q.markings, q.invalid_geometries AS invalid,
                    round((100 * q.max_coverage_difference)::numeric, 6) AS max_coverage_diff_pct,
                    q.sections_over_tolerance AS over_05pct, round(q.lane_overlap_area::numeric, 6) AS lane_overlap_m2,
-                   round(q.foreign_overlap_area::numeric, 6) AS into_other_sections_m2
+                   round(q.outside_section_area::numeric, 6) AS outside_own_section_m2,
+                   round(q.foreign_overlap_area::numeric, 6) AS into_other_axes_m2
               FROM lane_dataset d, streetgen.lane_quality(d.model) q ORDER BY d.kind DESC, d.model"
 assert_no_crash_since "$mark" || status=1
 exit $status

@@ -19,8 +19,10 @@ SELECT is_empty($$SELECT model, max_coverage_difference FROM measured WHERE sect
                 'the lanes of every section cover it: symmetric difference < 0.5 % of its area');
 SELECT is_empty($$SELECT model, lane_overlap_area FROM measured WHERE abs(lane_overlap_area) >= 1e-3$$,
                 'lanes of a section do not overlap (< 0.001 m2 per network)');
+SELECT is_empty($$SELECT model, outside_section_area FROM measured WHERE outside_section_area >= 1e-3$$,
+                'no lane reaches out of its section (< 0.001 m2 per network)');
 SELECT is_empty($$SELECT model, foreign_overlap_area FROM measured WHERE foreign_overlap_area >= 1e-3$$,
-                'no lane crosses into another section on its layer (< 0.001 m2 per network)');
+                'no lane crosses into the section of another axis on its layer (< 0.001 m2 per network)');
 -- Lane tags were read where OSM has them: Reno tags lanes:forward/backward and turn lanes,
 -- Paris bus and cycle lanes.
 SELECT cmp_ok((SELECT count(*) FROM reno_east3.lane WHERE turn IS NOT NULL), '>', 0::bigint, 'Reno: turn lanes from turn:lanes');

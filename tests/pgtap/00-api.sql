@@ -88,8 +88,8 @@ SELECT is(pg_temp.argument_names('streetgen.generate(text)'), 'model,kind,status
 SELECT is(pg_temp.argument_names('streetgen.street_surfaces(text,jsonb)'), 'axes,settings,kind,node_id,axis_id,part,status,geom,item,detail',
           'street_surfaces(axes, settings) -> (kind, node_id, axis_id, part, status, geom, item, detail)');
 SELECT is(pg_temp.argument_names('streetgen.lane_quality(text)'),
-          'model,sections,sections_without_lanes,lanes,markings,invalid_geometries,max_coverage_difference,sections_over_tolerance,lane_overlap_area,foreign_overlap_area',
-          'lane_quality(model) -> (sections, sections_without_lanes, lanes, markings, invalid_geometries, max_coverage_difference, sections_over_tolerance, lane_overlap_area, foreign_overlap_area)');
+          'model,sections,sections_without_lanes,lanes,markings,invalid_geometries,max_coverage_difference,sections_over_tolerance,lane_overlap_area,outside_section_area,foreign_overlap_area',
+          'lane_quality(model) -> (sections, sections_without_lanes, lanes, markings, invalid_geometries, max_coverage_difference, sections_over_tolerance, lane_overlap_area, outside_section_area, foreign_overlap_area)');
 
 SELECT is_empty(
   'SELECT signature FROM streetgen_functions WHERE security_definer',

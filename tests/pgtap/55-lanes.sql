@@ -21,7 +21,8 @@ BEGIN
   RETURN NEXT is(q.sections_without_lanes, 0::bigint, label || ': every section has lanes');
   RETURN NEXT cmp_ok(q.max_coverage_difference, '<', 0.005::float8, label || ': the lanes of each section cover it (< 0.5 %)');
   RETURN NEXT cmp_ok(abs(q.lane_overlap_area), '<', 1e-6::float8, label || ': lanes of a section do not overlap');
-  RETURN NEXT cmp_ok(q.foreign_overlap_area, '<', 1e-6::float8, label || ': no lane reaches into another section');
+  RETURN NEXT cmp_ok(q.outside_section_area, '<', 1e-6::float8, label || ': no lane reaches out of its section');
+  RETURN NEXT cmp_ok(q.foreign_overlap_area, '<', 1e-6::float8, label || ': no lane reaches into another street''s section');
   RETURN NEXT is_empty('SELECT * FROM streetgen.outdated(''ln'')', label || ': lanes and markings equal a full recompute');
 END $$;
 
