@@ -29,7 +29,7 @@ CREATE FUNCTION streetgen._work_tables()
 DECLARE
   definition text;
 BEGIN
-  IF to_regclass('pg_temp._sg_scope_axes') IS NOT NULL THEN
+  IF to_regclass('pg_temp._sg_scope_out') IS NOT NULL THEN
     RETURN;
   END IF;
   FOREACH definition IN ARRAY ARRAY[
@@ -47,10 +47,15 @@ BEGIN
     '_sg_context_nodes (id bigint)',
     '_sg_scope_sections (axis_id bigint, part bigint)',
     '_sg_scope_nodes (id bigint)',
-    '_sg_scope_axes (id bigint)'] LOOP
+    '_sg_scope_axes (id bigint)',
+    '_sg_scope_out (geom geometry)'] LOOP
     EXECUTE 'CREATE TEMP TABLE IF NOT EXISTS ' || definition;
     EXECUTE format('GRANT ALL ON pg_temp.%I TO PUBLIC', split_part(definition, ' ', 1));
   END LOOP;
+  -- (spatial joins against the engine's output: thousands of rows on either side after a large
+  -- edit, where a nested loop of distance tests took seconds)
+  CREATE INDEX IF NOT EXISTS _sg_t_nodes_geom ON pg_temp._sg_t_nodes USING gist (geom);
+  CREATE INDEX IF NOT EXISTS _sg_scope_out_geom ON pg_temp._sg_scope_out USING gist (geom);
 END
 $$;
 
@@ -71,10 +76,10 @@ BEGIN
      + pg_relation_size('pg_temp._sg_k_nodes') + pg_relation_size('pg_temp._sg_s1') + pg_relation_size('pg_temp._sg_s2')
      + pg_relation_size('pg_temp._sg_q') + pg_relation_size('pg_temp._sg_context_nodes')
      + pg_relation_size('pg_temp._sg_scope_sections') + pg_relation_size('pg_temp._sg_scope_nodes')
-     + pg_relation_size('pg_temp._sg_scope_axes') > 256 * 1024 THEN
+     + pg_relation_size('pg_temp._sg_scope_axes') + pg_relation_size('pg_temp._sg_scope_out') > 256 * 1024 THEN
     TRUNCATE pg_temp._sg_changed_geom, pg_temp._sg_t_nodes, pg_temp._sg_k_nodes, pg_temp._sg_s1, pg_temp._sg_s2,
              pg_temp._sg_q, pg_temp._sg_context_nodes, pg_temp._sg_scope_sections, pg_temp._sg_scope_nodes,
-             pg_temp._sg_scope_axes;
+             pg_temp._sg_scope_axes, pg_temp._sg_scope_out;
   ELSE
     DELETE FROM pg_temp._sg_changed_geom;
     DELETE FROM pg_temp._sg_t_nodes;
@@ -86,6 +91,7 @@ BEGIN
     DELETE FROM pg_temp._sg_scope_sections;
     DELETE FROM pg_temp._sg_scope_nodes;
     DELETE FROM pg_temp._sg_scope_axes;
+    DELETE FROM pg_temp._sg_scope_out;
   END IF;
 END
 $$;
@@ -111,7 +117,10 @@ $$;
 --
 -- The statements name the model's tables without a schema, under a search_path that puts the
 -- model first (after pg_catalog), so that they are static SQL: PL/pgSQL plans each once per
--- session (and again for another model) instead of on every edit. Generic plans: the work
+-- session (and again for another model) instead of on every edit. (The model's schema before
+-- PostGIS's lets whoever can create objects in it, its owner, shadow a function for the
+-- editors' sessions; the owner of the axis table can run code in them anyway, with a trigger.
+-- After PostGIS's, a table of the same name there, a "node" in public, would be read instead.) Generic plans: the work
 -- tables hold a few dozen rows and the lookups go by index whatever the arrays hold.
 CREATE FUNCTION streetgen._refresh(model text, changed bigint[], old_geoms geometry[])
   RETURNS void
@@ -156,8 +165,10 @@ BEGIN
 
   -- From here on every lookup in the model's tables goes by index: the plans are generic, made
   -- once, and without statistics on the work tables the planner would guess them at thousands
-  -- of rows and hash whole tables (a hundred ms per edit). The engine run and the store, which
-  -- join the unindexed output table, turn them on again.
+  -- of rows and hash whole tables (a hundred ms per edit). The engine run, the store and the
+  -- statements after the engine run, which join its unindexed output, turn them on again (a
+  -- cached plan keeps the settings it was made with, and each statement always runs with the
+  -- same ones).
   PERFORM set_config('enable_seqscan', 'off', true), set_config('enable_hashjoin', 'off', true),
           set_config('enable_mergejoin', 'off', true);
   PERFORM streetgen._empty_work_tables();
@@ -227,6 +238,8 @@ BEGIN
   -- stretch whose old sections stopped short of it) and the context grows (rarely needed more
   -- than once).
   FOR round IN 1..4 LOOP
+    PERFORM set_config('enable_seqscan', 'off', true), set_config('enable_hashjoin', 'off', true),
+            set_config('enable_mergejoin', 'off', true);
     DELETE FROM pg_temp._sg_context_nodes;
     INSERT INTO pg_temp._sg_context_nodes
     WITH base (node) AS (
@@ -242,14 +255,34 @@ BEGIN
       UNION ALL SELECT unnest(touched)) AS c;
 
     PERFORM streetgen._compute_model(model, context);
+    -- What reads the engine's output (thousands of rows for a large edit, no index) joins by
+    -- hash: with nested loops a 100-axis edit of Paris took 20 s.
+    PERFORM set_config('enable_seqscan', 'on', true), set_config('enable_hashjoin', 'on', true),
+            set_config('enable_mergejoin', 'on', true);
 
+    -- The sections that may be rewritten, and the narrowed ones at their ends (a junction may be
+    -- cut from those, and what narrowed them must be right): what was split with one of them
+    -- touches it in the output. (Boxes alone, long diagonal sections' especially, called for
+    -- many needless runs.)
+    DELETE FROM pg_temp._sg_scope_out;
+    INSERT INTO pg_temp._sg_scope_out
+    WITH ends (id) AS (SELECT from_node FROM pg_temp._sg_s2 UNION SELECT to_node FROM pg_temp._sg_s2
+                       UNION SELECT id FROM pg_temp._sg_k_nodes)
+    SELECT ST_GeomFromEWKB(o.geom) FROM pg_temp._streetgen_out o
+     WHERE o.kind = 'section' AND o.geom IS NOT NULL
+       AND (o.axis_id = ANY (changed)
+            OR EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE k.axis_id = o.axis_id AND k.part = o.part)
+            OR (o.status = 'narrowed' AND (o.node_id IN (SELECT id FROM ends) OR o.to_node IN (SELECT id FROM ends))));
     INSERT INTO pg_temp._sg_q (axis_id, part, from_node, to_node)
-    WITH unvetted AS (
+    WITH candidates AS MATERIALIZED (
       SELECT o.axis_id, ST_GeomFromEWKB(o.geom) AS geom FROM pg_temp._streetgen_out o
        WHERE o.kind = 'section' AND o.geom IS NOT NULL
          AND NOT EXISTS (SELECT 1 FROM pg_temp._sg_q q WHERE q.axis_id = o.axis_id AND q.part = o.part)
-         AND NOT (o.axis_id = ANY (changed))
-         AND EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE ST_GeomFromEWKB(o.geom) && k.envelope))
+         AND NOT (o.axis_id = ANY (changed))),
+    unvetted AS (
+      SELECT c.axis_id, c.geom FROM candidates c
+       WHERE EXISTS (SELECT 1 FROM pg_temp._sg_scope_out k
+                      WHERE k.geom && ST_Expand(c.geom, 1e-3) AND ST_DWithin(c.geom, k.geom, 1e-3)))
     SELECT p.axis_id, p.part, p.from_node, p.to_node FROM section p
      WHERE p.axis_id IN (SELECT axis_id FROM unvetted)
        AND (EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE p.geom && ST_Expand(k.envelope, max_width))
@@ -269,8 +302,10 @@ BEGIN
       SELECT id FROM pg_temp._sg_k_nodes
       UNION SELECT n.node_id FROM pg_temp._streetgen_out n WHERE n.kind = 'node' AND n.axis_ids && changed
       -- A node of T that lost or gained a point is a new node (a new id) nearby.
-      UNION SELECT n.node_id FROM pg_temp._streetgen_out n, pg_temp._sg_t_nodes t
-             WHERE n.kind = 'node' AND ST_DWithin(ST_GeomFromEWKB(n.geom), t.geom, 3 * (tol + 1e-6)))
+      UNION SELECT n.node_id FROM (SELECT o.node_id, ST_GeomFromEWKB(o.geom) AS geom FROM pg_temp._streetgen_out o
+                                    WHERE o.kind = 'node') AS n
+             WHERE EXISTS (SELECT 1 FROM pg_temp._sg_t_nodes t WHERE t.geom && ST_Expand(n.geom, 3 * (tol + 1e-6))
+                                                                 AND ST_DWithin(n.geom, t.geom, 3 * (tol + 1e-6))))
     SELECT axis_id, part FROM pg_temp._sg_s2
     UNION SELECT o.axis_id, o.part FROM pg_temp._streetgen_out o
            WHERE o.kind = 'section'
@@ -458,7 +493,9 @@ BEGIN
 END
 $$;
 
--- New settings change everything: a full recompute.
+-- New settings change everything, and a TRUNCATE of the axes (with CASCADE, which empties the
+-- tables that refer to them without their triggers) leaves nodes and junctions behind: a full
+-- recompute.
 CREATE FUNCTION streetgen._settings_changed()
   RETURNS trigger
   LANGUAGE plpgsql
@@ -480,8 +517,10 @@ CREATE FUNCTION streetgen._create_triggers(name text)
   AS $$
 BEGIN
   EXECUTE format($ddl$
-    CREATE TRIGGER axis_lock_outputs BEFORE INSERT OR UPDATE OR DELETE ON %1$I.axis
+    CREATE TRIGGER axis_lock_outputs BEFORE INSERT OR UPDATE OR DELETE OR TRUNCATE ON %1$I.axis
       FOR EACH STATEMENT EXECUTE FUNCTION streetgen._lock_outputs_first();
+    CREATE TRIGGER axis_refresh_truncate AFTER TRUNCATE ON %1$I.axis
+      FOR EACH STATEMENT EXECUTE FUNCTION streetgen._settings_changed();
     CREATE TRIGGER corner_lock_outputs BEFORE UPDATE ON %1$I.corner
       FOR EACH STATEMENT EXECUTE FUNCTION streetgen._lock_outputs_first();
     CREATE TRIGGER settings_lock_outputs BEFORE UPDATE ON %1$I.settings

@@ -90,6 +90,16 @@ SELECT set_eq($$SELECT 'section' t, axis_id || '/' || part k, ST_AsEWKB(geom) g 
 SELECT is((SELECT roadway_width FROM live.axis WHERE id = 2), 8::float8, 'nor the axis changed');
 SELECT is((SELECT count(*) FROM streetgen.outdated('live')), 0::bigint, 'the model is still current');
 
+-- TRUNCATE ... CASCADE empties what refers to the axes without their triggers: the statement
+-- trigger recomputes, and no node or junction is left behind.
+TRUNCATE live.axis CASCADE;
+SELECT is((SELECT count(*) FROM live.node) + (SELECT count(*) FROM live.intersection), 0::bigint,
+          'a TRUNCATE of the axes leaves no node or junction behind');
+INSERT INTO live.axis (id, geom, roadway_width, speed_kmh) OVERRIDING SYSTEM VALUE VALUES
+  (1, 'SRID=32631;LINESTRING(-80 0, 0 0)', 8, 50), (2, 'SRID=32631;LINESTRING(0 0, 80 0)', 8, 50),
+  (3, 'SRID=32631;LINESTRING(0 -80, 0 0)', 6, 30);
+SELECT is((SELECT count(*) FROM streetgen.outdated('live')), 0::bigint, 'and new axes after it are current');
+
 SELECT throws_ok($$SELECT * FROM streetgen.outdated('nope')$$, '42704', NULL, 'outdated() of an unknown model');
 SELECT throws_ok($$SELECT * FROM streetgen.outdated(NULL)$$, '22004', NULL, 'outdated(NULL)');
 

@@ -11,26 +11,11 @@
 #include "core/error.hpp"
 #include "core/interrupts.hpp"
 #include "core/streets/topology.hpp"
+#include "core/union_find.hpp"
 
 namespace streetgen::core {
 namespace {
 
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t find(std::size_t i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);  // smallest index is the root: deterministic
-  }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 std::uint64_t cell_key(std::int64_t cx, std::int64_t cy) {
   return (static_cast<std::uint64_t>(cx) * 0x9E3779B97F4A7C15ULL) ^ static_cast<std::uint64_t>(cy);

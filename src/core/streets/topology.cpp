@@ -9,6 +9,7 @@
 
 #include "core/interrupts.hpp"
 #include "core/streets/box_pairs.hpp"
+#include "core/union_find.hpp"
 
 namespace streetgen::core {
 namespace {
@@ -29,22 +30,6 @@ struct Segment {
   double start_abscissa;
 };
 
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t find(std::size_t i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);  // smallest index is the root: deterministic
-  }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 std::uint64_t mix(std::uint64_t h) {  // splitmix64 finaliser
   h += 0x9e3779b97f4a7c15ULL;
