@@ -11,23 +11,47 @@ user=me". No password is written. OUT defaults to MODEL.qgs.
 
 The project is generated with PyQGIS rather than shipped as a template so that it always matches
 the QGIS that reads it and the model's CRS. Every layer repaints on NOTIFY qgis, 'MODEL', which
-the model's triggers send when an axis edit commits: edit the axis layer, save, and the surfaces
-follow.
+the model's triggers send when an axis edit commits: edit the axis layer, save, and the surfaces,
+lanes and markings follow.
 """
 import sys
 
-from qgis.core import (QgsApplication, QgsDataSourceUri, QgsFillSymbol, QgsLineSymbol, QgsMarkerSymbol,
-                       QgsProject, QgsSingleSymbolRenderer, QgsVectorLayer)
+from qgis.core import (QgsApplication, QgsCategorizedSymbolRenderer, QgsDataSourceUri, QgsFillSymbol,
+                       QgsLineSymbol, QgsMarkerSymbol, QgsProject, QgsRendererCategory, QgsSingleSymbolRenderer,
+                       QgsVectorLayer)
 
-# (table, geometry column, key), drawn top first. corner and section have composite primary keys,
-# which QGIS takes as a quoted list.
+# (table, geometry column, key), drawn top first. corner, section, lane and marking have composite
+# primary keys, which QGIS takes as a quoted list.
 LAYERS = [
     ('node', 'geom', 'id'),
     ('axis', 'geom', 'id'),
     ('corner', 'arc_segmentized', '"node_id","axis_a","part_a","end_a","axis_b","part_b","end_b"'),
+    ('marking', 'geom', '"axis_id","part","kind","position"'),
+    ('lane', 'geom', '"axis_id","part","lane_index"'),
     ('intersection', 'geom', 'node_id'),
     ('section', 'geom', '"axis_id","part"'),
 ]
+
+
+def renderer(table):
+    """Lanes by type (driving grey, bus red, cycle green); markings white, in metres on the map:
+    lines 0.15 m, solid or dashed by style, stop lines 0.5 m."""
+    if table == 'lane':
+        colours = {'driving': '#b0b0b0', 'bus': '#d9837a', 'cycle': '#7fbf7f'}
+        return QgsCategorizedSymbolRenderer('type', [
+            QgsRendererCategory(t, QgsFillSymbol.createSimple({'color': c, 'outline_style': 'no'}), t)
+            for t, c in colours.items()])
+    if table == 'marking':
+        def line(width, style):
+            return QgsLineSymbol.createSimple({'line_color': '#ffffff', 'line_width': str(width),
+                                               'line_width_unit': 'MapUnit', 'line_style': style})
+        return QgsCategorizedSymbolRenderer('kind || \' \' || style', [
+            QgsRendererCategory('centre_line solid', line(0.15, 'solid'), 'centre line'),
+            QgsRendererCategory('centre_line dashed', line(0.15, 'dash'), 'centre line (dashed)'),
+            QgsRendererCategory('lane_separator solid', line(0.15, 'solid'), 'lane line'),
+            QgsRendererCategory('lane_separator dashed', line(0.15, 'dash'), 'lane line (dashed)'),
+            QgsRendererCategory('stop_line solid', line(0.5, 'solid'), 'stop line')])
+    return QgsSingleSymbolRenderer(symbol(table))
 
 
 def symbol(table):
@@ -51,7 +75,7 @@ def make_project(conninfo, model, out):
         uri = QgsDataSourceUri(conninfo)
         uri.setDataSource(model, table, geom, '', key)
         layer = QgsVectorLayer(uri.uri(False), f'{model} {table}', 'postgres')
-        layer.setRenderer(QgsSingleSymbolRenderer(symbol(table)))
+        layer.setRenderer(renderer(table))
         # The message filter keeps the layers of other models in the same database still.
         layer.setRefreshOnNotifyEnabled(True)
         layer.setRefreshOnNofifyMessage(model)  # sic: the QGIS 3 API spells it so

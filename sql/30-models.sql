@@ -31,7 +31,7 @@ CREATE FUNCTION streetgen._lock_model_name(name text)
   SET search_path FROM CURRENT
   AS $$ SELECT pg_advisory_xact_lock(hashtext('streetgen.model'), hashtext(name)) $$;
 
--- The generated tables of a model: settings, node, section, corner, intersection, issue. Every
+-- The generated tables of a model: settings, node, section, corner, intersection, lane, marking, issue. Every
 -- row is keyed so that regenerating the same axes gives the same keys, and points to the axes
 -- or nodes it came from (deleting an axis deletes its sections and corners).
 CREATE FUNCTION streetgen._create_output_tables(name text, srid integer)
@@ -99,6 +99,35 @@ BEGIN
     );
     CREATE INDEX intersection_geom_idx ON %1$I.intersection USING gist (geom);
     COMMENT ON TABLE %1$I.intersection IS 'Junction surface of each node of degree 2 or more';
+
+    CREATE TABLE %1$I.lane (
+      axis_id bigint NOT NULL,
+      part bigint NOT NULL,
+      lane_index smallint NOT NULL,
+      type text NOT NULL,
+      direction text NOT NULL,
+      width double precision NOT NULL,
+      turn text,
+      geom geometry(MultiPolygon, %2$s) NOT NULL,
+      PRIMARY KEY (axis_id, part, lane_index),
+      FOREIGN KEY (axis_id, part) REFERENCES %1$I.section (axis_id, part) ON DELETE CASCADE
+    );
+    CREATE INDEX lane_geom_idx ON %1$I.lane USING gist (geom);
+    COMMENT ON TABLE %1$I.lane IS 'Lanes of each section, left to right looking along the axis: type (driving, bus, cycle), direction (forward, backward, both), width, turn; they tile the section surface';
+    COMMENT ON COLUMN %1$I.lane.lane_index IS 'From 1 at the left edge of the roadway, looking along the axis';
+
+    CREATE TABLE %1$I.marking (
+      axis_id bigint NOT NULL,
+      part bigint NOT NULL,
+      kind text NOT NULL,
+      position smallint NOT NULL,
+      style text NOT NULL,
+      geom geometry(MultiLineString, %2$s) NOT NULL,
+      PRIMARY KEY (axis_id, part, kind, position),
+      FOREIGN KEY (axis_id, part) REFERENCES %1$I.section (axis_id, part) ON DELETE CASCADE
+    );
+    CREATE INDEX marking_geom_idx ON %1$I.marking USING gist (geom);
+    COMMENT ON TABLE %1$I.marking IS 'Road markings of each section: centre_line, lane_separator (position: between lanes position and position + 1), stop_line (position 0 at the start border, 1 at the end); style solid or dashed';
 
     CREATE TABLE %1$I.issue (
       axis_id bigint REFERENCES %1$I.axis (id) ON DELETE CASCADE,

@@ -4,15 +4,29 @@ CREATE FUNCTION streetgen._streetgen_street_surfaces(
     ids bigint[], geoms bytea[], widths double precision[], speeds double precision[], layers integer[],
     radius_overrides double precision[], settings double precision[],
     override_nodes bigint[], override_keys bigint[], override_radii double precision[],
+    lanes integer[], oneways boolean[], lane_tags text[],
     OUT kind text, OUT node_id bigint, OUT to_node bigint, OUT axis_id bigint, OUT part bigint, OUT end_a boolean,
     OUT axis_b bigint, OUT part_b bigint, OUT end_b boolean, OUT status text, OUT detail text, OUT degree integer,
     OUT layer integer, OUT radius double precision, OUT radius_wanted double precision,
     OUT start_border double precision, OUT end_border double precision, OUT axis_ids bigint[],
-    OUT geom bytea, OUT geom2 bytea, OUT geom3 bytea)
+    OUT geom bytea, OUT geom2 bytea, OUT geom3 bytea, OUT item integer, OUT width double precision,
+    OUT direction text)
   RETURNS SETOF record
   LANGUAGE c IMMUTABLE PARALLEL SAFE
   COST 100000 ROWS 10000
   AS 'MODULE_PATHNAME', '_streetgen_street_surfaces';
+
+-- The OSM tags that shape a street's lanes, as "key=value" lines for the engine (sorted: equal
+-- tags give equal text, so the update trigger can compare them).
+CREATE FUNCTION streetgen._lane_tags(tags jsonb)
+  RETURNS text
+  LANGUAGE sql IMMUTABLE PARALLEL SAFE
+  SET search_path FROM CURRENT
+  AS $$
+    SELECT string_agg(t.key || '=' || replace(t.value, E'\n', ' '), E'\n' ORDER BY t.key)
+      FROM jsonb_each_text(CASE WHEN jsonb_typeof(tags) = 'object' THEN tags ELSE '{}' END) AS t
+     WHERE t.key ~ '^(lanes|turn:lanes|cycleway|busway)(:|$)'
+  $$;
 
 -- Runs the engine on MODEL's axes (all of them, or those whose id is in CONTEXT), its settings
 -- and corner overrides, into the work table pg_temp._streetgen_out (see _work_tables). Axes go in by
@@ -36,7 +50,10 @@ BEGIN
                    array_agg(a.roadway_width ORDER BY a.id) AS widths,
                    array_agg(a.speed_kmh ORDER BY a.id) AS speeds,
                    array_agg(a.layer::integer ORDER BY a.id) AS layers,
-                   array_agg(a.radius_override ORDER BY a.id) AS radii
+                   array_agg(a.radius_override ORDER BY a.id) AS radii,
+                   array_agg(a.lanes::integer ORDER BY a.id) AS lanes,
+                   array_agg(a.oneway ORDER BY a.id) AS oneways,
+                   array_agg(streetgen._lane_tags(a.tags) ORDER BY a.id) AS lane_tags
               FROM %1$I.axis a WHERE $1 IS NULL OR a.id = ANY ($1)) AS x,
            (SELECT streetgen._settings_vector(to_jsonb(s) - 'singleton') AS v FROM %1$I.settings s) AS st,
            (SELECT array_agg(k ORDER BY c.node_id, c.axis_a, c.part_a, c.end_a, c.axis_b, c.part_b, c.end_b, i) AS keys
@@ -49,7 +66,8 @@ BEGIN
            streetgen._streetgen_street_surfaces(coalesce(x.ids, '{}'), coalesce(x.geoms, '{}'), coalesce(x.widths, '{}'),
                                                 coalesce(x.speeds, '{}'), coalesce(x.layers, '{}'), coalesce(x.radii, '{}'),
                                                 st.v, coalesce(ov.nodes, '{}'), coalesce(ov_keys.keys, '{}'),
-                                                coalesce(ov.radii, '{}')) AS o
+                                                coalesce(ov.radii, '{}'), coalesce(x.lanes, '{}'),
+                                                coalesce(x.oneways, '{}'), coalesce(x.lane_tags, '{}')) AS o
   $q$, model) USING context;
   -- A whole model's output is large: the statements that store it plan with real numbers. A
   -- local recompute's is a few hundred rows, planned well enough from the table's size, and an
@@ -95,6 +113,12 @@ BEGIN
          AND o.axis_b = c.axis_b AND o.part_b = c.part_b AND o.end_b = c.end_b)$q$,
     $q$DELETE FROM %1$I.intersection i WHERE (%4$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'intersection' AND o.node_id = i.node_id)$q$,
+    $q$DELETE FROM %1$I.lane s WHERE (%5$s) AND NOT EXISTS (
+      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'lane' AND o.axis_id = s.axis_id AND o.part = s.part
+         AND o.item = s.lane_index)$q$,
+    $q$DELETE FROM %1$I.marking s WHERE (%5$s) AND NOT EXISTS (
+      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'marking' AND o.axis_id = s.axis_id AND o.part = s.part
+         AND o.status = s.kind AND o.item = s.position)$q$,
     $q$DELETE FROM %1$I.section s WHERE (%5$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'section' AND o.axis_id = s.axis_id AND o.part = s.part)$q$,
     $q$INSERT INTO %1$I.node AS t (id, geom, degree, layer, axis_ids)
@@ -114,6 +138,20 @@ BEGIN
      WHERE (t.from_node, t.to_node, t.status, t.start_border, t.end_border, t.centre_line, t.geom) IS DISTINCT FROM
            (EXCLUDED.from_node, EXCLUDED.to_node, EXCLUDED.status, EXCLUDED.start_border, EXCLUDED.end_border,
             EXCLUDED.centre_line, EXCLUDED.geom)$q$,
+    $q$INSERT INTO %1$I.lane AS t (axis_id, part, lane_index, type, direction, width, turn, geom)
+    SELECT o.axis_id, o.part, o.item, o.status, o.direction, o.width, o.detail,
+           ST_Multi(ST_CollectionExtract(ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s), 3))
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'lane' AND (%7$s)
+    ON CONFLICT (axis_id, part, lane_index) DO UPDATE SET type = EXCLUDED.type, direction = EXCLUDED.direction,
+        width = EXCLUDED.width, turn = EXCLUDED.turn, geom = EXCLUDED.geom
+     WHERE (t.type, t.direction, t.width, t.turn, t.geom) IS DISTINCT FROM
+           (EXCLUDED.type, EXCLUDED.direction, EXCLUDED.width, EXCLUDED.turn, EXCLUDED.geom)$q$,
+    $q$INSERT INTO %1$I.marking AS t (axis_id, part, kind, position, style, geom)
+    SELECT o.axis_id, o.part, o.status, o.item, o.detail,
+           ST_Multi(ST_CollectionExtract(ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s), 2))
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'marking' AND (%7$s)
+    ON CONFLICT (axis_id, part, kind, position) DO UPDATE SET style = EXCLUDED.style, geom = EXCLUDED.geom
+     WHERE (t.style, t.geom) IS DISTINCT FROM (EXCLUDED.style, EXCLUDED.geom)$q$,
     $q$INSERT INTO %1$I.corner AS t (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b, status, radius_wanted, radius,
                                  centre, arc, arc_segmentized)
     SELECT o.node_id, o.axis_id, o.part, o.end_a, o.axis_b, o.part_b, o.end_b, o.status, o.radius_wanted, o.radius,
@@ -148,7 +186,8 @@ BEGIN
   -- autovacuum comes by, and the next edits' neighbourhood searches would plan as if the tables
   -- were empty (seconds instead of milliseconds). A few hundred ms against a full run.
   IF NOT scoped THEN
-    EXECUTE format('ANALYZE %1$I.axis, %1$I.node, %1$I.section, %1$I.corner, %1$I.intersection', model);
+    EXECUTE format('ANALYZE %1$I.axis, %1$I.node, %1$I.section, %1$I.corner, %1$I.intersection, %1$I.lane, %1$I.marking',
+                   model);
   END IF;
 END
 $$;
@@ -168,13 +207,16 @@ BEGIN
 END
 $$;
 COMMENT ON FUNCTION streetgen.generate(text) IS
-  'Recomputes the street surfaces of a whole model and upserts node, section, corner, intersection (stable keys); returns counts by kind and status';
+  'Recomputes the street surfaces of a whole model and upserts node, section, corner, intersection, lane, marking (stable keys); returns counts by kind and status';
 
 -- Stateless: street surfaces of the axes a query returns, for any GIS client. The query must
 -- return id (bigint), geom (LineString, projected CRS in metres), roadway_width and speed_kmh;
--- layer and radius_override are used when present. It runs with the caller's rights.
+-- layer, radius_override, lanes, oneway and tags (jsonb, OSM) are used when present. It runs
+-- with the caller's rights. ITEM is a lane's index or a marking's position, DETAIL a lane's
+-- turn or a marking's style (and an issue's text).
 CREATE FUNCTION streetgen.street_surfaces(axes text, settings jsonb DEFAULT '{}',
-    OUT kind text, OUT node_id bigint, OUT axis_id bigint, OUT part bigint, OUT status text, OUT geom geometry)
+    OUT kind text, OUT node_id bigint, OUT axis_id bigint, OUT part bigint, OUT status text, OUT geom geometry,
+    OUT item integer, OUT detail text)
   RETURNS SETOF record
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
@@ -201,23 +243,28 @@ BEGIN
   END IF;
   RETURN QUERY EXECUTE format($q$
     SELECT o.kind, o.node_id, o.axis_id, o.part, o.status,
-           ST_SetSRID(ST_GeomFromEWKB(coalesce(o.geom, o.geom3)), %1$s)
+           ST_SetSRID(ST_GeomFromEWKB(coalesce(o.geom, o.geom3)), %1$s), o.item, o.detail
       FROM (SELECT array_agg(q.id::bigint) AS ids, array_agg(ST_AsEWKB(q.geom)) AS geoms,
                    array_agg(q.roadway_width::float8) AS widths, array_agg(q.speed_kmh::float8) AS speeds,
-                   array_agg(%2$s) AS layers, array_agg(%3$s) AS radii
+                   array_agg(%2$s) AS layers, array_agg(%3$s) AS radii, array_agg(%4$s) AS lanes,
+                   array_agg(%5$s) AS oneways, array_agg(%6$s) AS lane_tags
               FROM pg_temp._streetgen_axes q) AS x,
            streetgen._streetgen_street_surfaces(coalesce(x.ids, '{}'), coalesce(x.geoms, '{}'), coalesce(x.widths, '{}'),
                                                 coalesce(x.speeds, '{}'), coalesce(x.layers, '{}'), coalesce(x.radii, '{}'),
-                                                $1, '{}', '{}', '{}') AS o
+                                                $1, '{}', '{}', '{}', coalesce(x.lanes, '{}'), coalesce(x.oneways, '{}'),
+                                                coalesce(x.lane_tags, '{}')) AS o
   $q$, coalesce(srid, 0),
        CASE WHEN 'layer' = ANY(columns) THEN 'q.layer::integer' ELSE '0' END,
-       CASE WHEN 'radius_override' = ANY(columns) THEN 'q.radius_override::float8' ELSE 'NULL::float8' END)
+       CASE WHEN 'radius_override' = ANY(columns) THEN 'q.radius_override::float8' ELSE 'NULL::float8' END,
+       CASE WHEN 'lanes' = ANY(columns) THEN 'q.lanes::integer' ELSE 'NULL::integer' END,
+       CASE WHEN 'oneway' = ANY(columns) THEN 'q.oneway::boolean' ELSE 'false' END,
+       CASE WHEN 'tags' = ANY(columns) THEN 'streetgen._lane_tags(q.tags::jsonb)' ELSE 'NULL::text' END)
   USING vector;
   DROP VIEW pg_temp._streetgen_axes;
 END
 $$;
 COMMENT ON FUNCTION streetgen.street_surfaces(text, jsonb) IS
-  'Street surfaces (nodes, sections, corner arcs, intersections, issues) of the axes a query returns; nothing is stored';
+  'Street surfaces (nodes, sections, corner arcs, intersections, lanes, markings, issues) of the axes a query returns; nothing is stored';
 
 -- (Overlaps are measured with ST_Intersection alone: GEOS 3.11's ST_Intersects predicate can
 -- throw on valid polygons with nearly coincident edges, OverlayNG does not.)
@@ -274,3 +321,54 @@ END
 $$;
 COMMENT ON FUNCTION streetgen.surface_quality(text) IS
   'Checks a model''s generated surfaces: invalid geometries, junctions without surface, overlap between sections of different axes';
+
+-- How sound a model's lanes and markings are, the acceptance measures of issue 5: per section the
+-- symmetric difference between the section and the union of its lanes (relative to the section's
+-- area), the overlap of lanes of one section (sum of their areas minus their union's), the area
+-- of lanes outside their own section, and the area of lanes inside a section of another axis on
+-- the same layer (parts of one axis that overlap at a tight bend are the surfaces' matter:
+-- surface_quality).
+CREATE FUNCTION streetgen.lane_quality(model text,
+    OUT sections bigint, OUT sections_without_lanes bigint, OUT lanes bigint, OUT markings bigint,
+    OUT invalid_geometries bigint, OUT max_coverage_difference double precision,
+    OUT sections_over_tolerance bigint, OUT lane_overlap_area double precision,
+    OUT outside_section_area double precision, OUT foreign_overlap_area double precision)
+  RETURNS record
+  LANGUAGE plpgsql STABLE
+  SET search_path FROM CURRENT
+  SET jit = off
+  AS $$
+BEGIN
+  PERFORM streetgen.model_srid(model);
+  EXECUTE format($q$
+    WITH per_section AS (
+      SELECT s.axis_id, s.part, ST_Area(s.geom) AS area, l.n, l.lane_area,
+             ST_Area(ST_SymDifference(s.geom, l.u)) AS difference, ST_Area(l.u) AS union_area
+        FROM %1$I.section s
+        JOIN LATERAL (SELECT count(*) AS n, sum(ST_Area(x.geom)) AS lane_area, ST_Union(x.geom) AS u
+                        FROM %1$I.lane x WHERE x.axis_id = s.axis_id AND x.part = s.part) AS l ON true
+       WHERE s.geom IS NOT NULL AND l.n > 0)
+    SELECT (SELECT count(*) FROM %1$I.section WHERE geom IS NOT NULL),
+           (SELECT count(*) FROM %1$I.section s WHERE s.geom IS NOT NULL
+               AND NOT EXISTS (SELECT 1 FROM %1$I.lane x WHERE x.axis_id = s.axis_id AND x.part = s.part)),
+           (SELECT count(*) FROM %1$I.lane),
+           (SELECT count(*) FROM %1$I.marking),
+           (SELECT count(*) FROM %1$I.lane WHERE NOT ST_IsValid(geom))
+             + (SELECT count(*) FROM %1$I.marking WHERE NOT ST_IsValid(geom) OR ST_IsEmpty(geom)),
+           coalesce((SELECT max(difference / area) FROM per_section WHERE area > 0), 0),
+           (SELECT count(*) FROM per_section WHERE area > 0 AND difference / area >= 0.005),
+           coalesce((SELECT sum(lane_area - union_area) FROM per_section), 0),
+           coalesce((SELECT sum(ST_Area(ST_Difference(x.geom, s.geom)))
+                       FROM %1$I.lane x JOIN %1$I.section s USING (axis_id, part)), 0),
+           coalesce((SELECT sum(ST_Area(ST_Intersection(x.geom, s.geom)))
+                       FROM %1$I.lane x
+                       JOIN %1$I.axis xa ON xa.id = x.axis_id
+                       JOIN %1$I.section s ON s.geom && x.geom AND s.axis_id <> x.axis_id
+                       JOIN %1$I.axis sa ON sa.id = s.axis_id AND sa.layer = xa.layer), 0)
+  $q$, model)
+  INTO sections, sections_without_lanes, lanes, markings, invalid_geometries, max_coverage_difference,
+       sections_over_tolerance, lane_overlap_area, outside_section_area, foreign_overlap_area;
+END
+$$;
+COMMENT ON FUNCTION streetgen.lane_quality(text) IS
+  'Checks a model''s lanes and markings: validity, how exactly the lanes of each section cover it, overlaps between lanes, lanes outside their section or inside another axis'' section';

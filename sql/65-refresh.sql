@@ -36,7 +36,8 @@ BEGIN
     '_streetgen_out (kind text, node_id bigint, to_node bigint, axis_id bigint, part bigint, end_a boolean, axis_b bigint,
                      part_b bigint, end_b boolean, status text, detail text, degree integer, layer integer,
                      radius double precision, radius_wanted double precision, start_border double precision,
-                     end_border double precision, axis_ids bigint[], geom bytea, geom2 bytea, geom3 bytea)',
+                     end_border double precision, axis_ids bigint[], geom bytea, geom2 bytea, geom3 bytea,
+                     item integer, width double precision, direction text)',
     '_sg_changed_geom (geom geometry)',
     '_sg_t_nodes (id bigint, geom geometry)',
     '_sg_k_nodes (id bigint)',
@@ -379,6 +380,22 @@ BEGIN
      WHERE t.node_id IS NULL OR o.node_id IS NULL OR t.status <> o.status
         OR ST_HausdorffDistance(t.geom, ST_GeomFromEWKB(o.geom)) > 1e-6
     UNION ALL
+    SELECT 'lane', concat_ws('/', coalesce(t.axis_id, o.axis_id), coalesce(t.part, o.part), coalesce(t.lane_index, o.item)),
+           CASE WHEN t.axis_id IS NULL THEN 'missing' WHEN o.axis_id IS NULL THEN 'extra' ELSE 'differs' END
+      FROM %1$I.lane t FULL JOIN (SELECT * FROM o WHERE o.kind = 'lane') o
+        ON o.axis_id = t.axis_id AND o.part = t.part AND o.item = t.lane_index
+     WHERE t.axis_id IS NULL OR o.axis_id IS NULL OR t.type <> o.status OR t.direction <> o.direction
+        OR abs(t.width - o.width) > 1e-6 OR t.turn IS DISTINCT FROM o.detail
+        OR ST_HausdorffDistance(t.geom, ST_GeomFromEWKB(o.geom)) > 1e-6
+    UNION ALL
+    SELECT 'marking', concat_ws('/', coalesce(t.axis_id, o.axis_id), coalesce(t.part, o.part), coalesce(t.kind, o.status),
+                                coalesce(t.position, o.item)),
+           CASE WHEN t.axis_id IS NULL THEN 'missing' WHEN o.axis_id IS NULL THEN 'extra' ELSE 'differs' END
+      FROM %1$I.marking t FULL JOIN (SELECT * FROM o WHERE o.kind = 'marking') o
+        ON o.axis_id = t.axis_id AND o.part = t.part AND o.status = t.kind AND o.item = t.position
+     WHERE t.axis_id IS NULL OR o.axis_id IS NULL OR t.style <> o.detail
+        OR ST_HausdorffDistance(t.geom, ST_GeomFromEWKB(o.geom)) > 1e-6
+    UNION ALL
     (SELECT 'issue', concat_ws('/', axis_id, part, kind, detail), 'differs' FROM (
        (SELECT axis_id, part, kind, detail, node_id FROM %1$I.issue
         EXCEPT ALL SELECT axis_id, part, status, detail, node_id FROM o WHERE kind = 'issue')
@@ -419,7 +436,8 @@ BEGIN
 END
 $$;
 
--- Only what shapes the surfaces counts; an edit of tags or source alone recomputes nothing.
+-- Only what shapes the surfaces and lanes counts; an edit of source, or of tags other than the
+-- lane tags (streetgen._lane_tags), recomputes nothing.
 CREATE FUNCTION streetgen._axis_updated()
   RETURNS trigger
   LANGUAGE plpgsql
@@ -431,8 +449,10 @@ DECLARE
 BEGIN
   SELECT array_agg(coalesce(n.id, o.id)), array_agg(o.geom) INTO ids, geoms
     FROM old_rows o FULL JOIN new_rows n ON n.id = o.id
-   WHERE (o.geom, o.roadway_width, o.speed_kmh, o.layer, o.radius_override)
-         IS DISTINCT FROM (n.geom, n.roadway_width, n.speed_kmh, n.layer, n.radius_override);
+   WHERE (o.geom, o.roadway_width, o.speed_kmh, o.layer, o.radius_override, o.lanes, o.oneway,
+          streetgen._lane_tags(o.tags))
+         IS DISTINCT FROM (n.geom, n.roadway_width, n.speed_kmh, n.layer, n.radius_override, n.lanes, n.oneway,
+          streetgen._lane_tags(n.tags));
   IF ids IS NOT NULL THEN
     PERFORM streetgen._refresh(TG_TABLE_SCHEMA, ids, geoms);
   END IF;

@@ -1,6 +1,7 @@
 // The street surface SRF: axes in as parallel arrays (EWKB geometries), every output of the
 // StreetGen engine out as rows tagged by kind (node, section, corner, intersection, issue).
 // sql/60-surfaces.sql turns them into tables (generate) or geometries (street_surfaces).
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,6 +34,9 @@ struct AxisArg {  // plain data, filled in phase 1
   int layer;
   bool has_radius;
   double radius;
+  int lanes;               // 0: unknown
+  bool oneway;
+  const char* lane_tags;   // "key=value" lines (palloc'd), or null
 };
 
 struct OutRow {
@@ -45,8 +49,28 @@ struct OutRow {
   std::optional<double> radius, radius_wanted, start_border, end_border;
   std::optional<std::vector<std::int64_t>> axis_ids;
   core::Bytes geom, geom2, geom3;  // empty: NULL
+  std::optional<int> item;          // lane index, marking position
+  std::optional<double> width;      // lane width
+  std::string direction;            // lane direction
 };
-constexpr int kColumns = 21;
+constexpr int kColumns = 24;
+
+// "key=value" lines (see _compute_model) into the lane tags; a line without '=' is skipped.
+std::map<std::string, std::string> parse_lane_tags(const char* text) {
+  std::map<std::string, std::string> tags;
+  if (text == nullptr) return tags;
+  std::string all(text);
+  std::size_t start = 0;
+  while (start <= all.size()) {
+    std::size_t end = all.find('\n', start);
+    if (end == std::string::npos) end = all.size();
+    std::string line = all.substr(start, end - start);
+    std::size_t eq = line.find('=');
+    if (eq != std::string::npos && eq > 0) tags[line.substr(0, eq)] = line.substr(eq + 1);
+    start = end + 1;
+  }
+  return tags;
+}
 
 core::Bytes polyline_ewkb(core::WkbType type, const core::Polyline& line, int srid) {
   std::vector<double> xy;
@@ -79,7 +103,8 @@ core::Polyline read_axis_line(core::GeosContext& geos, const AxisArg& arg, int& 
 
 std::vector<OutRow> to_rows(core::GeosContext& geos, core::SurfaceResult& r, int srid) {
   std::vector<OutRow> rows;
-  rows.reserve(r.nodes.size() + r.sections.size() + r.corners.size() + r.intersections.size() + r.issues.size());
+  rows.reserve(r.nodes.size() + r.sections.size() + r.corners.size() + r.intersections.size() + r.issues.size() +
+               r.lanes.size() + r.markings.size());
   std::vector<std::vector<std::int64_t>> axes_of_node;
   for (const core::NodeResult& n : r.nodes) {
     OutRow row{"node"};
@@ -144,6 +169,28 @@ std::vector<OutRow> to_rows(core::GeosContext& geos, core::SurfaceResult& r, int
     row.detail = issue.detail;
     rows.push_back(std::move(row));
   }
+  for (core::LaneResult& l : r.lanes) {
+    OutRow row{"lane"};
+    row.axis_id = l.axis_id;
+    row.part = l.part;
+    row.item = l.index;
+    row.status = l.spec.type;
+    row.direction = l.spec.direction;
+    row.width = l.spec.width;
+    row.detail = l.spec.turn;
+    row.geom = core::write_ewkb(geos, l.surface.get(), srid);
+    rows.push_back(std::move(row));
+  }
+  for (core::MarkingResult& m : r.markings) {
+    OutRow row{"marking"};
+    row.axis_id = m.axis_id;
+    row.part = m.part;
+    row.item = m.position;
+    row.status = m.kind;
+    row.detail = m.style;
+    row.geom = core::write_ewkb(geos, m.line.get(), srid);
+    rows.push_back(std::move(row));
+  }
   return rows;
 }
 
@@ -159,7 +206,7 @@ extern "C" {
 PG_FUNCTION_INFO_V1(_streetgen_street_surfaces);
 // (ids int8[], geoms bytea[], widths float8[], speeds float8[], layers int4[],
 //  radius_overrides float8[], settings float8[10], override_nodes int8[], override_keys int8[],
-//  override_radii float8[]) -> SETOF record (see kColumns)
+//  override_radii float8[], lanes int4[], oneways bool[], lane_tags text[]) -> SETOF record (see kColumns)
 Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
   // Phase 1: arguments into plain arrays.
   pg::ArrayArg ids = pg::array_arg(fcinfo, 0, INT8OID, "ids");
@@ -172,11 +219,17 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
   pg::ArrayArg override_nodes = pg::array_arg(fcinfo, 7, INT8OID, "override_nodes");
   pg::ArrayArg override_keys = pg::array_arg(fcinfo, 8, INT8OID, "override_keys");
   pg::ArrayArg override_radii = pg::array_arg(fcinfo, 9, FLOAT8OID, "override_radii");
+  pg::ArrayArg lane_counts = pg::array_arg(fcinfo, 10, INT4OID, "lanes");
+  pg::ArrayArg oneways = pg::array_arg(fcinfo, 11, BOOLOID, "oneways");
+  pg::ArrayArg lane_tags = pg::array_arg(fcinfo, 12, TEXTOID, "lane_tags");
   pg::require_same_length(ids, "ids", geoms, "geoms");
   pg::require_same_length(ids, "ids", widths, "widths");
   pg::require_same_length(ids, "ids", speeds, "speeds");
   if (layers.count != 0) pg::require_same_length(ids, "ids", layers, "layers");
   if (radii.count != 0) pg::require_same_length(ids, "ids", radii, "radius_overrides");
+  if (lane_counts.count != 0) pg::require_same_length(ids, "ids", lane_counts, "lanes");
+  if (oneways.count != 0) pg::require_same_length(ids, "ids", oneways, "oneways");
+  if (lane_tags.count != 0) pg::require_same_length(ids, "ids", lane_tags, "lane_tags");
   pg::require_same_length(override_nodes, "override_nodes", override_radii, "override_radii");
   if (override_keys.count != 6 * override_nodes.count) {
     ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("override_keys must hold six values per override")));
@@ -206,6 +259,9 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
     a.layer = layers.count != 0 && !layers.nulls[i] ? DatumGetInt32(layers.values[i]) : 0;
     a.has_radius = radii.count != 0 && !radii.nulls[i];
     a.radius = a.has_radius ? DatumGetFloat8(radii.values[i]) : 0.0;
+    a.lanes = lane_counts.count != 0 && !lane_counts.nulls[i] ? DatumGetInt32(lane_counts.values[i]) : 0;
+    a.oneway = oneways.count != 0 && !oneways.nulls[i] && DatumGetBool(oneways.values[i]);
+    a.lane_tags = lane_tags.count != 0 && !lane_tags.nulls[i] ? TextDatumGetCString(lane_tags.values[i]) : nullptr;
   }
   auto* overrides = static_cast<core::CornerOverride*>(palloc0(sizeof(core::CornerOverride) * std::max(override_nodes.count, 1)));
   for (int i = 0; i < override_nodes.count; ++i) {
@@ -245,6 +301,9 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
       a.speed_kmh = axes[i].speed;
       a.layer = axes[i].layer;
       if (axes[i].has_radius) a.radius_override = axes[i].radius;
+      if (axes[i].lanes > 0) a.lane_input.lanes = axes[i].lanes;
+      a.lane_input.oneway = axes[i].oneway;
+      a.lane_input.tags = parse_lane_tags(axes[i].lane_tags);
       input.push_back(std::move(a));
     }
     std::vector<core::CornerOverride> corner_overrides(overrides, overrides + override_count);
@@ -309,6 +368,9 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
     v[18] = bytes_or_null(row.geom, null[18]);
     v[19] = bytes_or_null(row.geom2, null[19]);
     v[20] = bytes_or_null(row.geom3, null[20]);
+    put_i32(21, row.item);
+    put_f8(22, row.width);
+    put_text(23, row.direction);
     tuplestore_putvalues(rsinfo->setResult, rsinfo->setDesc, v, null);
   }
   rows.release();

@@ -47,7 +47,8 @@ SELECT set_eq(
     ('streetgen.load_osm_ways(text,regclass)', 'record', 'v', false),
     ('streetgen._settings_vector(jsonb)', 'double precision[]', 's', false),
     ('streetgen._create_output_tables(text,integer)', 'void', 'v', false),
-    ('streetgen._streetgen_street_surfaces(bigint[],bytea[],double precision[],double precision[],integer[],double precision[],double precision[],bigint[],bigint[],double precision[])', 'SETOF record', 'i', false),
+    ('streetgen._streetgen_street_surfaces(bigint[],bytea[],double precision[],double precision[],integer[],double precision[],double precision[],bigint[],bigint[],double precision[],integer[],boolean[],text[])', 'SETOF record', 'i', false),
+    ('streetgen._lane_tags(jsonb)', 'text', 'i', false),
     ('streetgen._compute_model(text,bigint[])', 'void', 'v', false),
     ('streetgen._store(text,boolean)', 'void', 'v', false),
     ('streetgen._lock_outputs(text)', 'void', 'v', false),
@@ -65,6 +66,7 @@ SELECT set_eq(
     ('streetgen.generate(text)', 'SETOF record', 'v', false),
     ('streetgen.street_surfaces(text,jsonb)', 'SETOF record', 'v', false),
     ('streetgen.surface_quality(text)', 'record', 's', false),
+    ('streetgen.lane_quality(text)', 'record', 's', false),
     ('streetgen._streetgen_grow_example(bytea[],text[],bigint[],bytea,double precision[],double precision[],bytea[],double precision,double precision,boolean,bigint,integer,boolean,double precision,double precision,integer,bytea[])', 'SETOF record', 'i', false),
     ('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)', 'SETOF record', 'v', false)
   $$,
@@ -85,8 +87,11 @@ SELECT is(pg_temp.argument_names('streetgen.compare_networks(streetgen.network_m
           'reference,candidate,metric,kind,reference_value,candidate_value,relative_difference,ks,wasserstein,score',
           'compare_networks(reference, candidate) -> (metric, kind, reference_value, candidate_value, relative_difference, ks, wasserstein, score)');
 SELECT is(pg_temp.argument_names('streetgen.generate(text)'), 'model,kind,status,count', 'generate(model) -> (kind, status, count)');
-SELECT is(pg_temp.argument_names('streetgen.street_surfaces(text,jsonb)'), 'axes,settings,kind,node_id,axis_id,part,status,geom',
-          'street_surfaces(axes, settings) -> (kind, node_id, axis_id, part, status, geom)');
+SELECT is(pg_temp.argument_names('streetgen.street_surfaces(text,jsonb)'), 'axes,settings,kind,node_id,axis_id,part,status,geom,item,detail',
+          'street_surfaces(axes, settings) -> (kind, node_id, axis_id, part, status, geom, item, detail)');
+SELECT is(pg_temp.argument_names('streetgen.lane_quality(text)'),
+          'model,sections,sections_without_lanes,lanes,markings,invalid_geometries,max_coverage_difference,sections_over_tolerance,lane_overlap_area,outside_section_area,foreign_overlap_area',
+          'lane_quality(model) -> (sections, sections_without_lanes, lanes, markings, invalid_geometries, max_coverage_difference, sections_over_tolerance, lane_overlap_area, outside_section_area, foreign_overlap_area)');
 
 SELECT is(pg_temp.argument_names('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)'),
           'example,region,seeds,obstacles,params,existing,id,from_node,to_node,road_class,origin,geom',

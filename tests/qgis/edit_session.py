@@ -61,11 +61,16 @@ db = psycopg.connect(autocommit=True)
 project = QgsProject.instance()
 check(project.read(PROJECT), f'QGIS cannot read {PROJECT}: {project.error()}')
 project_layers = {lyr.name(): lyr for lyr in project.mapLayers().values()}
-check(len(project_layers) == 5, f'the project has {len(project_layers)} layers, not 5')
+check(len(project_layers) == 7, f'the project has {len(project_layers)} layers, not 7')
 for name, lyr in project_layers.items():
     check(lyr.isValid(), f'project layer {name} is not valid')
     check(lyr.isRefreshOnNotifyEnabled() and lyr.refreshOnNotifyMessage() == MODEL,
           f'project layer {name} does not refresh on notification {MODEL!r}')
+# Lanes and markings come through the PostGIS provider like the surfaces, every row of them.
+for table in ('lane', 'marking'):
+    in_db = db.execute(f'SELECT count(*) FROM {MODEL}.{table}').fetchone()[0]
+    in_qgis = project_layers[f'{MODEL} {table}'].featureCount()
+    check(in_db > 0 and in_qgis == in_db, f'the {table} layer shows {in_qgis} features, the table holds {in_db}')
 # The surfaces layer is not edited below: only the notification can make it repaint.
 repaints = []
 project_layers[f'{MODEL} section'].repaintRequested.connect(lambda *_: repaints.append(time.monotonic()))

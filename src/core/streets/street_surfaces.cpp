@@ -220,6 +220,7 @@ class SurfaceBuilder {
       build_section(e);
     }
     separate_overlapping_sections();
+    build_lanes(poller);
     for (SectionResult& sec : result_.sections) {
       if (sec.surface) section_surface_[{sec.axis_id, sec.part}] = sec.surface.get();
     }
@@ -780,6 +781,40 @@ class SurfaceBuilder {
     if (GEOSGeomTypeId_r(ctx_.handle(), surface.get()) == GEOS_POLYGON) return surface;
     GeomPtr part = pick_polygon(ctx_, surface.get(), point_at(axis, 0.5 * length(axis)));
     return part ? std::move(part) : std::move(surface);
+  }
+
+  // Lanes and markings on the final section surfaces (after the overlap split). Sections are
+  // built one per edge, in edge order. Stop lines where a section meets a junction of three or
+  // more streets (a degree-2 node is a street running on).
+  void build_lanes(InterruptPoller& poller) {
+    if (result_.sections.size() != topo_.edges.size()) throw Error(ErrorKind::internal, "sections out of step with edges");
+    std::map<std::size_t, LanePlan> plans;
+    for (std::size_t e = 0; e < topo_.edges.size(); ++e) {
+      const SectionResult& sec = result_.sections[e];
+      if (!sec.surface) continue;
+      poller.tick();
+      const TopologyEdge& edge = topo_.edges[e];
+      const SurfaceAxis& axis = axes_[edge.axis_index];
+      auto it = plans.find(edge.axis_index);
+      if (it == plans.end()) it = plans.emplace(edge.axis_index, plan_lanes(axis.lane_input, axis.roadway_width)).first;
+      const LanePlan& plan = it->second;
+      for (const LaneNote& note : plan.notes) result_.issues.push_back({sec.axis_id, note.kind, note.detail, sec.part});
+      // One section GEOS cannot split is reported, not allowed to fail the whole model: it
+      // keeps its surface without lanes.
+      std::vector<LaneResult> lanes;
+      std::vector<MarkingResult> markings;
+      try {
+        section_lanes(ctx_, sec.axis_id, sec.part, substring(sec.centre_line, sec.start_border, sec.end_border),
+                      sec.surface.get(), sec.status != "ok", plan, degree_of(edge.from_node) >= 3,
+                      degree_of(edge.to_node) >= 3, lanes, markings);
+      } catch (const Error& e) {
+        if (e.kind() != ErrorKind::geometry_engine) throw;
+        result_.issues.push_back({sec.axis_id, "lanes_failed", e.what() + std::string(": ") + e.detail(), sec.part});
+        continue;
+      }
+      for (LaneResult& l : lanes) result_.lanes.push_back(std::move(l));
+      for (MarkingResult& m : markings) result_.markings.push_back(std::move(m));
+    }
   }
 
   void build_section(std::size_t e) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/geos_context.hpp"
+#include "core/streets/lanes.hpp"
 #include "core/streets/polyline.hpp"
 #include "core/streets/topology.hpp"
 
@@ -41,6 +42,7 @@ struct SurfaceAxis {
   double speed_kmh = 0.0;
   int layer = 0;
   std::optional<double> radius_override;
+  LaneInput lane_input;  // lanes, one-way, lane tags: the cross-section of its sections
 };
 
 struct EdgeEnd {
@@ -106,6 +108,8 @@ struct SurfaceResult {
   std::vector<CornerResult> corners;
   std::vector<IntersectionResult> intersections;
   std::vector<TopologyIssue> issues;
+  std::vector<LaneResult> lanes;        // of every section with a surface
+  std::vector<MarkingResult> markings;
 };
 
 // Checks the inputs (finite, positive widths and speeds; throws invalid_argument naming the axis)
