@@ -349,6 +349,17 @@ class SurfaceBuilder {
         }
       }
     }
+    // An arc whose two tangent points coincide (an axis meeting itself where both its ends leave
+    // the node the same way) has no length: its curb lines touch in a point, a sharp corner.
+    if (arc && distance(arc->tangent_a, arc->tangent_b) <= 1e-9) {
+      c.radius = 0.0;
+      c.status = "sharp";
+      c.arc = {arc->tangent_a, arc->tangent_a, arc->tangent_a};
+      c.arc_points = {arc->tangent_a};
+      a.border = std::max(a.border, arc->foot_a);
+      b.border = std::max(b.border, arc->foot_b);
+      return c;
+    }
     if (arc) {
       c.radius = radius;
       c.status = status;
