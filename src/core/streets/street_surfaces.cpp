@@ -349,17 +349,19 @@ class SurfaceBuilder {
         }
       }
     }
-    // An arc whose two tangent points coincide (an axis meeting itself where both its ends leave
-    // the node the same way) has no length: its curb lines touch in a point, a sharp corner.
-    if (arc && distance(arc->tangent_a, arc->tangent_b) <= 1e-9) {
+    // A sharp corner (radius 0): the curb lines meet in `point`.
+    auto sharp_corner = [&](Point point, double foot_a, double foot_b) {
       c.radius = 0.0;
       c.status = "sharp";
-      c.arc = {arc->tangent_a, arc->tangent_a, arc->tangent_a};
-      c.arc_points = {arc->tangent_a};
-      a.border = std::max(a.border, arc->foot_a);
-      b.border = std::max(b.border, arc->foot_b);
+      c.arc = {point, point, point};
+      c.arc_points = {point};
+      a.border = std::max(a.border, foot_a);
+      b.border = std::max(b.border, foot_b);
       return c;
-    }
+    };
+    // An arc whose two tangent points coincide (an axis meeting itself where both its ends leave
+    // the node the same way) has no length: its curb lines touch in a point.
+    if (arc && distance(arc->tangent_a, arc->tangent_b) <= 1e-9) return sharp_corner(arc->tangent_a, arc->foot_a, arc->foot_b);
     if (arc) {
       c.radius = radius;
       c.status = status;
@@ -372,15 +374,7 @@ class SurfaceBuilder {
     }
     // No arc fits: the curb lines meet in a sharp corner (radius 0), if they meet at all.
     std::optional<Arc> sharp = arc_for(a, b, 0.0);
-    if (sharp) {
-      c.radius = 0.0;
-      c.status = "sharp";
-      c.arc = {sharp->centre, sharp->centre, sharp->centre};
-      c.arc_points = {sharp->centre};
-      a.border = std::max(a.border, sharp->foot_a);
-      b.border = std::max(b.border, sharp->foot_b);
-      return c;
-    }
+    if (sharp) return sharp_corner(sharp->centre, sharp->foot_a, sharp->foot_b);
     // The curb lines meet beyond the reach of this junction along an axis (very short axes,
     // narrow angles): where the straight continuations of the first segments' borders meet;
     // the junction takes the axes that far, or as far as it may ('clamped'). Two axes that
