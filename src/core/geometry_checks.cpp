@@ -87,4 +87,26 @@ void require_positive_finite(double value, const char* parameter) {
   }
 }
 
+void append_linestrings(GeosContext& ctx, const GEOSGeometry* geom, const std::string& parameter,
+                        const std::string& message, const std::string& hint, std::vector<Polyline>& out) {
+  GEOSContextHandle_t h = ctx.handle();
+  int type = GEOSGeomTypeId_r(h, geom);
+  if (type == GEOS_MULTILINESTRING) {
+    int n = GEOSGetNumGeometries_r(h, geom);
+    for (int i = 0; i < n; ++i) append_linestrings(ctx, GEOSGetGeometryN_r(h, geom, i), parameter, message, hint, out);
+    return;
+  }
+  if (type != GEOS_LINESTRING) {
+    throw_invalid_argument(message, "The " + parameter + " is a " + geometry_type_name(ctx, geom) + ".", hint);
+  }
+  if (GEOSisEmpty_r(h, geom) != 0) return;
+  require_finite_coordinates(ctx, geom, parameter.c_str());
+  const GEOSCoordSequence* seq = GEOSGeom_getCoordSeq_r(h, geom);
+  unsigned int n = 0;
+  GEOSCoordSeq_getSize_r(h, seq, &n);
+  Polyline line(n);
+  for (unsigned int i = 0; i < n; ++i) GEOSCoordSeq_getXY_r(h, seq, i, &line[i].x, &line[i].y);
+  out.push_back(std::move(line));
+}
+
 }  // namespace streetgen::core

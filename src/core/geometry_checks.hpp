@@ -4,8 +4,10 @@
 #include "core/no_postgres.hpp"
 
 #include <string>
+#include <vector>
 
 #include "core/geos_context.hpp"
+#include "core/streets/polyline.hpp"
 
 namespace streetgen::core {
 
@@ -18,6 +20,11 @@ void require_finite_coordinates(GeosContext& ctx, const GEOSGeometry* geom, cons
 
 // A road axis: a non-empty LineString with finite coordinates and positive length.
 void require_axis_line(GeosContext& ctx, const GEOSGeometry* geom, const char* parameter);
+
+// Appends the LineStrings of geom (a LineString or MultiLineString, empty ones skipped) to out;
+// anything else is rejected with `message` (the detail names `parameter`, `hint` says what to do).
+void append_linestrings(GeosContext& ctx, const GEOSGeometry* geom, const std::string& parameter,
+                        const std::string& message, const std::string& hint, std::vector<Polyline>& out);
 
 // A finite number > 0.
 void require_positive_finite(double value, const char* parameter);

@@ -40,27 +40,6 @@ struct OutRow {
   core::Bytes geom;
 };
 
-void append_lines(core::GeosContext& geos, const GEOSGeometry* g, const std::string& name, std::vector<core::Polyline>& out) {
-  GEOSContextHandle_t h = geos.handle();
-  int type = GEOSGeomTypeId_r(h, g);
-  if (type == GEOS_MULTILINESTRING) {
-    int n = GEOSGetNumGeometries_r(h, g);
-    for (int i = 0; i < n; ++i) append_lines(geos, GEOSGetGeometryN_r(h, g, i), name, out);
-    return;
-  }
-  if (type != GEOS_LINESTRING) {
-    core::throw_invalid_argument("example edges must be LineStrings or MultiLineStrings",
-                                 "The " + name + " is a " + core::geometry_type_name(geos, g) + ".");
-  }
-  if (GEOSisEmpty_r(h, g) != 0) return;
-  core::require_finite_coordinates(geos, g, name.c_str());
-  const GEOSCoordSequence* seq = GEOSGeom_getCoordSeq_r(h, g);
-  unsigned int n = 0;
-  GEOSCoordSeq_getSize_r(h, seq, &n);
-  core::Polyline line(n);
-  for (unsigned int i = 0; i < n; ++i) GEOSCoordSeq_getXY_r(h, seq, i, &line[i].x, &line[i].y);
-  out.push_back(std::move(line));
-}
 
 constexpr int kArgs = 16;
 constexpr int kColumns = 6;
@@ -165,7 +144,7 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
       std::string name = "example edge " + std::to_string(i + 1);
       core::SridGeometry g = core::read_ewkb(geos, example[i].geom.data, example[i].geom.size, name.c_str());
       std::vector<core::Polyline> lines;
-      append_lines(geos, g.geom.get(), name, lines);
+      core::append_linestrings(geos, g.geom.get(), name, "example edges must be LineStrings or MultiLineStrings", "", lines);
       for (core::Polyline& line : lines) {
         input.example.push_back({std::move(line), example[i].road_class, example[i].id});
       }
@@ -183,7 +162,7 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
       poller.tick();
       std::string name = "existing edge " + std::to_string(i + 1);
       core::SridGeometry g = core::read_ewkb(geos, existing[i].data, existing[i].size, name.c_str());
-      append_lines(geos, g.geom.get(), name, input.existing);
+      core::append_linestrings(geos, g.geom.get(), name, "example edges must be LineStrings or MultiLineStrings", "", input.existing);
     }
     for (int i = 0; i < seed_count; ++i) input.seeds.push_back({seed_xy[2 * i], seed_xy[2 * i + 1]});
     core::GrowResult result = core::grow_example(geos, input, params);

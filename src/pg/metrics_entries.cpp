@@ -34,30 +34,6 @@ struct GeomArg {
   std::size_t size;
 };
 
-// Appends the LineStrings of g (a LineString or MultiLineString; empty ones are skipped).
-void append_lines(core::GeosContext& geos, const GEOSGeometry* g, std::size_t index, std::vector<core::Polyline>& out) {
-  GEOSContextHandle_t h = geos.handle();
-  int type = GEOSGeomTypeId_r(h, g);
-  std::string name = "edge " + std::to_string(index + 1);
-  if (type == GEOS_MULTILINESTRING) {
-    int n = GEOSGetNumGeometries_r(h, g);
-    for (int i = 0; i < n; ++i) append_lines(geos, GEOSGetGeometryN_r(h, g, i), index, out);
-    return;
-  }
-  if (type != GEOS_LINESTRING) {
-    core::throw_invalid_argument("edges must be LineStrings or MultiLineStrings",
-                                 "The " + name + " is a " + core::geometry_type_name(geos, g) + ".",
-                                 "Use ST_Boundary for polygons, or filter the edges with ST_Dimension(geom) = 1.");
-  }
-  if (GEOSisEmpty_r(h, g) != 0) return;
-  core::require_finite_coordinates(geos, g, name.c_str());
-  const GEOSCoordSequence* seq = GEOSGeom_getCoordSeq_r(h, g);
-  unsigned int n = 0;
-  GEOSCoordSeq_getSize_r(h, seq, &n);
-  core::Polyline line(n);
-  for (unsigned int i = 0; i < n; ++i) GEOSCoordSeq_getXY_r(h, seq, i, &line[i].x, &line[i].y);
-  out.push_back(std::move(line));
-}
 
 const char* const kArrayColumns[] = {"degrees",     "segment_lengths",   "orientation_histogram",
                                      "block_areas", "block_compactness", "block_aspect_ratios"};
@@ -221,7 +197,8 @@ Datum _streetgen_network_stats(PG_FUNCTION_ARGS) {
             "edges must share one SRID",
             "The " + name + " has SRID " + std::to_string(g.srid) + ", the first edge " + std::to_string(srid) + ".");
       }
-      append_lines(geos, g.geom.get(), static_cast<std::size_t>(i), lines);
+      core::append_linestrings(geos, g.geom.get(), "edge " + std::to_string(i + 1), "edges must be LineStrings or MultiLineStrings",
+                               "Use ST_Boundary for polygons, or filter the edges with ST_Dimension(geom) = 1.", lines);
       layers.resize(lines.size(), edge_layers[i]);  // every part of a MultiLineString on its layer
     }
     core::SridGeometry win;
