@@ -47,23 +47,9 @@ SELECT throws_ok($$SELECT * FROM streetgen._streetgen_roadway_borders(NULL, 4)$$
 CREATE TEMP TABLE huge AS
   SELECT ST_SetSRID(ST_MakeLine(ARRAY(SELECT ST_MakePoint(i, (i % 2) * 3 + sin(i / 100.0) * 50)
                                         FROM generate_series(1, 300000) AS i)), 32631) AS axis;
-CREATE FUNCTION pg_temp.sqlstate_and_seconds(query text, OUT state text, OUT seconds double precision)
-  LANGUAGE plpgsql AS $$
-DECLARE
-  started timestamptz := clock_timestamp();
-BEGIN
-  BEGIN
-    EXECUTE query;
-    state := '00000';
-  EXCEPTION WHEN query_canceled OR others THEN  -- OTHERS alone does not catch query_canceled
-    state := SQLSTATE;
-  END;
-  seconds := extract(epoch FROM clock_timestamp() - started);
-END
-$$;
 CREATE TEMP TABLE outcome (state text, seconds double precision);
 SET LOCAL statement_timeout = '500ms';
-INSERT INTO outcome SELECT * FROM pg_temp.sqlstate_and_seconds('SELECT count(*) FROM huge, streetgen.roadway_borders(axis, 6)');
+INSERT INTO outcome SELECT * FROM test_helpers.sqlstate_and_seconds('SELECT count(*) FROM huge, streetgen.roadway_borders(axis, 6)');
 RESET statement_timeout;
 SELECT is((SELECT state FROM outcome), '57014', 'statement_timeout cancels a long GEOS computation with 57014');
 SELECT cmp_ok((SELECT seconds FROM outcome), '<', 15.0::double precision,

@@ -152,22 +152,9 @@ SELECT array_agg(ST_AsEWKB(g)) AS geoms
   FROM generate_series(0, 300) i, generate_series(0, 299) j,
        LATERAL (VALUES (ST_MakeLine(ST_MakePoint(j * 10, i * 10 + (j % 3)), ST_MakePoint((j + 1) * 10, i * 10 + ((j + 1) % 3)))),
                        (ST_MakeLine(ST_MakePoint(i * 10, j * 10), ST_MakePoint(i * 10, (j + 1) * 10)))) AS v(g);
-CREATE FUNCTION pg_temp.sqlstate_and_seconds(query text, OUT state text, OUT seconds double precision)
-  LANGUAGE plpgsql AS $f$
-DECLARE
-  started timestamptz := clock_timestamp();
-BEGIN
-  EXECUTE query;
-  state := '00000';
-  seconds := extract(epoch FROM clock_timestamp() - started);
-EXCEPTION WHEN query_canceled OR others THEN  -- OTHERS alone does not catch query_canceled
-  state := SQLSTATE;
-  seconds := extract(epoch FROM clock_timestamp() - started);
-END
-$f$;
 CREATE TEMP TABLE outcome (state text, seconds double precision);
 SET LOCAL statement_timeout = '300ms';
-INSERT INTO outcome SELECT * FROM pg_temp.sqlstate_and_seconds(
+INSERT INTO outcome SELECT * FROM test_helpers.sqlstate_and_seconds(
   $$SELECT (streetgen._streetgen_network_stats(geoms, 0.5, NULL, true, false, true, '{}')).node_count FROM big$$);
 RESET statement_timeout;
 SELECT is((SELECT state FROM outcome), '57014', 'statement_timeout cancels network_stats with 57014');

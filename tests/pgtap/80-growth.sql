@@ -210,22 +210,9 @@ SELECT throws_ok($$SELECT * FROM streetgen.grow_example('SELECT geom FROM tokyo'
 
 -- A long growth is cancelled by statement_timeout with 57014 (inside the C++ loop, which polls
 -- once per step), and the session grows again.
-CREATE FUNCTION pg_temp.sqlstate_and_seconds(query text, OUT state text, OUT seconds double precision)
-  LANGUAGE plpgsql AS $f$
-DECLARE
-  started timestamptz := clock_timestamp();
-BEGIN
-  EXECUTE query;
-  state := '00000';
-  seconds := extract(epoch FROM clock_timestamp() - started);
-EXCEPTION WHEN query_canceled OR others THEN  -- OTHERS alone does not catch query_canceled
-  state := SQLSTATE;
-  seconds := extract(epoch FROM clock_timestamp() - started);
-END
-$f$;
 CREATE TEMP TABLE outcome (state text, seconds double precision);
 SET LOCAL statement_timeout = '200ms';
-INSERT INTO outcome SELECT * FROM pg_temp.sqlstate_and_seconds(
+INSERT INTO outcome SELECT * FROM test_helpers.sqlstate_and_seconds(
   $$SELECT pg_temp.grow('SELECT geom, road_class FROM tokyo', params => '{"max_edges": 1000000, "candidates": 500}')$$);
 RESET statement_timeout;
 SELECT is((SELECT state FROM outcome), '57014', 'statement_timeout cancels a long growth with 57014');
