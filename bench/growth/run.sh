@@ -24,15 +24,9 @@ out="${OUT:-$repo/build/bench-growth}"
 params="${PARAMS:-{\}}"
 seeds="${SEEDS:-1 2 3}"
 mkdir -p "$out"
-cluster=/tmp/streetgen-bench-growth-$port
-bash "$repo/scripts/pgcluster.sh" destroy "$cluster" >/dev/null 2>&1 || true
-bash "$repo/scripts/pgcluster.sh" start "$cluster" "$port" --fast >/dev/null
-trap 'bash "$repo/scripts/pgcluster.sh" destroy "$cluster" >/dev/null 2>&1 || true' EXIT
-export PGHOST="$cluster" PGPORT="$port" PGUSER=postgres PGDATABASE=bench
-export PGOPTIONS="-c client_min_messages=warning"
-createdb bench
+source "$repo/bench/lib.sh"
+bench_cluster "$port" nobuild
 psql -X -q -v ON_ERROR_STOP=1 <<SQL
-CREATE EXTENSION streetgen CASCADE;
 CREATE TABLE patch AS
 SELECT n AS name, row_number() OVER (PARTITION BY n) AS id, f -> 'properties' ->> 'type' AS road_class,
        ST_SetSRID(ST_GeomFromGeoJSON(f -> 'geometry'), 0) AS geom

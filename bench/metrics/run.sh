@@ -19,18 +19,9 @@ repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 data="${STREETGEN_SHARED_DATA:-$repo/../shared/data}"
 runs="${RUNS:-5}"
 port="${STREETGEN_BENCH_PORT:-54333}"
-cluster=/tmp/streetgen-bench-$port
 paris="$data/examples/cities/paris.geojson"
-if [ "${STREETGEN_BENCH_NO_BUILD:-0}" != 1 ]; then
-  STREETGEN_BUILD_TESTS=OFF STREETGEN_BUILD_DIR="$repo/build-bench" bash "$repo/scripts/build.sh" >/dev/null
-fi
-bash "$repo/scripts/pgcluster.sh" destroy "$cluster" >/dev/null 2>&1 || true
-bash "$repo/scripts/pgcluster.sh" start "$cluster" "$port" --fast >/dev/null
-trap 'bash "$repo/scripts/pgcluster.sh" destroy "$cluster" >/dev/null 2>&1 || true' EXIT
-export PGHOST="$cluster" PGPORT="$port" PGUSER=postgres PGDATABASE=bench
-export PGOPTIONS="-c client_min_messages=warning"
-createdb bench
-psql -X -q -c "CREATE EXTENSION streetgen CASCADE"
+source "$repo/bench/lib.sh"
+bench_cluster "$port"
 psql -X -q -c "CREATE TABLE paris (id integer, geom geometry(LineString, 0))"
 /usr/bin/python3 "$repo/tests/metrics/geojson_edges.py" "$paris" | psql -X -q -c "COPY paris FROM STDIN"
 psql -X -q -c "CREATE TABLE new_york (id integer, geom geometry(LineString, 0))"

@@ -15,15 +15,8 @@ repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 data="${STREETGEN_SHARED_DATA:-$repo/../shared/data}"
 edits="${EDITS:-200}"
 port=54331
-cluster=/tmp/streetgen-bench-$port
-STREETGEN_BUILD_TESTS=OFF STREETGEN_BUILD_DIR="$repo/build-bench" bash "$repo/scripts/build.sh" >/dev/null
-bash "$repo/scripts/pgcluster.sh" destroy "$cluster" >/dev/null 2>&1 || true
-bash "$repo/scripts/pgcluster.sh" start "$cluster" "$port" --fast >/dev/null
-trap 'bash "$repo/scripts/pgcluster.sh" destroy "$cluster" >/dev/null 2>&1 || true' EXIT
-export PGHOST="$cluster" PGPORT="$port" PGUSER=postgres PGDATABASE=bench
-export PGOPTIONS="-c client_min_messages=warning"
-createdb bench
-psql -X -q -c "CREATE EXTENSION streetgen CASCADE"
+source "$repo/bench/lib.sh"
+bench_cluster "$port"
 
 load_paris() {
   psql -X -q -c "SELECT streetgen.create_model('paris', 0)"

@@ -19,20 +19,13 @@ out="${OUT:-$repo/build/bench-surfaces}"
 datasets="${DATASETS:-osm cases paris}"
 peers="${PEERS:-1}"
 port=54330
-cluster=/tmp/streetgen-bench-$port
 mkdir -p "$out"
 report="$out/report.md"
 : >"$report"
 say() { echo "$*" | tee -a "$report"; }
 
-STREETGEN_BUILD_TESTS=OFF STREETGEN_BUILD_DIR="$repo/build-bench" bash "$repo/scripts/build.sh" >/dev/null
-bash "$repo/scripts/pgcluster.sh" destroy "$cluster" >/dev/null 2>&1 || true
-bash "$repo/scripts/pgcluster.sh" start "$cluster" "$port" --fast >/dev/null
-trap 'bash "$repo/scripts/pgcluster.sh" destroy "$cluster" >/dev/null 2>&1 || true' EXIT
-export PGHOST="$cluster" PGPORT="$port" PGUSER=postgres PGDATABASE=bench
-export PGOPTIONS="-c client_min_messages=warning"
-createdb bench
-psql -X -q -c "CREATE EXTENSION streetgen CASCADE"
+source "$repo/bench/lib.sh"
+bench_cluster "$port"
 now() { date +%s.%N; }
 since() { awk -v s="$1" -v e="$(now)" 'BEGIN { printf "%.2f", e - s }'; }
 
