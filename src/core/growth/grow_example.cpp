@@ -46,12 +46,14 @@ Box box_of(Point a, Point b) {
 }
 Box box_around(Point p, double r) { return Box(BPoint(p.x - r, p.y - r), BPoint(p.x + r, p.y + r)); }
 
-double point_segment_distance(Point p, Point a, Point b) {
-  Point d = b - a;
-  double l2 = dot(d, d);
-  double t = l2 > 0.0 ? std::clamp(dot(p - a, d) / l2, 0.0, 1.0) : 0.0;
-  return distance(p, a + t * d);
-}
+// A position rounded to the millimetre: points that close are one node.
+using MillimetreKey = std::pair<std::int64_t, std::int64_t>;
+struct MillimetreKeyHash {
+  std::size_t operator()(const MillimetreKey& k) const noexcept {
+    return static_cast<std::size_t>(static_cast<std::uint64_t>(k.first) * 0x9E3779B97F4A7C15ULL ^
+                                    static_cast<std::uint64_t>(k.second));
+  }
+};
 
 // Proper or touching intersection of segments ab and cd, by orientations.
 bool segments_intersect(Point a, Point b, Point c, Point d) {
@@ -266,13 +268,7 @@ class Grower {
                              "Pass a query (or model) whose rows hold the example's road edges.");
     }
     // Shape points and junctions closer than a millimetre are one node.
-    struct KeyHash {
-      std::size_t operator()(const std::pair<std::int64_t, std::int64_t>& k) const noexcept {
-        return static_cast<std::size_t>(static_cast<std::uint64_t>(k.first) * 0x9E3779B97F4A7C15ULL ^
-                                        static_cast<std::uint64_t>(k.second));
-      }
-    };
-    std::unordered_map<std::pair<std::int64_t, std::int64_t>, std::uint32_t, KeyHash> index;
+    std::unordered_map<MillimetreKey, std::uint32_t, MillimetreKeyHash> index;
     auto node_of = [&](Point p) {
       std::pair<std::int64_t, std::int64_t> key{std::llround(p.x * 1000.0), std::llround(p.y * 1000.0)};
       auto [it, added] = index.emplace(key, static_cast<std::uint32_t>(ex_nodes_.size()));
@@ -387,13 +383,7 @@ class Grower {
 
   // The existing network: fixed edges the growth must respect and may join, never emitted.
   void load_existing() {
-    struct KeyHash {
-      std::size_t operator()(const std::pair<std::int64_t, std::int64_t>& k) const noexcept {
-        return static_cast<std::size_t>(static_cast<std::uint64_t>(k.first) * 0x9E3779B97F4A7C15ULL ^
-                                        static_cast<std::uint64_t>(k.second));
-      }
-    };
-    std::unordered_map<std::pair<std::int64_t, std::int64_t>, std::uint32_t, KeyHash> index;
+    std::unordered_map<MillimetreKey, std::uint32_t, MillimetreKeyHash> index;
     auto node_of = [&](Point p) {
       std::pair<std::int64_t, std::int64_t> key{std::llround(p.x * 1000.0), std::llround(p.y * 1000.0)};
       auto it = index.find(key);

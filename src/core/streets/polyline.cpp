@@ -79,13 +79,14 @@ Projection project(const Polyline& line, Point p) {
   return best;
 }
 
-namespace {
 double point_segment_distance(Point p, Point a, Point b) {
   Point d = b - a;
   double len2 = dot(d, d);
   double t = len2 > 0.0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
   return distance(p, a + t * d);
 }
+
+namespace {
 
 bool segments_cross(Point a0, Point a1, Point b0, Point b1) {
   double d1 = cross(a1 - a0, b0 - a0), d2 = cross(a1 - a0, b1 - a0);

@@ -50,6 +50,9 @@ struct Projection {
 // The closest point of `line` to p.
 Projection project(const Polyline& line, Point p);
 
+// Distance from p to the segment ab (a point when a == b).
+double point_segment_distance(Point p, Point a, Point b);
+
 // Smallest distance between two polylines.
 double polyline_distance(const Polyline& a, const Polyline& b);
 
