@@ -12,7 +12,10 @@ CREATE TABLE streetgen.default_settings (
   min_border_distance double precision NOT NULL DEFAULT 0.5 CHECK (min_border_distance >= 0 AND min_border_distance <= 50),
   transition_length_per_metre double precision NOT NULL DEFAULT 5 CHECK (transition_length_per_metre > 0 AND transition_length_per_metre <= 100),
   min_transition_length double precision NOT NULL DEFAULT 5 CHECK (min_transition_length >= 0 AND min_transition_length <= 500),
-  max_transition_deflection_deg double precision NOT NULL DEFAULT 30 CHECK (max_transition_deflection_deg >= 0 AND max_transition_deflection_deg <= 90)
+  max_transition_deflection_deg double precision NOT NULL DEFAULT 30 CHECK (max_transition_deflection_deg >= 0 AND max_transition_deflection_deg <= 90),
+  crossing_width double precision NOT NULL DEFAULT 3 CHECK (crossing_width >= 0 AND crossing_width <= 10),
+  crossing_max_speed_kmh double precision NOT NULL DEFAULT 50 CHECK (crossing_max_speed_kmh >= 0 AND crossing_max_speed_kmh <= 300),
+  default_sidewalk_width double precision NOT NULL DEFAULT 2 CHECK (default_sidewalk_width >= 0 AND default_sidewalk_width <= 20)
 );
 INSERT INTO streetgen.default_settings DEFAULT VALUES;
 GRANT SELECT ON streetgen.default_settings TO PUBLIC;
@@ -27,6 +30,9 @@ COMMENT ON COLUMN streetgen.default_settings.min_border_distance IS 'm: every ju
 COMMENT ON COLUMN streetgen.default_settings.transition_length_per_metre IS 'Width transitions: length per metre of width change';
 COMMENT ON COLUMN streetgen.default_settings.min_transition_length IS 'm: shortest width transition';
 COMMENT ON COLUMN streetgen.default_settings.max_transition_deflection_deg IS 'A degree-2 node is a width transition (not a corner) when the axis bends less than this';
+COMMENT ON COLUMN streetgen.default_settings.crossing_width IS 'm: pedestrian crossings along the axis (0: no crossings)';
+COMMENT ON COLUMN streetgen.default_settings.crossing_max_speed_kmh IS 'Crossings only on streets this slow or slower (km/h)';
+COMMENT ON COLUMN streetgen.default_settings.default_sidewalk_width IS 'm: the sidewalk of a street that has one by the class rule when neither sidewalk_width nor an OSM width tag says how wide (see streetgen.sidewalk_widths)';
 
 -- The settings as the C function takes them: a float8[] in the column order above. `settings`
 -- is a jsonb object of overrides (unknown keys are an error), applied over the defaults.
@@ -53,6 +59,7 @@ BEGIN
   SELECT * INTO s FROM jsonb_populate_record((SELECT d FROM streetgen.default_settings d), settings);
   RETURN ARRAY[s.snap_tolerance, s.turn_speed_ratio, s.lateral_acceleration, s.min_radius, s.max_radius,
                s.misplaced_factor, s.min_border_distance, s.transition_length_per_metre, s.min_transition_length,
-               s.max_transition_deflection_deg];
+               s.max_transition_deflection_deg, s.crossing_width, s.crossing_max_speed_kmh];
 END
 $$;
+

@@ -31,7 +31,8 @@ CREATE FUNCTION streetgen._lock_model_name(name text)
   SET search_path FROM CURRENT
   AS $$ SELECT pg_advisory_xact_lock(hashtext('streetgen.model'), hashtext(name)) $$;
 
--- The generated tables of a model: settings, node, section, corner, intersection, lane, marking, issue. Every
+-- The generated tables of a model: settings, node, section, corner, intersection, lane, marking,
+-- sidewalk, crossing, block, issue. Every
 -- row is keyed so that regenerating the same axes gives the same keys, and points to the axes
 -- or nodes it came from (deleting an axis deletes its sections and corners).
 CREATE FUNCTION streetgen._create_output_tables(name text, srid integer)
@@ -128,6 +129,49 @@ BEGIN
     );
     CREATE INDEX marking_geom_idx ON %1$I.marking USING gist (geom);
     COMMENT ON TABLE %1$I.marking IS 'Road markings of each section: centre_line, lane_separator (position: between lanes position and position + 1), stop_line (position 0 at the start border, 1 at the end); style solid or dashed';
+
+    -- A section's sidewalks are keyed (axis_id, part, side), a junction's by node_id: one of the
+    -- two, each with its foreign key (the partial unique indexes are the upserts' keys).
+    CREATE TABLE %1$I.sidewalk (
+      axis_id bigint,
+      part bigint,
+      node_id bigint REFERENCES %1$I.intersection (node_id) ON DELETE CASCADE,
+      side text NOT NULL,
+      width double precision NOT NULL,
+      geom geometry(MultiPolygon, %2$s) NOT NULL,
+      FOREIGN KEY (axis_id, part) REFERENCES %1$I.section (axis_id, part) ON DELETE CASCADE,
+      CONSTRAINT sidewalk_one_owner CHECK ((node_id IS NULL) = (axis_id IS NOT NULL AND part IS NOT NULL)),
+      CONSTRAINT sidewalk_side CHECK (side IN ('left', 'right', 'around') AND (side = 'around') = (node_id IS NOT NULL))
+    );
+    CREATE UNIQUE INDEX sidewalk_section_key ON %1$I.sidewalk (axis_id, part, side) WHERE node_id IS NULL;
+    CREATE UNIQUE INDEX sidewalk_junction_key ON %1$I.sidewalk (node_id) WHERE node_id IS NOT NULL;
+    CREATE INDEX sidewalk_geom_idx ON %1$I.sidewalk USING gist (geom);
+    CREATE INDEX sidewalk_width_idx ON %1$I.sidewalk (width);
+    COMMENT ON TABLE %1$I.sidewalk IS 'Sidewalks: beside each section (side left or right, looking along the axis) and around each junction (side around, node_id), outside every roadway, never overlapping each other';
+
+    CREATE TABLE %1$I.crossing (
+      axis_id bigint NOT NULL,
+      part bigint NOT NULL,
+      position smallint NOT NULL,
+      node_id bigint NOT NULL REFERENCES %1$I.node (id) ON DELETE CASCADE,
+      width double precision NOT NULL,
+      geom geometry(MultiPolygon, %2$s) NOT NULL,
+      PRIMARY KEY (axis_id, part, position),
+      FOREIGN KEY (axis_id, part) REFERENCES %1$I.section (axis_id, part) ON DELETE CASCADE
+    );
+    CREATE INDEX crossing_geom_idx ON %1$I.crossing USING gist (geom);
+    COMMENT ON TABLE %1$I.crossing IS 'Pedestrian crossings (zebra areas) across a section at its border line with junction node_id: position 0 at the section''s start, 1 at its end';
+
+    -- Blocks: the bounded faces of the ground-level axis network (layer 0) minus its street
+    -- surfaces, sidewalks included. Keyed by a hash of the face (stable while the face stays).
+    CREATE TABLE %1$I.block (
+      id bigint PRIMARY KEY,
+      face geometry(Polygon, %2$s) NOT NULL,
+      geom geometry(MultiPolygon, %2$s),
+      axis_ids bigint[] NOT NULL
+    );
+    CREATE INDEX block_face_idx ON %1$I.block USING gist (face);
+    COMMENT ON TABLE %1$I.block IS 'City blocks: each bounded face of the ground-level axis network (face) minus street surfaces and sidewalks (geom, NULL when the streets fill it); axis_ids: the axes around it';
 
     CREATE TABLE %1$I.issue (
       axis_id bigint REFERENCES %1$I.axis (id) ON DELETE CASCADE,

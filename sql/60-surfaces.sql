@@ -4,7 +4,8 @@ CREATE FUNCTION streetgen._streetgen_street_surfaces(
     ids bigint[], geoms bytea[], widths double precision[], speeds double precision[], layers integer[],
     radius_overrides double precision[], settings double precision[],
     override_nodes bigint[], override_keys bigint[], override_radii double precision[],
-    lanes integer[], oneways boolean[], lane_tags text[],
+    lanes integer[], oneways boolean[], lane_tags text[], sidewalk_left double precision[],
+    sidewalk_right double precision[],
     OUT kind text, OUT node_id bigint, OUT to_node bigint, OUT axis_id bigint, OUT part bigint, OUT end_a boolean,
     OUT axis_b bigint, OUT part_b bigint, OUT end_b boolean, OUT status text, OUT detail text, OUT degree integer,
     OUT layer integer, OUT radius double precision, OUT radius_wanted double precision,
@@ -26,6 +27,77 @@ CREATE FUNCTION streetgen._lane_tags(tags jsonb)
     SELECT string_agg(t.key || '=' || replace(t.value, E'\n', ' '), E'\n' ORDER BY t.key)
       FROM jsonb_each_text(CASE WHEN jsonb_typeof(tags) = 'object' THEN tags ELSE '{}' END) AS t
      WHERE t.key ~ '^(lanes|turn:lanes|cycleway|busway)(:|$)'
+  $$;
+
+-- Sidewalk widths (left, right looking along the axis) of one axis, the rule behind sidewalks:
+--   which sides: the OSM tags sidewalk=both|yes|left|right|no|none|separate, then
+--   sidewalk:both|left|right=yes|no|separate (a side tagged separate is drawn as its own way, so
+--   it is not here); without any of these tags, by class: none on motorways, trunk roads, their
+--   links, service roads, living streets (shared space), tracks and bus ways, both sides on every
+--   other class;
+--   how wide: sidewalk:<side>:width, sidewalk:both:width, sidewalk:width, then the axis'
+--   sidewalk_width column (0: no sidewalk at all), then DEFAULT_WIDTH (the model's
+--   settings.default_sidewalk_width).
+-- oneway=-1 ways are stored reversed by the importer, so their left and right tags swap.
+-- Widths outside (0, 20] m in tags are tagging mistakes and count as missing.
+CREATE FUNCTION streetgen.sidewalk_widths(road_class text, sidewalk_width double precision, tags jsonb,
+                                          default_width double precision)
+  RETURNS double precision[]
+  LANGUAGE sql IMMUTABLE PARALLEL SAFE
+  SET search_path FROM CURRENT
+  AS $$
+    WITH t AS (SELECT CASE WHEN jsonb_typeof(tags) = 'object' THEN tags ELSE '{}'::jsonb END AS tags),
+    present AS (
+      SELECT t.tags,
+             pg_catalog.lower(t.tags->>'sidewalk') AS main,
+             pg_catalog.lower(t.tags->>'sidewalk:both') AS both_,
+             pg_catalog.lower(t.tags->>'sidewalk:left') AS left_,
+             pg_catalog.lower(t.tags->>'sidewalk:right') AS right_
+        FROM t),
+    sides AS (
+      SELECT p.tags,
+             CASE WHEN p.left_ IN ('yes', 'no', 'separate', 'none') THEN p.left_ = 'yes'
+                  WHEN p.both_ IN ('yes', 'no', 'separate', 'none') THEN p.both_ = 'yes'
+                  WHEN p.main IS NOT NULL THEN p.main IN ('both', 'yes', 'left')
+                  ELSE NOT coalesce(road_class IN ('motorway', 'motorway_link', 'trunk', 'trunk_link', 'service',
+                                                    'living_street', 'track', 'busway', 'raceway'), false) END AS has_left,
+             CASE WHEN p.right_ IN ('yes', 'no', 'separate', 'none') THEN p.right_ = 'yes'
+                  WHEN p.both_ IN ('yes', 'no', 'separate', 'none') THEN p.both_ = 'yes'
+                  WHEN p.main IS NOT NULL THEN p.main IN ('both', 'yes', 'right')
+                  ELSE NOT coalesce(road_class IN ('motorway', 'motorway_link', 'trunk', 'trunk_link', 'service',
+                                                    'living_street', 'track', 'busway', 'raceway'), false) END AS has_right
+        FROM present p),
+    widths AS (
+      SELECT s.has_left, s.has_right,
+             (SELECT x FROM pg_catalog.unnest(ARRAY[streetgen.osm_parse_length(s.tags->>'sidewalk:left:width'),
+                                                     streetgen.osm_parse_length(s.tags->>'sidewalk:both:width'),
+                                                     streetgen.osm_parse_length(s.tags->>'sidewalk:width')]) WITH ORDINALITY AS u(x, i)
+               WHERE x > 0 AND x <= 20 ORDER BY i LIMIT 1) AS tagged_left,
+             (SELECT x FROM pg_catalog.unnest(ARRAY[streetgen.osm_parse_length(s.tags->>'sidewalk:right:width'),
+                                                     streetgen.osm_parse_length(s.tags->>'sidewalk:both:width'),
+                                                     streetgen.osm_parse_length(s.tags->>'sidewalk:width')]) WITH ORDINALITY AS u(x, i)
+               WHERE x > 0 AND x <= 20 ORDER BY i LIMIT 1) AS tagged_right,
+             pg_catalog.lower(s.tags->>'oneway') IN ('-1', 'reverse') AS reversed
+        FROM sides s),
+    lr AS (
+      SELECT CASE WHEN w.has_left THEN coalesce(w.tagged_left, sidewalk_width, default_width) ELSE 0 END AS l,
+             CASE WHEN w.has_right THEN coalesce(w.tagged_right, sidewalk_width, default_width) ELSE 0 END AS r,
+             w.reversed
+        FROM widths w)
+    SELECT CASE WHEN lr.reversed THEN ARRAY[lr.r, lr.l] ELSE ARRAY[lr.l, lr.r] END FROM lr
+  $$;
+COMMENT ON FUNCTION streetgen.sidewalk_widths(text, double precision, jsonb, double precision) IS
+  'Sidewalk widths {left, right} (m, looking along the axis) from road class, sidewalk_width and OSM sidewalk tags: the rule the sidewalks follow';
+
+-- The tags that shape sidewalks, as sorted "key=value" lines (the update trigger compares them).
+CREATE FUNCTION streetgen._sidewalk_tags(tags jsonb)
+  RETURNS text
+  LANGUAGE sql IMMUTABLE PARALLEL SAFE
+  SET search_path FROM CURRENT
+  AS $$
+    SELECT string_agg(t.key || '=' || t.value, E'\n' ORDER BY t.key)
+      FROM jsonb_each_text(CASE WHEN jsonb_typeof(tags) = 'object' THEN tags ELSE '{}' END) AS t
+     WHERE t.key ~ '^sidewalk(:|$)' OR t.key = 'oneway'
   $$;
 
 -- Runs the engine on MODEL's axes (all of them, or those whose id is in CONTEXT), its settings
@@ -53,8 +125,13 @@ BEGIN
                    array_agg(a.radius_override ORDER BY a.id) AS radii,
                    array_agg(a.lanes::integer ORDER BY a.id) AS lanes,
                    array_agg(a.oneway ORDER BY a.id) AS oneways,
-                   array_agg(streetgen._lane_tags(a.tags) ORDER BY a.id) AS lane_tags
-              FROM %1$I.axis a WHERE $1 IS NULL OR a.id = ANY ($1)) AS x,
+                   array_agg(streetgen._lane_tags(a.tags) ORDER BY a.id) AS lane_tags,
+                   array_agg(w.widths[1] ORDER BY a.id) AS sidewalk_left,
+                   array_agg(w.widths[2] ORDER BY a.id) AS sidewalk_right
+              FROM %1$I.axis a,
+                   LATERAL (SELECT streetgen.sidewalk_widths(a.road_class, a.sidewalk_width, a.tags,
+                                                             (SELECT s.default_sidewalk_width FROM %1$I.settings s)) AS widths) AS w
+             WHERE $1 IS NULL OR a.id = ANY ($1)) AS x,
            (SELECT streetgen._settings_vector(to_jsonb(s) - 'singleton') AS v FROM %1$I.settings s) AS st,
            (SELECT array_agg(k ORDER BY c.node_id, c.axis_a, c.part_a, c.end_a, c.axis_b, c.part_b, c.end_b, i) AS keys
               FROM %1$I.corner c, unnest(ARRAY[c.axis_a, c.part_a, c.end_a::int, c.axis_b, c.part_b, c.end_b::int])
@@ -67,7 +144,8 @@ BEGIN
                                                 coalesce(x.speeds, '{}'), coalesce(x.layers, '{}'), coalesce(x.radii, '{}'),
                                                 st.v, coalesce(ov.nodes, '{}'), coalesce(ov_keys.keys, '{}'),
                                                 coalesce(ov.radii, '{}'), coalesce(x.lanes, '{}'),
-                                                coalesce(x.oneways, '{}'), coalesce(x.lane_tags, '{}')) AS o
+                                                coalesce(x.oneways, '{}'), coalesce(x.lane_tags, '{}'),
+                                                coalesce(x.sidewalk_left, '{}'), coalesce(x.sidewalk_right, '{}')) AS o
   $q$, model) USING context;
   -- A whole model's output is large: the statements that store it plan with real numbers. A
   -- local recompute's is a few hundred rows, planned well enough from the table's size, and an
@@ -119,6 +197,14 @@ BEGIN
     $q$DELETE FROM %1$I.marking s WHERE (%5$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'marking' AND o.axis_id = s.axis_id AND o.part = s.part
          AND o.status = s.kind AND o.item = s.position)$q$,
+    $q$DELETE FROM %1$I.sidewalk s WHERE s.node_id IS NULL AND (%5$s) AND NOT EXISTS (
+      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'sidewalk' AND o.node_id IS NULL AND o.axis_id = s.axis_id
+         AND o.part = s.part AND o.status = s.side)$q$,
+    $q$DELETE FROM %1$I.sidewalk s WHERE s.node_id IS NOT NULL AND (%11$s) AND NOT EXISTS (
+      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'sidewalk' AND o.node_id = s.node_id AND o.axis_id IS NULL)$q$,
+    $q$DELETE FROM %1$I.crossing s WHERE (%5$s) AND NOT EXISTS (
+      SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'crossing' AND o.axis_id = s.axis_id AND o.part = s.part
+         AND o.item = s.position)$q$,
     $q$DELETE FROM %1$I.section s WHERE (%5$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'section' AND o.axis_id = s.axis_id AND o.part = s.part)$q$,
     $q$INSERT INTO %1$I.node AS t (id, geom, degree, layer, axis_ids)
@@ -170,6 +256,21 @@ BEGIN
      WHERE o.kind = 'intersection' AND (%6$s)
     ON CONFLICT (node_id) DO UPDATE SET status = EXCLUDED.status, axis_ids = EXCLUDED.axis_ids, geom = EXCLUDED.geom
      WHERE (t.status, t.axis_ids, t.geom) IS DISTINCT FROM (EXCLUDED.status, EXCLUDED.axis_ids, EXCLUDED.geom)$q$,
+    $q$INSERT INTO %1$I.sidewalk AS t (axis_id, part, side, width, geom)
+    SELECT o.axis_id, o.part, o.status, o.width, ST_Multi(ST_CollectionExtract(ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s), 3))
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'sidewalk' AND o.node_id IS NULL AND (%7$s)
+    ON CONFLICT (axis_id, part, side) WHERE node_id IS NULL DO UPDATE SET width = EXCLUDED.width, geom = EXCLUDED.geom
+     WHERE (t.width, t.geom) IS DISTINCT FROM (EXCLUDED.width, EXCLUDED.geom)$q$,
+    $q$INSERT INTO %1$I.sidewalk AS t (node_id, side, width, geom)
+    SELECT o.node_id, o.status, o.width, ST_Multi(ST_CollectionExtract(ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s), 3))
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'sidewalk' AND o.axis_id IS NULL AND (%6$s)
+    ON CONFLICT (node_id) WHERE node_id IS NOT NULL DO UPDATE SET width = EXCLUDED.width, geom = EXCLUDED.geom
+     WHERE (t.width, t.geom) IS DISTINCT FROM (EXCLUDED.width, EXCLUDED.geom)$q$,
+    $q$INSERT INTO %1$I.crossing AS t (axis_id, part, position, node_id, width, geom)
+    SELECT o.axis_id, o.part, o.item, o.node_id, o.width, ST_Multi(ST_CollectionExtract(ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s), 3))
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'crossing' AND (%7$s)
+    ON CONFLICT (axis_id, part, position) DO UPDATE SET node_id = EXCLUDED.node_id, width = EXCLUDED.width, geom = EXCLUDED.geom
+     WHERE (t.node_id, t.width, t.geom) IS DISTINCT FROM (EXCLUDED.node_id, EXCLUDED.width, EXCLUDED.geom)$q$,
     $q$DELETE FROM %1$I.node t WHERE (%8$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND o.node_id = t.id)$q$,
     $q$DELETE FROM %1$I.issue i WHERE (%9$s)$q$,
@@ -180,14 +281,16 @@ BEGIN
                    format(node_scope, 'c.node_id'), format(node_scope, 'i.node_id'),
                    format(section_scope, 's.axis_id', 's.part'), format(node_scope, 'o.node_id'),
                    format(section_scope, 'o.axis_id', 'o.part'), format(node_scope, 't.id'),
-                   format(issue_scope, 'i.axis_id', 'i.part', 'i.node_id'), format(issue_scope, 'o.axis_id', 'o.part', 'o.node_id'));
+                   format(issue_scope, 'i.axis_id', 'i.part', 'i.node_id'), format(issue_scope, 'o.axis_id', 'o.part', 'o.node_id'),
+                   format(node_scope, 's.node_id'));
   END LOOP;
   -- After a whole model (a bulk load, new settings) the statistics are stale or missing until
   -- autovacuum comes by, and the next edits' neighbourhood searches would plan as if the tables
   -- were empty (seconds instead of milliseconds). A few hundred ms against a full run.
   IF NOT scoped THEN
-    EXECUTE format('ANALYZE %1$I.axis, %1$I.node, %1$I.section, %1$I.corner, %1$I.intersection, %1$I.lane, %1$I.marking',
-                   model);
+    EXECUTE format('ANALYZE %1$I.axis, %1$I.node, %1$I.section, %1$I.corner, %1$I.intersection, %1$I.lane, %1$I.marking,
+                            %1$I.sidewalk, %1$I.crossing', model);
+    PERFORM streetgen._store_blocks(model, NULL);
   END IF;
 END
 $$;
@@ -211,7 +314,8 @@ COMMENT ON FUNCTION streetgen.generate(text) IS
 
 -- Stateless: street surfaces of the axes a query returns, for any GIS client. The query must
 -- return id (bigint), geom (LineString, projected CRS in metres), roadway_width and speed_kmh;
--- layer, radius_override, lanes, oneway and tags (jsonb, OSM) are used when present. It runs
+-- layer, radius_override, lanes, oneway, tags (jsonb, OSM), road_class and sidewalk_width are used
+-- when present (sidewalks follow streetgen.sidewalk_widths). It runs
 -- with the caller's rights. ITEM is a lane's index or a marking's position, DETAIL a lane's
 -- turn or a marking's style (and an issue's text).
 CREATE FUNCTION streetgen.street_surfaces(axes text, settings jsonb DEFAULT '{}',
@@ -226,7 +330,10 @@ DECLARE
   columns text[];
   srid integer;
   vector double precision[] := streetgen._settings_vector(settings);
+  default_sidewalk double precision;
 BEGIN
+  SELECT s.default_sidewalk_width INTO default_sidewalk
+    FROM jsonb_populate_record((SELECT d FROM streetgen.default_settings d), settings) s;
   IF axes IS NULL THEN
     RAISE EXCEPTION 'axes must not be null' USING ERRCODE = 'null_value_not_allowed';
   END IF;
@@ -247,19 +354,25 @@ BEGIN
       FROM (SELECT array_agg(q.id::bigint) AS ids, array_agg(ST_AsEWKB(q.geom)) AS geoms,
                    array_agg(q.roadway_width::float8) AS widths, array_agg(q.speed_kmh::float8) AS speeds,
                    array_agg(%2$s) AS layers, array_agg(%3$s) AS radii, array_agg(%4$s) AS lanes,
-                   array_agg(%5$s) AS oneways, array_agg(%6$s) AS lane_tags
-              FROM pg_temp._streetgen_axes q) AS x,
+                   array_agg(%5$s) AS oneways, array_agg(%6$s) AS lane_tags,
+                   array_agg(w.widths[1]) AS sidewalk_left, array_agg(w.widths[2]) AS sidewalk_right
+              FROM pg_temp._streetgen_axes q,
+                   LATERAL (SELECT streetgen.sidewalk_widths(%7$s, %8$s, %9$s, $2) AS widths) AS w) AS x,
            streetgen._streetgen_street_surfaces(coalesce(x.ids, '{}'), coalesce(x.geoms, '{}'), coalesce(x.widths, '{}'),
                                                 coalesce(x.speeds, '{}'), coalesce(x.layers, '{}'), coalesce(x.radii, '{}'),
                                                 $1, '{}', '{}', '{}', coalesce(x.lanes, '{}'), coalesce(x.oneways, '{}'),
-                                                coalesce(x.lane_tags, '{}')) AS o
+                                                coalesce(x.lane_tags, '{}'), coalesce(x.sidewalk_left, '{}'),
+                                                coalesce(x.sidewalk_right, '{}')) AS o
   $q$, coalesce(srid, 0),
        CASE WHEN 'layer' = ANY(columns) THEN 'q.layer::integer' ELSE '0' END,
        CASE WHEN 'radius_override' = ANY(columns) THEN 'q.radius_override::float8' ELSE 'NULL::float8' END,
        CASE WHEN 'lanes' = ANY(columns) THEN 'q.lanes::integer' ELSE 'NULL::integer' END,
        CASE WHEN 'oneway' = ANY(columns) THEN 'q.oneway::boolean' ELSE 'false' END,
-       CASE WHEN 'tags' = ANY(columns) THEN 'streetgen._lane_tags(q.tags::jsonb)' ELSE 'NULL::text' END)
-  USING vector;
+       CASE WHEN 'tags' = ANY(columns) THEN 'streetgen._lane_tags(q.tags::jsonb)' ELSE 'NULL::text' END,
+       CASE WHEN 'road_class' = ANY(columns) THEN 'q.road_class::text' ELSE 'NULL::text' END,
+       CASE WHEN 'sidewalk_width' = ANY(columns) THEN 'q.sidewalk_width::float8' ELSE 'NULL::float8' END,
+       CASE WHEN 'tags' = ANY(columns) THEN 'q.tags::jsonb' ELSE '''{}''::jsonb' END)
+  USING vector, default_sidewalk;
   DROP VIEW pg_temp._streetgen_axes;
 END
 $$;

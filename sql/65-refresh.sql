@@ -29,7 +29,7 @@ CREATE FUNCTION streetgen._work_tables()
 DECLARE
   definition text;
 BEGIN
-  IF to_regclass('pg_temp._sg_scope_out') IS NOT NULL THEN
+  IF to_regclass('pg_temp._sg_blocks') IS NOT NULL THEN
     RETURN;
   END IF;
   FOREACH definition IN ARRAY ARRAY[
@@ -48,7 +48,9 @@ BEGIN
     '_sg_scope_sections (axis_id bigint, part bigint)',
     '_sg_scope_nodes (id bigint)',
     '_sg_scope_axes (id bigint)',
-    '_sg_scope_out (geom geometry)'] LOOP
+    '_sg_scope_out (geom geometry)',
+    '_sg_faces (face geometry)',
+    '_sg_blocks (id bigint, face geometry, geom geometry, axis_ids bigint[])'] LOOP
     EXECUTE 'CREATE TEMP TABLE IF NOT EXISTS ' || definition;
     EXECUTE format('GRANT ALL ON pg_temp.%I TO PUBLIC', split_part(definition, ' ', 1));
   END LOOP;
@@ -96,6 +98,29 @@ BEGIN
 END
 $$;
 
+-- The box around the stored rows in a local recompute's scope (sections with their centre
+-- lines and sidewalks, junctions and theirs), NULL when there are none. Run under _refresh's
+-- search_path (the model first).
+CREATE FUNCTION streetgen._scope_extent(model text)
+  RETURNS geometry
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  AS $$
+DECLARE
+  result geometry;
+BEGIN
+  EXECUTE format($q$
+    SELECT ST_Envelope(ST_Collect(g)) FROM (
+      SELECT ST_Envelope(ST_Collect(s.centre_line, coalesce(s.geom, s.centre_line))) AS g FROM pg_temp._sg_scope_sections k
+        JOIN %1$I.section s USING (axis_id, part)
+      UNION ALL SELECT ST_Envelope(w.geom) FROM pg_temp._sg_scope_sections k JOIN %1$I.sidewalk w USING (axis_id, part)
+      UNION ALL SELECT ST_Envelope(i.geom) FROM pg_temp._sg_scope_nodes k JOIN %1$I.intersection i ON i.node_id = k.id
+      UNION ALL SELECT ST_Envelope(w.geom) FROM pg_temp._sg_scope_nodes k JOIN %1$I.sidewalk w ON w.node_id = k.id) AS x$q$,
+    model) INTO result;
+  RETURN result;
+END
+$$;
+
 -- The incremental recompute after the axes CHANGED were inserted, updated or deleted (OLD_GEOMS:
 -- the geometries the updated and deleted ones had).
 --
@@ -136,6 +161,8 @@ DECLARE
   max_width double precision;
   touched bigint[];
   context bigint[];
+  reach double precision;  -- how far sidewalks reach beyond a roadway, twice (two sidewalks between roadways)
+  changed_region geometry; -- the box around what the recompute rewrites, old and new: where blocks may change
   axis_count bigint;
   round integer;
   grown bigint;
@@ -155,6 +182,14 @@ BEGIN
   IF axis_count < 0 THEN
     SELECT count(*) INTO axis_count FROM axis;
   END IF;
+  -- (the widest sidewalk by the width index, and the changed axes' new ones)
+  SELECT 2 * greatest(coalesce((SELECT w.width FROM sidewalk w ORDER BY w.width DESC LIMIT 1), 0),
+                      coalesce((SELECT max(greatest(x.widths[1], x.widths[2]))
+                                  FROM axis a, settings st,
+                                       LATERAL (SELECT streetgen.sidewalk_widths(a.road_class, a.sidewalk_width, a.tags,
+                                                                                 st.default_sidewalk_width) AS widths) AS x
+                                 WHERE a.id = ANY (changed)), 0))
+    INTO reach;
   -- A change that touches a large part of the model: one full run is cheaper than the search.
   IF cardinality(changed) > least(500, axis_count / 5) THEN
     PERFORM streetgen._compute_model(model);
@@ -199,17 +234,20 @@ BEGIN
   SELECT id FROM pg_temp._sg_t_nodes
   UNION SELECT s.to_node FROM pg_temp._sg_t_nodes t, LATERAL (SELECT s.to_node FROM section s WHERE s.from_node = t.id) AS s
   UNION SELECT s.from_node FROM pg_temp._sg_t_nodes t, LATERAL (SELECT s.from_node FROM section s WHERE s.to_node = t.id) AS s;
+  -- (Envelopes grown by the sidewalks' reach: a sidewalk gives way to every roadway and earlier
+  -- sidewalk it reaches, so a section's sidewalks change when anything within their reach does,
+  -- and the engine must be given what lies within their reach.)
   INSERT INTO pg_temp._sg_s1
-  SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Envelope(s.geom) FROM unnest(changed) AS c (id),
+  SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Expand(ST_Envelope(s.geom), reach) FROM unnest(changed) AS c (id),
          LATERAL (SELECT s.* FROM section s WHERE s.axis_id = c.id) AS s
-  UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Envelope(s.geom) FROM pg_temp._sg_k_nodes k,
+  UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Expand(ST_Envelope(s.geom), reach) FROM pg_temp._sg_k_nodes k,
          LATERAL (SELECT s.* FROM section s WHERE s.from_node = k.id) AS s
-  UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Envelope(s.geom) FROM pg_temp._sg_k_nodes k,
+  UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Expand(ST_Envelope(s.geom), reach) FROM pg_temp._sg_k_nodes k,
          LATERAL (SELECT s.* FROM section s WHERE s.to_node = k.id) AS s
-  UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Envelope(s.geom) FROM pg_temp._sg_changed_geom g,
-         LATERAL (SELECT s.* FROM section s WHERE s.geom && ST_Expand(g.geom, max_width)) AS s;
+  UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Expand(ST_Envelope(s.geom), reach) FROM pg_temp._sg_changed_geom g,
+         LATERAL (SELECT s.* FROM section s WHERE s.geom && ST_Expand(g.geom, max_width + reach)) AS s;
   INSERT INTO pg_temp._sg_s2
-  SELECT p.axis_id, p.part, p.from_node, p.to_node, ST_Envelope(p.geom) FROM pg_temp._sg_s1 k,
+  SELECT p.axis_id, p.part, p.from_node, p.to_node, ST_Expand(ST_Envelope(p.geom), reach) FROM pg_temp._sg_s1 k,
          LATERAL (SELECT p.* FROM section p WHERE p.geom && k.envelope) AS p
   UNION SELECT axis_id, part, from_node, to_node, envelope FROM pg_temp._sg_s1;
   -- The junction of a node in scope is cut from the sections at that node, and a narrowed one
@@ -272,7 +310,15 @@ BEGIN
      WHERE o.kind = 'section' AND o.geom IS NOT NULL
        AND (o.axis_id = ANY (changed)
             OR EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE k.axis_id = o.axis_id AND k.part = o.part)
-            OR (o.status = 'narrowed' AND (o.node_id IN (SELECT id FROM ends) OR o.to_node IN (SELECT id FROM ends))));
+            OR (o.status = 'narrowed' AND (o.node_id IN (SELECT id FROM ends) OR o.to_node IN (SELECT id FROM ends))))
+    -- The sidewalks that may be rewritten: a section cut too long where the context ends would
+    -- have cut them short.
+    UNION ALL
+    SELECT ST_GeomFromEWKB(o.geom) FROM pg_temp._streetgen_out o
+     WHERE o.kind = 'sidewalk'
+       AND (o.axis_id = ANY (changed)
+            OR EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE k.axis_id = o.axis_id AND k.part = o.part)
+            OR o.node_id IN (SELECT id FROM ends));
     INSERT INTO pg_temp._sg_q (axis_id, part, from_node, to_node)
     WITH candidates AS MATERIALIZED (
       SELECT o.axis_id, ST_GeomFromEWKB(o.geom) AS geom FROM pg_temp._streetgen_out o
@@ -328,7 +374,16 @@ BEGIN
   ANALYZE pg_temp._sg_scope_sections;
   ANALYZE pg_temp._sg_scope_axes;
 
+  -- Blocks: the faces around what the store rewrites change (old extent here, new after it),
+  -- and those around the changed axes (a deleted axis' sections are gone already).
+  changed_region := streetgen._scope_extent(model);
   PERFORM streetgen._store(model, true);
+  SELECT ST_Envelope(ST_Collect(g)) INTO changed_region
+    FROM (SELECT changed_region AS g
+          UNION ALL SELECT streetgen._scope_extent(model)
+          UNION ALL SELECT ST_Expand(ST_Envelope(c.geom), max_width + reach) FROM pg_temp._sg_changed_geom c) AS x
+   WHERE g IS NOT NULL;
+  PERFORM streetgen._store_blocks(model, changed_region);
   PERFORM pg_notify('qgis', model);
 END
 $$;
@@ -345,6 +400,8 @@ CREATE FUNCTION streetgen.outdated(model text, OUT kind text, OUT key text, OUT 
 BEGIN
   PERFORM streetgen.model_srid(model);
   PERFORM streetgen._compute_model(model);
+  -- (blocks from the stored surfaces: equal to a full recompute's when the rest is current)
+  PERFORM streetgen._compute_blocks(model, NULL);
   RETURN QUERY EXECUTE format($q$
     WITH o AS (SELECT * FROM pg_temp._streetgen_out),
     near AS (SELECT 1e-6::float8 AS eps)
@@ -396,6 +453,30 @@ BEGIN
      WHERE t.axis_id IS NULL OR o.axis_id IS NULL OR t.style <> o.detail
         OR ST_HausdorffDistance(t.geom, ST_GeomFromEWKB(o.geom)) > 1e-6
     UNION ALL
+    SELECT 'sidewalk', concat_ws('/', coalesce(t.axis_id, o.axis_id), coalesce(t.part, o.part), coalesce(t.node_id, o.node_id),
+                                 coalesce(t.side, o.status)),
+           CASE WHEN t.side IS NULL THEN 'missing' WHEN o.status IS NULL THEN 'extra' ELSE 'differs' END
+      FROM %1$I.sidewalk t FULL JOIN (SELECT * FROM o WHERE o.kind = 'sidewalk') o
+        ON o.axis_id IS NOT DISTINCT FROM t.axis_id AND o.part IS NOT DISTINCT FROM t.part
+       AND o.node_id IS NOT DISTINCT FROM t.node_id AND o.status = t.side
+     WHERE t.side IS NULL OR o.status IS NULL OR abs(t.width - o.width) > 1e-6
+        OR ST_HausdorffDistance(t.geom, ST_GeomFromEWKB(o.geom)) > 1e-6
+    UNION ALL
+    SELECT 'crossing', concat_ws('/', coalesce(t.axis_id, o.axis_id), coalesce(t.part, o.part), coalesce(t.position, o.item)),
+           CASE WHEN t.axis_id IS NULL THEN 'missing' WHEN o.axis_id IS NULL THEN 'extra' ELSE 'differs' END
+      FROM %1$I.crossing t FULL JOIN (SELECT * FROM o WHERE o.kind = 'crossing') o
+        ON o.axis_id = t.axis_id AND o.part = t.part AND o.item = t.position
+     WHERE t.axis_id IS NULL OR o.axis_id IS NULL OR t.node_id <> o.node_id OR abs(t.width - o.width) > 1e-6
+        OR ST_HausdorffDistance(t.geom, ST_GeomFromEWKB(o.geom)) > 1e-6
+    UNION ALL
+    SELECT 'block', coalesce(t.id, b.id)::text,
+           CASE WHEN t.id IS NULL THEN 'missing' WHEN b.id IS NULL THEN 'extra' ELSE 'differs' END
+      FROM %1$I.block t FULL JOIN pg_temp._sg_blocks b ON b.id = t.id
+     WHERE t.id IS NULL OR b.id IS NULL OR t.axis_ids <> b.axis_ids
+        OR ST_HausdorffDistance(t.face, b.face) > 1e-6
+        OR (t.geom IS NULL) <> (b.geom IS NULL)
+        OR (t.geom IS NOT NULL AND ST_HausdorffDistance(t.geom, b.geom) > 1e-6)
+    UNION ALL
     (SELECT 'issue', concat_ws('/', axis_id, part, kind, detail), 'differs' FROM (
        (SELECT axis_id, part, kind, detail, node_id FROM %1$I.issue
         EXCEPT ALL SELECT axis_id, part, status, detail, node_id FROM o WHERE kind = 'issue')
@@ -436,8 +517,9 @@ BEGIN
 END
 $$;
 
--- Only what shapes the surfaces and lanes counts; an edit of source, or of tags other than the
--- lane tags (streetgen._lane_tags), recomputes nothing.
+-- Only what shapes the surfaces, lanes and sidewalks counts; an edit of source, or of tags other
+-- than the lane and sidewalk tags (streetgen._lane_tags, streetgen._sidewalk_tags), recomputes
+-- nothing.
 CREATE FUNCTION streetgen._axis_updated()
   RETURNS trigger
   LANGUAGE plpgsql
@@ -450,9 +532,9 @@ BEGIN
   SELECT array_agg(coalesce(n.id, o.id)), array_agg(o.geom) INTO ids, geoms
     FROM old_rows o FULL JOIN new_rows n ON n.id = o.id
    WHERE (o.geom, o.roadway_width, o.speed_kmh, o.layer, o.radius_override, o.lanes, o.oneway,
-          streetgen._lane_tags(o.tags))
+          streetgen._lane_tags(o.tags), o.road_class, o.sidewalk_width, streetgen._sidewalk_tags(o.tags))
          IS DISTINCT FROM (n.geom, n.roadway_width, n.speed_kmh, n.layer, n.radius_override, n.lanes, n.oneway,
-          streetgen._lane_tags(n.tags));
+          streetgen._lane_tags(n.tags), n.road_class, n.sidewalk_width, streetgen._sidewalk_tags(n.tags));
   IF ids IS NOT NULL THEN
     PERFORM streetgen._refresh(TG_TABLE_SCHEMA, ids, geoms);
   END IF;

@@ -23,7 +23,7 @@ using namespace streetgen;
 
 namespace {
 
-constexpr int kSettingCount = 10;  // the order of SurfaceSettings' fields, see 60-surfaces.sql
+constexpr int kSettingCount = 12;  // the order of SurfaceSettings' fields, see 60-surfaces.sql
 
 struct AxisArg {  // plain data, filled in phase 1
   std::int64_t id;
@@ -37,6 +37,8 @@ struct AxisArg {  // plain data, filled in phase 1
   int lanes;               // 0: unknown
   bool oneway;
   const char* lane_tags;   // "key=value" lines (palloc'd), or null
+  double sidewalk_left;    // m, 0: none
+  double sidewalk_right;
 };
 
 struct OutRow {
@@ -181,6 +183,29 @@ std::vector<OutRow> to_rows(core::GeosContext& geos, core::SurfaceResult& r, int
     row.geom = core::write_ewkb(geos, l.surface.get(), srid);
     rows.push_back(std::move(row));
   }
+  for (core::SidewalkResult& w : r.sidewalks) {
+    OutRow row{"sidewalk"};
+    if (w.node_id != 0) {
+      row.node_id = w.node_id;
+    } else {
+      row.axis_id = w.axis_id;
+      row.part = w.part;
+    }
+    row.status = w.side;
+    row.width = w.width;
+    row.geom = core::write_ewkb(geos, w.surface.get(), srid);
+    rows.push_back(std::move(row));
+  }
+  for (core::CrossingResult& c : r.crossings) {
+    OutRow row{"crossing"};
+    row.axis_id = c.axis_id;
+    row.part = c.part;
+    row.node_id = c.node_id;
+    row.item = c.position;
+    row.width = c.width;
+    row.geom = core::write_ewkb(geos, c.surface.get(), srid);
+    rows.push_back(std::move(row));
+  }
   for (core::MarkingResult& m : r.markings) {
     OutRow row{"marking"};
     row.axis_id = m.axis_id;
@@ -206,7 +231,8 @@ extern "C" {
 PG_FUNCTION_INFO_V1(_streetgen_street_surfaces);
 // (ids int8[], geoms bytea[], widths float8[], speeds float8[], layers int4[],
 //  radius_overrides float8[], settings float8[10], override_nodes int8[], override_keys int8[],
-//  override_radii float8[], lanes int4[], oneways bool[], lane_tags text[]) -> SETOF record (see kColumns)
+//  override_radii float8[], lanes int4[], oneways bool[], lane_tags text[], sidewalk_left float8[],
+//  sidewalk_right float8[]) -> SETOF record (see kColumns)
 Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
   // Phase 1: arguments into plain arrays.
   pg::ArrayArg ids = pg::array_arg(fcinfo, 0, INT8OID, "ids");
@@ -222,6 +248,8 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
   pg::ArrayArg lane_counts = pg::array_arg(fcinfo, 10, INT4OID, "lanes");
   pg::ArrayArg oneways = pg::array_arg(fcinfo, 11, BOOLOID, "oneways");
   pg::ArrayArg lane_tags = pg::array_arg(fcinfo, 12, TEXTOID, "lane_tags");
+  pg::ArrayArg sidewalk_left = pg::array_arg(fcinfo, 13, FLOAT8OID, "sidewalk_left");
+  pg::ArrayArg sidewalk_right = pg::array_arg(fcinfo, 14, FLOAT8OID, "sidewalk_right");
   pg::require_same_length(ids, "ids", geoms, "geoms");
   pg::require_same_length(ids, "ids", widths, "widths");
   pg::require_same_length(ids, "ids", speeds, "speeds");
@@ -230,6 +258,8 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
   if (lane_counts.count != 0) pg::require_same_length(ids, "ids", lane_counts, "lanes");
   if (oneways.count != 0) pg::require_same_length(ids, "ids", oneways, "oneways");
   if (lane_tags.count != 0) pg::require_same_length(ids, "ids", lane_tags, "lane_tags");
+  if (sidewalk_left.count != 0) pg::require_same_length(ids, "ids", sidewalk_left, "sidewalk_left");
+  if (sidewalk_right.count != 0) pg::require_same_length(ids, "ids", sidewalk_right, "sidewalk_right");
   pg::require_same_length(override_nodes, "override_nodes", override_radii, "override_radii");
   if (override_keys.count != 6 * override_nodes.count) {
     ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("override_keys must hold six values per override")));
@@ -262,6 +292,8 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
     a.lanes = lane_counts.count != 0 && !lane_counts.nulls[i] ? DatumGetInt32(lane_counts.values[i]) : 0;
     a.oneway = oneways.count != 0 && !oneways.nulls[i] && DatumGetBool(oneways.values[i]);
     a.lane_tags = lane_tags.count != 0 && !lane_tags.nulls[i] ? TextDatumGetCString(lane_tags.values[i]) : nullptr;
+    a.sidewalk_left = sidewalk_left.count != 0 && !sidewalk_left.nulls[i] ? DatumGetFloat8(sidewalk_left.values[i]) : 0.0;
+    a.sidewalk_right = sidewalk_right.count != 0 && !sidewalk_right.nulls[i] ? DatumGetFloat8(sidewalk_right.values[i]) : 0.0;
   }
   auto* overrides = static_cast<core::CornerOverride*>(palloc0(sizeof(core::CornerOverride) * std::max(override_nodes.count, 1)));
   for (int i = 0; i < override_nodes.count; ++i) {
@@ -288,7 +320,8 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
     double* fields[kSettingCount] = {&settings.snap_tolerance, &settings.turn_speed_ratio, &settings.lateral_acceleration,
                                      &settings.min_radius, &settings.max_radius, &settings.misplaced_factor,
                                      &settings.min_border_distance, &settings.transition_length_per_metre,
-                                     &settings.min_transition_length, &settings.max_transition_deflection_deg};
+                                     &settings.min_transition_length, &settings.max_transition_deflection_deg,
+                                     &settings.crossing_width, &settings.crossing_max_speed_kmh};
     for (int i = 0; i < kSettingCount; ++i) *fields[i] = setting_values[i];
     std::vector<core::SurfaceAxis> input;
     input.reserve(axis_count);
@@ -304,6 +337,8 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
       if (axes[i].lanes > 0) a.lane_input.lanes = axes[i].lanes;
       a.lane_input.oneway = axes[i].oneway;
       a.lane_input.tags = parse_lane_tags(axes[i].lane_tags);
+      a.sidewalk_left = axes[i].sidewalk_left;
+      a.sidewalk_right = axes[i].sidewalk_right;
       input.push_back(std::move(a));
     }
     std::vector<core::CornerOverride> corner_overrides(overrides, overrides + override_count);

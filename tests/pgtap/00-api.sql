@@ -47,8 +47,14 @@ SELECT set_eq(
     ('streetgen.load_osm_ways(text,regclass)', 'record', 'v', false),
     ('streetgen._settings_vector(jsonb)', 'double precision[]', 's', false),
     ('streetgen._create_output_tables(text,integer)', 'void', 'v', false),
-    ('streetgen._streetgen_street_surfaces(bigint[],bytea[],double precision[],double precision[],integer[],double precision[],double precision[],bigint[],bigint[],double precision[],integer[],boolean[],text[])', 'SETOF record', 'i', false),
+    ('streetgen._streetgen_street_surfaces(bigint[],bytea[],double precision[],double precision[],integer[],double precision[],double precision[],bigint[],bigint[],double precision[],integer[],boolean[],text[],double precision[],double precision[])', 'SETOF record', 'i', false),
     ('streetgen._lane_tags(jsonb)', 'text', 'i', false),
+    ('streetgen.sidewalk_widths(text,double precision,jsonb,double precision)', 'double precision[]', 'i', false),
+    ('streetgen._sidewalk_tags(jsonb)', 'text', 'i', false),
+    ('streetgen._compute_blocks(text,geometry)', 'void', 'v', false),
+    ('streetgen._store_blocks(text,geometry)', 'void', 'v', false),
+    ('streetgen._scope_extent(text)', 'geometry', 'v', false),
+    ('streetgen.detail_quality(text)', 'record', 's', false),
     ('streetgen._compute_model(text,bigint[])', 'void', 'v', false),
     ('streetgen._store(text,boolean)', 'void', 'v', false),
     ('streetgen._lock_outputs(text)', 'void', 'v', false),
@@ -93,6 +99,9 @@ SELECT is(pg_temp.argument_names('streetgen.lane_quality(text)'),
           'model,sections,sections_without_lanes,lanes,markings,invalid_geometries,max_coverage_difference,sections_over_tolerance,lane_overlap_area,outside_section_area,foreign_overlap_area',
           'lane_quality(model) -> (sections, sections_without_lanes, lanes, markings, invalid_geometries, max_coverage_difference, sections_over_tolerance, lane_overlap_area, outside_section_area, foreign_overlap_area)');
 
+SELECT is(pg_temp.argument_names('streetgen.detail_quality(text)'),
+          'model,sidewalks,crossings,blocks,invalid_geometries,sidewalk_area,sidewalk_roadway_overlap_area,sidewalk_overlap_area,crossing_outside_area,face_area,overlap_area,gap_area',
+          'detail_quality(model) -> (sidewalks, crossings, blocks, invalid_geometries, sidewalk_area, sidewalk_roadway_overlap_area, sidewalk_overlap_area, crossing_outside_area, face_area, overlap_area, gap_area)');
 SELECT is(pg_temp.argument_names('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)'),
           'example,region,seeds,obstacles,params,existing,id,from_node,to_node,road_class,origin,geom',
           'grow_example(example, region, seeds, obstacles, params, existing) -> (id, from_node, to_node, road_class, origin, geom)');

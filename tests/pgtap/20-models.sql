@@ -7,7 +7,7 @@ SELECT lives_ok($$SELECT streetgen.create_model('city', 32631)$$, 'create_model(
 SELECT has_schema('city');
 SELECT has_table('city', 'axis', 'the model has an axis table');
 SELECT col_type_is('city', 'axis', 'geom', 'geometry(LineString,32631)', 'axis.geom is typed with the model SRID');
-SELECT tables_are('city', ARRAY['axis', 'settings', 'node', 'section', 'corner', 'intersection', 'lane', 'marking', 'issue', 'refresh_state'], 'the model''s tables');
+SELECT tables_are('city', ARRAY['axis', 'settings', 'node', 'section', 'corner', 'intersection', 'lane', 'marking', 'sidewalk', 'crossing', 'block', 'issue', 'refresh_state'], 'the model''s tables');
 SELECT triggers_are('city', 'axis', ARRAY['axis_lock_outputs', 'axis_refresh_insert', 'axis_refresh_update', 'axis_refresh_delete', 'axis_refresh_truncate'], 'the axis triggers keep the surfaces current');
 SELECT col_type_is('city', 'corner', 'arc', 'geometry(CircularString,32631)', 'corner arcs are true circular strings');
 SELECT col_type_is('city', 'intersection', 'geom', 'geometry(Polygon,32631)', 'intersections are polygons');

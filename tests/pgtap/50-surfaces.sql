@@ -24,10 +24,11 @@ CREATE FUNCTION pg_temp.reset() RETURNS void LANGUAGE sql AS $$ DELETE FROM s.ax
 SELECT pg_temp.axis('LINESTRING(-60 0, 60 0)');
 SELECT pg_temp.axis('LINESTRING(0 -60, 0 60)');
 SELECT results_eq($$SELECT kind, status, count FROM streetgen.generate('s') ORDER BY 1, 2$$,
-  $$VALUES ('corner', 'ok', 4::bigint), ('intersection', 'ok', 1::bigint), ('lane', 'driving', 8::bigint),
-            ('marking', 'centre_line', 4::bigint), ('marking', 'stop_line', 4::bigint),
-            ('node', NULL, 5::bigint), ('section', 'ok', 4::bigint)$$,
-  'cross: 5 nodes, 4 sections, 4 arcs, 1 junction; 2 lanes (8 m, no lane count), a centre line and a stop line per section');
+  $$VALUES ('corner', 'ok', 4::bigint), ('crossing', NULL, 4::bigint), ('intersection', 'ok', 1::bigint),
+            ('lane', 'driving', 8::bigint), ('marking', 'centre_line', 4::bigint), ('marking', 'stop_line', 4::bigint),
+            ('node', NULL, 5::bigint), ('section', 'ok', 4::bigint), ('sidewalk', 'around', 1::bigint),
+            ('sidewalk', 'left', 4::bigint), ('sidewalk', 'right', 4::bigint)$$,
+  'cross: 5 nodes, 4 sections, 4 arcs, 1 junction; 2 lanes (8 m, no lane count), a centre line and a stop line per section; sidewalks on both sides and around the junction, a crossing on each arm');
 SELECT * FROM pg_temp.sound('cross');
 SELECT is((SELECT degree FROM s.node n JOIN s.intersection i ON i.node_id = n.id), 4, 'the junction node has degree 4');
 SELECT ok((SELECT bool_and(abs(radius - 7.88) < 0.01) FROM s.corner), 'radius from speed: 50 km/h gives 7.9 m');
@@ -68,8 +69,8 @@ SELECT is((SELECT count(*) FROM s.section WHERE axis_id NOT IN (SELECT id FROM s
 SELECT is((SELECT count(*) FROM s.corner WHERE axis_b NOT IN (SELECT id FROM s.axis) OR axis_a NOT IN (SELECT id FROM s.axis)), 0::bigint,
           'corners cascade with their axes');
 SELECT results_eq($$SELECT kind, count(*)::bigint FROM (SELECT kind FROM streetgen.generate('s')) g GROUP BY 1 ORDER BY 1$$,
-  $$VALUES ('lane', 1::bigint), ('marking', 1::bigint), ('node', 1::bigint), ('section', 1::bigint)$$,
-  'a lone axis: two dead ends, one section, no junction; driving lanes and a centre line, no stop line at dead ends');
+  $$VALUES ('lane', 1::bigint), ('marking', 1::bigint), ('node', 1::bigint), ('section', 1::bigint), ('sidewalk', 2::bigint)$$,
+  'a lone axis: two dead ends, one section, no junction; driving lanes and a centre line, no stop line or crossing at dead ends');
 
 -- Bad input, each with its defined outcome.
 SELECT pg_temp.reset();
@@ -175,8 +176,8 @@ SELECT results_eq(
       $q$SELECT * FROM (VALUES (1, 'SRID=32631;LINESTRING(-60 0, 60 0)'::geometry, 8.0, 50.0),
                                (2, 'SRID=32631;LINESTRING(0 -60, 0 60)'::geometry, 8.0, 50.0)) AS t(id, geom, roadway_width, speed_kmh)$q$)
      GROUP BY 1 ORDER BY 1$$,
-  $$VALUES ('corner', 4::bigint), ('intersection', 1::bigint), ('lane', 8::bigint), ('marking', 8::bigint),
-            ('node', 5::bigint), ('section', 4::bigint)$$,
+  $$VALUES ('corner', 4::bigint), ('crossing', 4::bigint), ('intersection', 1::bigint), ('lane', 8::bigint),
+            ('marking', 8::bigint), ('node', 5::bigint), ('section', 4::bigint), ('sidewalk', 9::bigint)$$,
   'street_surfaces on a query: the cross');
 SELECT ok((SELECT bool_and(ST_IsValid(geom)) FROM streetgen.street_surfaces('SELECT id, geom, roadway_width, speed_kmh FROM s.axis') WHERE kind IN ('section', 'intersection')),
           'street_surfaces on a model''s axes: valid surfaces');
@@ -203,7 +204,7 @@ SELECT throws_ok($$SELECT * FROM streetgen.street_surfaces('SELECT id, geom, roa
                  '22023', 'unknown setting "radius"', 'an unknown setting');
 SELECT throws_ok($$SELECT * FROM streetgen.street_surfaces('SELECT id, geom, roadway_width, speed_kmh FROM s.axis', '[1]')$$,
                  '22023', NULL, 'settings that are not an object');
-SELECT throws_ok($$SELECT * FROM streetgen._streetgen_street_surfaces('{1}', '{}', '{}', '{}', '{}', '{}', '{}', '{}', '{}', '{}', '{}', '{}', '{}')$$,
+SELECT throws_ok($$SELECT * FROM streetgen._streetgen_street_surfaces('{1}', '{}', '{}', '{}', '{}', '{}', '{}', '{}', '{}', '{}', '{}', '{}', '{}', '{}', '{}')$$,
                  '22023', NULL, 'arrays of different lengths at the C level');
 
 SELECT * FROM finish();

@@ -401,7 +401,8 @@ GeomPtr clipped(GeosContext& ctx, GeomPtr line, const GEOSGeometry* surface) {
 
 void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, const Polyline& centre,
                    const GEOSGeometry* surface, bool clip, const LanePlan& plan, bool junction_at_start,
-                   bool junction_at_end, std::vector<LaneResult>& lanes, std::vector<MarkingResult>& markings) {
+                   bool junction_at_end, std::vector<LaneResult>& lanes, std::vector<MarkingResult>& markings,
+                   double stop_setback_start, double stop_setback_end) {
   const std::vector<LaneSpec>& specs = plan.lanes;
   if (specs.empty() || surface == nullptr || centre.size() < 2) return;
   double total = 0.0;
@@ -549,7 +550,9 @@ void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, co
       any = true;
     }
     if (!any) continue;
-    double s = at_end ? len - std::min(kStopLineSetback, len / 2) : std::min(kStopLineSetback, len / 2);
+    double setback = at_end ? stop_setback_end : stop_setback_start;
+    if (!(setback >= 0.0)) setback = kStopLineSetback;
+    double s = at_end ? len - std::min(setback, len / 2) : std::min(setback, len / 2);
     Point p = point_at(centre, s);
     Point nrm = left_normal(tangent_at(centre, s));
     // A little beyond the roadway's edges, so that the clip, not rounding, decides where it ends.

@@ -74,10 +74,12 @@ struct MarkingResult {
 // `surface` its polygon: the centre line buffered by half the width with flat ends, or, with
 // `clip`, anything else (a narrowed section): markings are then clipped to it. Stop lines where
 // the section meets a junction (`junction_at_start` / `_at_end`) across the lanes that drive
-// into it.
+// into it, `stop_setback_start` / `_end` m inside the section (behind a pedestrian crossing
+// where there is one; negative: the default 0.3 m).
 void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, const Polyline& centre,
                    const GEOSGeometry* surface, bool clip, const LanePlan& plan, bool junction_at_start,
-                   bool junction_at_end, std::vector<LaneResult>& lanes, std::vector<MarkingResult>& markings);
+                   bool junction_at_end, std::vector<LaneResult>& lanes, std::vector<MarkingResult>& markings,
+                   double stop_setback_start = -1.0, double stop_setback_end = -1.0);
 
 // Signed distance of p from the polyline: positive on its left.
 double signed_offset(const Polyline& line, Point p);

@@ -16,6 +16,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kQuadrantSegments = 8;  // arc points per quarter circle, as PostGIS's ST_Buffer
 constexpr double kSamePoint = 1e-6;   // m
+constexpr double kStopBehindCrossing = 1.0;  // m between a crossing and the stop line behind it
+constexpr double kMinSidewalkArea = 0.01;    // m²: smaller pieces of a sidewalk are overlay slivers
 
 double angle_of(Point v) { return std::atan2(v.y, v.x); }
 
@@ -167,6 +169,49 @@ GeomPtr pick_polygon(GeosContext& ctx, const GEOSGeometry* geom, Point node) {
   return own(ctx, GEOSGeom_clone_r(ctx.handle(), best), "clone");
 }
 
+
+void envelope_box(GeosContext& ctx, const GEOSGeometry* g, Box& box) {
+  if (GEOSGeom_getXMin_r(ctx.handle(), g, &box.xmin) == 0 || GEOSGeom_getYMin_r(ctx.handle(), g, &box.ymin) == 0 ||
+      GEOSGeom_getXMax_r(ctx.handle(), g, &box.xmax) == 0 || GEOSGeom_getYMax_r(ctx.handle(), g, &box.ymax) == 0) {
+    ctx.fail("envelope");
+  }
+}
+
+// The polygons of `geom` of at least `min_area` m² (slivers of an overlay dropped), as one
+// polygon or a multipolygon; null when none is left.
+GeomPtr polygons_of(GeosContext& ctx, const GEOSGeometry* geom, double min_area) {
+  std::vector<GEOSGeometry*> kept;
+  std::vector<const GEOSGeometry*> stack{geom};
+  while (!stack.empty()) {
+    const GEOSGeometry* g = stack.back();
+    stack.pop_back();
+    int type = GEOSGeomTypeId_r(ctx.handle(), g);
+    if (type == GEOS_POLYGON) {
+      if (GEOSisEmpty_r(ctx.handle(), g) == 0 && area_of(ctx, g) >= min_area) kept.push_back(GEOSGeom_clone_r(ctx.handle(), g));
+    } else if (type == GEOS_MULTIPOLYGON || type == GEOS_GEOMETRYCOLLECTION) {
+      int n = GEOSGetNumGeometries_r(ctx.handle(), g);
+      for (int i = n - 1; i >= 0; --i) stack.push_back(GEOSGetGeometryN_r(ctx.handle(), g, i));
+    }
+  }
+  if (kept.empty()) return nullptr;
+  if (kept.size() == 1) return GeomPtr(kept[0], GeomDeleter{ctx.handle()});
+  return own(ctx, GEOSGeom_createCollection_r(ctx.handle(), GEOS_MULTIPOLYGON, kept.data(), static_cast<unsigned>(kept.size())),
+             "multipolygon");
+}
+
+// One side of a line buffered: the region between the line and its offset at `distance` (left
+// of the line when positive, right when negative), flat at the line's ends.
+GeomPtr single_sided_buffer(GeosContext& ctx, const GEOSGeometry* line, double distance) {
+  GEOSBufferParams* params = GEOSBufferParams_create_r(ctx.handle());
+  if (params == nullptr) ctx.fail("buffer parameters");
+  GEOSBufferParams_setSingleSided_r(ctx.handle(), params, 1);
+  GEOSBufferParams_setJoinStyle_r(ctx.handle(), params, GEOSBUF_JOIN_ROUND);
+  GEOSBufferParams_setQuadrantSegments_r(ctx.handle(), params, kQuadrantSegments);
+  GEOSGeometry* g = GEOSBufferWithParams_r(ctx.handle(), line, params, distance);
+  GEOSBufferParams_destroy_r(ctx.handle(), params);
+  return own(ctx, g, "single-sided buffer");
+}
+
 void check_axis(const SurfaceAxis& axis) {
   auto bad = [&](const std::string& what) {
     throw_invalid_argument("axis " + std::to_string(axis.id) + ": " + what);
@@ -178,6 +223,10 @@ void check_axis(const SurfaceAxis& axis) {
   }
   for (const Point& p : axis.line) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) bad("has a non-finite coordinate");
+  }
+  if (!(std::isfinite(axis.sidewalk_left) && axis.sidewalk_left >= 0.0 && axis.sidewalk_left <= 50.0) ||
+      !(std::isfinite(axis.sidewalk_right) && axis.sidewalk_right >= 0.0 && axis.sidewalk_right <= 50.0)) {
+    bad("sidewalk widths must be finite numbers from 0 to 50 m");
   }
 }
 
@@ -233,6 +282,7 @@ class SurfaceBuilder {
         build_intersection(n);
       }
     }
+    build_sidewalks(poller);
     for (auto& corners : corners_of_node_) {
       for (CornerResult& c : corners) result_.corners.push_back(std::move(c));
     }
@@ -808,10 +858,22 @@ class SurfaceBuilder {
       // keeps its surface without lanes.
       std::vector<LaneResult> lanes;
       std::vector<MarkingResult> markings;
+      Polyline centre = substring(sec.centre_line, sec.start_border, sec.end_border);
+      // A crossing at a junction end: the stop line moves behind it.
+      double setback[2] = {-1.0, -1.0};
+      for (int at_end = 0; at_end <= 1; ++at_end) {
+        if (!crossing_at(edge, axis, sec, at_end == 1)) continue;
+        try {
+          if (add_crossing(sec, edge, axis, centre, at_end == 1)) setback[at_end] = s_.crossing_width + kStopBehindCrossing;
+        } catch (const Error& e) {
+          if (e.kind() != ErrorKind::geometry_engine) throw;
+          result_.issues.push_back({sec.axis_id, "crossing_failed", e.what() + std::string(": ") + e.detail(), sec.part});
+        }
+      }
       try {
-        section_lanes(ctx_, sec.axis_id, sec.part, substring(sec.centre_line, sec.start_border, sec.end_border),
-                      sec.surface.get(), sec.status != "ok", plan, degree_of(edge.from_node) >= 3,
-                      degree_of(edge.to_node) >= 3, lanes, markings);
+        section_lanes(ctx_, sec.axis_id, sec.part, centre, sec.surface.get(), sec.status != "ok", plan,
+                      degree_of(edge.from_node) >= 3, degree_of(edge.to_node) >= 3, lanes, markings, setback[0],
+                      setback[1]);
       } catch (const Error& e) {
         if (e.kind() != ErrorKind::geometry_engine) throw;
         result_.issues.push_back({sec.axis_id, "lanes_failed", e.what() + std::string(": ") + e.detail(), sec.part});
@@ -819,6 +881,184 @@ class SurfaceBuilder {
       }
       for (LaneResult& l : lanes) result_.lanes.push_back(std::move(l));
       for (MarkingResult& m : markings) result_.markings.push_back(std::move(m));
+    }
+  }
+
+  // Crossings (a documented rule; OSM crossing nodes are not imported): at each end of a section
+  // that meets a junction of three or more streets, on streets no faster than
+  // crossing_max_speed_kmh with a sidewalk on both sides (a crossing joins two sidewalks), where
+  // the section is long enough for a crossing and a stop line behind it at both ends.
+  bool crossing_at(const TopologyEdge& edge, const SurfaceAxis& axis, const SectionResult& sec, bool at_end) const {
+    if (!(s_.crossing_width > 0.0) || !sec.surface) return false;
+    if (degree_of(at_end ? edge.to_node : edge.from_node) < 3) return false;
+    if (axis.speed_kmh > s_.crossing_max_speed_kmh) return false;
+    if (!(axis.sidewalk_left > 0.0 && axis.sidewalk_right > 0.0)) return false;
+    return sec.end_border - sec.start_border >= 2 * (s_.crossing_width + kStopBehindCrossing + 0.5);
+  }
+
+  // The zebra area: the roadway between the border line and crossing_width into the section.
+  bool add_crossing(const SectionResult& sec, const TopologyEdge& edge, const SurfaceAxis& axis, const Polyline& centre,
+                    bool at_end) {
+    double len = length(centre);
+    Polyline piece = at_end ? substring(centre, len - s_.crossing_width, len) : substring(centre, 0.0, s_.crossing_width);
+    GeomPtr line = make_line(ctx_, piece);
+    GeomPtr band = own(ctx_,
+                       GEOSBufferWithStyle_r(ctx_.handle(), line.get(), axis.roadway_width / 2, kQuadrantSegments,
+                                             GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_ROUND, 5.0),
+                       "crossing buffer");
+    GeomPtr inside = own(ctx_, GEOSIntersection_r(ctx_.handle(), band.get(), sec.surface.get()), "crossing clip");
+    GeomPtr area = polygons_of(ctx_, inside.get(), 1e-3);
+    if (!area) return false;
+    CrossingResult c;
+    c.axis_id = sec.axis_id;
+    c.part = sec.part;
+    c.position = at_end ? 1 : 0;
+    c.node_id = topo_.nodes[at_end ? edge.to_node : edge.from_node].id;
+    c.width = s_.crossing_width;
+    c.surface = std::move(area);
+    result_.crossings.push_back(std::move(c));
+    return true;
+  }
+
+  // Sidewalks: each section's side bands (the single-sided buffer of its centre line between
+  // the border lines, out to half the roadway plus the sidewalk width) and each junction's
+  // surroundings (its surface buffered by the widest sidewalk of its streets: round joins follow
+  // the curb arcs) are claims; a sidewalk is its claim minus every roadway of its layer and the
+  // claims that come before it (sections' in key order, then junctions' by node id), so that
+  // sidewalks never overlap a roadway or each other, and a sidewalk depends only on what lies
+  // within its reach, whatever else the engine was given.
+  void build_sidewalks(InterruptPoller& poller) {
+    struct Item {
+      const GEOSGeometry* geom = nullptr;
+      GeomPtr owned;        // claims
+      int layer = 0;
+      bool roadway = false;
+      SidewalkResult meta;  // claims
+    };
+    std::vector<Item> items;
+    std::map<std::int64_t, std::size_t> node_index;
+    for (std::size_t n = 0; n < topo_.nodes.size(); ++n) node_index[topo_.nodes[n].id] = n;
+    for (const SectionResult& sec : result_.sections) {
+      if (!sec.surface) continue;
+      Item it;
+      it.geom = sec.surface.get();
+      it.layer = axis_layer_.at(sec.axis_id);
+      it.roadway = true;
+      items.push_back(std::move(it));
+    }
+    for (const IntersectionResult& ir : result_.intersections) {
+      if (!ir.surface) continue;
+      Item it;
+      it.geom = ir.surface.get();
+      it.layer = topo_.nodes[node_index.at(ir.node_id)].layer;
+      it.roadway = true;
+      items.push_back(std::move(it));
+    }
+    std::size_t first_claim = items.size();
+    std::vector<Item> claims;
+    for (std::size_t e = 0; e < result_.sections.size(); ++e) {
+      const SectionResult& sec = result_.sections[e];
+      if (!sec.surface) continue;
+      poller.tick();
+      const SurfaceAxis& axis = axes_[topo_.edges[e].axis_index];
+      for (int side = 0; side < 2; ++side) {
+        double w = side == 0 ? axis.sidewalk_left : axis.sidewalk_right;
+        if (!(w > 0.0)) continue;
+        try {
+          GeomPtr line = make_line(ctx_, substring(sec.centre_line, sec.start_border, sec.end_border));
+          double d = axis.roadway_width / 2 + w;
+          Item it;
+          it.owned = single_sided_buffer(ctx_, line.get(), side == 0 ? d : -d);
+          if (GEOSisValid_r(ctx_.handle(), it.owned.get()) != 1) {
+            it.owned = own(ctx_, GEOSMakeValid_r(ctx_.handle(), it.owned.get()), "make valid");
+          }
+          it.geom = it.owned.get();
+          it.layer = axis.layer;
+          it.meta.axis_id = sec.axis_id;
+          it.meta.part = sec.part;
+          it.meta.side = side == 0 ? "left" : "right";
+          it.meta.width = w;
+          claims.push_back(std::move(it));
+        } catch (const Error& err) {
+          if (err.kind() != ErrorKind::geometry_engine) throw;
+          result_.issues.push_back({sec.axis_id, "sidewalk_failed", err.what() + std::string(": ") + err.detail(), sec.part});
+        }
+      }
+    }
+    for (const IntersectionResult& ir : result_.intersections) {
+      if (!ir.surface) continue;
+      poller.tick();
+      std::size_t n = node_index.at(ir.node_id);
+      double w = 0.0;
+      for (const End& e : ends_of_node_[n]) {
+        const SurfaceAxis& axis = axes_[topo_.edges[e.edge].axis_index];
+        w = std::max({w, axis.sidewalk_left, axis.sidewalk_right});
+      }
+      if (!(w > 0.0)) continue;
+      Item it;
+      it.owned = own(ctx_, GEOSBufferWithStyle_r(ctx_.handle(), ir.surface.get(), w, kQuadrantSegments, GEOSBUF_CAP_ROUND,
+                                                 GEOSBUF_JOIN_ROUND, 5.0),
+                     "junction sidewalk buffer");
+      it.geom = it.owned.get();
+      it.layer = topo_.nodes[n].layer;
+      it.meta.node_id = ir.node_id;
+      it.meta.side = "around";
+      it.meta.width = w;
+      claims.push_back(std::move(it));
+    }
+    // Key order: sections' (axis, part, left before right), then junctions' by node id.
+    std::sort(claims.begin(), claims.end(), [](const Item& a, const Item& b) {
+      bool ja = a.meta.node_id != 0, jb = b.meta.node_id != 0;
+      return std::make_tuple(ja, a.meta.node_id, a.meta.axis_id, a.meta.part, a.meta.side) <
+             std::make_tuple(jb, b.meta.node_id, b.meta.axis_id, b.meta.part, b.meta.side);
+    });
+    for (Item& c : claims) items.push_back(std::move(c));
+    claims.clear();
+
+    std::vector<Box> boxes(items.size());
+    for (std::size_t i = 0; i < items.size(); ++i) envelope_box(ctx_, items[i].geom, boxes[i]);
+    // What each claim must give way to: roadways, and claims before it, on its layer.
+    std::vector<std::vector<std::size_t>> blockers(items.size());
+    for_each_overlapping_pair(boxes, [&](std::size_t i, std::size_t j) {
+      if (items[i].layer != items[j].layer) return;
+      std::size_t lo = std::min(i, j), hi = std::max(i, j);
+      if (hi < first_claim) return;  // two roadways
+      blockers[hi].push_back(lo);     // a roadway (lo < first_claim) or an earlier claim
+    });
+    for (std::size_t i = first_claim; i < items.size(); ++i) {
+      poller.tick();
+      Item& it = items[i];
+      try {
+        GeomPtr rest = own(ctx_, GEOSGeom_clone_r(ctx_.handle(), it.geom), "clone");
+        if (!blockers[i].empty()) {
+          std::sort(blockers[i].begin(), blockers[i].end());
+          std::vector<GEOSGeometry*> raw;
+          for (std::size_t b : blockers[i]) raw.push_back(GEOSGeom_clone_r(ctx_.handle(), items[b].geom));
+          GeomPtr all = own(ctx_, GEOSGeom_createCollection_r(ctx_.handle(), GEOS_GEOMETRYCOLLECTION, raw.data(),
+                                                              static_cast<unsigned>(raw.size())),
+                            "collection");
+          GeomPtr taken = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), all.get()), "union");
+          rest = own(ctx_, GEOSDifference_r(ctx_.handle(), rest.get(), taken.get()), "difference");
+        }
+        GeomPtr surface = polygons_of(ctx_, rest.get(), kMinSidewalkArea);
+        if (!surface) continue;
+        if (GEOSisValid_r(ctx_.handle(), surface.get()) != 1) {
+          GeomPtr fixed = own(ctx_, GEOSMakeValid_r(ctx_.handle(), surface.get()), "make valid");
+          surface = polygons_of(ctx_, fixed.get(), kMinSidewalkArea);
+          if (!surface) continue;
+        }
+        it.meta.surface = std::move(surface);
+        result_.sidewalks.push_back(std::move(it.meta));
+      } catch (const Error& err) {
+        if (err.kind() != ErrorKind::geometry_engine) throw;
+        std::string detail = err.what() + std::string(": ") + err.detail();
+        if (it.meta.node_id == 0) {
+          result_.issues.push_back({it.meta.axis_id, "sidewalk_failed", detail, it.meta.part});
+        } else {  // a junction's: about the node, under its first axis
+          const TopologyNode& node = topo_.nodes[node_index.at(it.meta.node_id)];
+          result_.issues.push_back({node.axis_ids.front(), "sidewalk_failed", detail, std::nullopt, node.id});
+        }
+      }
     }
   }
 
@@ -885,7 +1125,9 @@ SurfaceResult street_surfaces(GeosContext& ctx, const std::vector<SurfaceAxis>& 
   if (!(std::isfinite(settings.snap_tolerance) && settings.snap_tolerance >= 0.0) || !positive(settings.min_radius) ||
       !positive(settings.max_radius) || !positive(settings.turn_speed_ratio) || !positive(settings.lateral_acceleration) ||
       !positive(settings.misplaced_factor) || !(std::isfinite(settings.min_border_distance) && settings.min_border_distance >= 0.0) ||
-      !positive(settings.transition_length_per_metre) || !(std::isfinite(settings.min_transition_length) && settings.min_transition_length >= 0.0)) {
+      !positive(settings.transition_length_per_metre) || !(std::isfinite(settings.min_transition_length) && settings.min_transition_length >= 0.0) ||
+      !(std::isfinite(settings.crossing_width) && settings.crossing_width >= 0.0) ||
+      !(std::isfinite(settings.crossing_max_speed_kmh) && settings.crossing_max_speed_kmh >= 0.0)) {
     throw_invalid_argument("street surface settings must be finite and positive");
   }
   for (const SurfaceAxis& a : axes) check_axis(a);

@@ -28,6 +28,8 @@ struct SurfaceSettings {
   double transition_length_per_metre = 5.0;  // m of transition per metre of width change
   double min_transition_length = 5.0;        // m
   double max_transition_deflection_deg = 30.0;  // width transitions only where the axis runs on
+  double crossing_width = 3.0;         // m: a pedestrian crossing along the axis (0: no crossings)
+  double crossing_max_speed_kmh = 50.0;  // crossings only on streets this slow or slower
 };
 
 // Kinematic rule of thumb: a vehicle turns at turn_speed_ratio x the street speed with a lateral
@@ -43,6 +45,8 @@ struct SurfaceAxis {
   int layer = 0;
   std::optional<double> radius_override;
   LaneInput lane_input;  // lanes, one-way, lane tags: the cross-section of its sections
+  double sidewalk_left = 0.0;   // m, looking along the axis; 0: none on that side
+  double sidewalk_right = 0.0;
 };
 
 struct EdgeEnd {
@@ -102,6 +106,30 @@ struct IntersectionResult {
   std::string status;  // ok, transition, repaired (a small defect made valid), fallback
 };
 
+// A sidewalk: the band beside a section's roadway (side left or right, between its border
+// lines) or around a junction (side "around", following the curb arcs), minus every roadway on
+// its layer and the sidewalks built before it (sections' before junctions', in key order), so
+// that sidewalks never overlap a roadway or each other.
+struct SidewalkResult {
+  std::int64_t axis_id = 0;  // a section's (with part); 0 for a junction's
+  std::int64_t part = 0;
+  std::int64_t node_id = 0;  // a junction's; 0 for a section's
+  std::string side;          // left, right, around
+  double width = 0.0;        // m
+  GeomPtr surface;           // polygon or multipolygon
+};
+
+// A pedestrian crossing (zebra area) across a section's roadway at its border line with a
+// junction: position 0 at the section's start, 1 at its end.
+struct CrossingResult {
+  std::int64_t axis_id = 0;
+  std::int64_t part = 0;
+  int position = 0;
+  std::int64_t node_id = 0;  // the junction it leads across to
+  double width = 0.0;        // m along the axis
+  GeomPtr surface;
+};
+
 struct SurfaceResult {
   std::vector<NodeResult> nodes;
   std::vector<SectionResult> sections;
@@ -110,6 +138,8 @@ struct SurfaceResult {
   std::vector<TopologyIssue> issues;
   std::vector<LaneResult> lanes;        // of every section with a surface
   std::vector<MarkingResult> markings;
+  std::vector<SidewalkResult> sidewalks;
+  std::vector<CrossingResult> crossings;
 };
 
 // Checks the inputs (finite, positive widths and speeds; throws invalid_argument naming the axis)

@@ -1,0 +1,165 @@
+-- City blocks (issue 5): the bounded faces of the ground-level axis network minus the street
+-- surfaces and sidewalks on them. The StreetGen paper takes the faces of PostGIS Topology and
+-- subtracts the surfaces with boolean operations, so that blocks exist where some streets are
+-- missing; here the faces come from PostGIS's ST_Polygonize of the sections' centre lines (the
+-- axis parts node to node, already split at every junction by the engine's topology, so the
+-- line work is noded), which drops dangling axes (they do not split a face) and leaves the
+-- unbounded outside of the network without a block. Bridges and tunnels (layer <> 0) neither
+-- bound faces nor are subtracted: a block is what lies between the streets on the ground.
+
+-- The blocks of MODEL whose faces lie inside AREA (all of them when AREA is NULL), from its
+-- stored sections, junctions and sidewalks, into pg_temp._sg_blocks.
+CREATE FUNCTION streetgen._compute_blocks(model text, area geometry)
+  RETURNS void
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  SET jit = off
+  SET enable_seqscan = on SET enable_hashjoin = on SET enable_mergejoin = on
+  AS $$
+BEGIN
+  PERFORM streetgen._work_tables();
+  DELETE FROM pg_temp._sg_faces;
+  DELETE FROM pg_temp._sg_blocks;
+  EXECUTE format($q$
+    INSERT INTO pg_temp._sg_faces (face)
+    SELECT (ST_Dump(ST_Polygonize(s.centre_line))).geom
+      FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id
+     WHERE a.layer = 0 AND s.status <> 'duplicate' AND ($1 IS NULL OR s.centre_line && $1)$q$, model) USING area;
+  EXECUTE format($q$
+    INSERT INTO pg_temp._sg_blocks (id, face, geom, axis_ids)
+    SELECT ('x' || substr(md5(ST_AsEWKB(ST_Normalize(f.face))), 1, 16))::bit(64)::bigint,
+           f.face,
+           (SELECT CASE WHEN ST_IsEmpty(d) THEN NULL ELSE ST_Multi(d) END
+              FROM (SELECT ST_CollectionExtract(coalesce(ST_Difference(f.face, ST_Union(x.geom)), f.face), 3) AS d
+                      FROM (SELECT s.geom FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id
+                             WHERE a.layer = 0 AND s.geom && f.face
+                            UNION ALL
+                            SELECT i.geom FROM %1$I.intersection i JOIN %1$I.node n ON n.id = i.node_id
+                             WHERE n.layer = 0 AND i.geom && f.face
+                            UNION ALL
+                            SELECT w.geom FROM %1$I.sidewalk w JOIN %1$I.axis a ON a.id = w.axis_id
+                             WHERE a.layer = 0 AND w.geom && f.face
+                            UNION ALL
+                            SELECT w.geom FROM %1$I.sidewalk w JOIN %1$I.node n ON n.id = w.node_id
+                             WHERE n.layer = 0 AND w.geom && f.face) AS x) AS u),
+           coalesce((SELECT array_agg(DISTINCT s.axis_id ORDER BY s.axis_id)
+                       FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id
+                      WHERE a.layer = 0 AND s.status <> 'duplicate' AND s.centre_line && f.face
+                        AND ST_DWithin(ST_LineInterpolatePoint(s.centre_line, 0.5), ST_Boundary(f.face), 1e-6)), '{}')
+      FROM pg_temp._sg_faces f
+     WHERE $1 IS NULL OR f.face @ $1$q$, model) USING area;
+END
+$$;
+
+-- Writes the blocks: all of them (REGION NULL), or those whose faces a change inside REGION
+-- (the box around everything a local recompute rewrote, old and new) can have touched. A local
+-- edit changes only the faces it touches: the old faces over the region are merged or split
+-- into new faces over the region, and every other face and its block stay as they are. So the
+-- faces are recomputed inside a box AREA that holds the region and the old faces over it, by
+-- polygonizing only the centre lines that reach into AREA; a face found entirely inside AREA is
+-- a true face (every line inside it reached AREA), and a face over the region that reaches out
+-- of AREA grows AREA (with the old faces over the new part) until none does. Blocks with faces
+-- inside AREA are then upserted and the others there deleted. (After 8 growths, or when AREA
+-- covers the network anyway: all of them.)
+CREATE FUNCTION streetgen._store_blocks(model text, region geometry)
+  RETURNS void
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  SET jit = off
+  SET enable_seqscan = on SET enable_hashjoin = on SET enable_mergejoin = on
+  AS $$
+DECLARE
+  area geometry;
+  grown geometry;
+  round integer;
+BEGIN
+  IF region IS NOT NULL AND NOT ST_IsEmpty(region) THEN
+    region := ST_Envelope(region);
+    EXECUTE format('SELECT ST_Envelope(ST_Collect(ST_Envelope(b.face))) FROM %I.block b WHERE b.face && $1', model)
+      INTO grown USING region;
+    area := ST_Envelope(ST_Collect(region, grown));
+    FOR round IN 1..8 LOOP
+      PERFORM streetgen._compute_blocks(model, area);
+      SELECT ST_Envelope(ST_Collect(ST_Envelope(f.face))) INTO grown
+        FROM pg_temp._sg_faces f WHERE f.face && region AND NOT f.face @ area;
+      EXIT WHEN grown IS NULL;
+      EXECUTE format('SELECT ST_Envelope(ST_Collect(ST_Envelope(b.face))) FROM %I.block b WHERE b.face && $1', model)
+        INTO grown USING ST_Envelope(ST_Collect(area, grown));
+      area := ST_Envelope(ST_Collect(area, grown));
+      IF round = 8 THEN
+        area := NULL;
+      END IF;
+    END LOOP;
+  END IF;
+  IF area IS NULL THEN
+    PERFORM streetgen._compute_blocks(model, NULL);
+  END IF;
+  EXECUTE format($q$
+    DELETE FROM %1$I.block b WHERE ($1 IS NULL OR b.face @ $1)
+       AND NOT EXISTS (SELECT 1 FROM pg_temp._sg_blocks n WHERE n.id = b.id)$q$, model) USING area;
+  EXECUTE format($q$
+    INSERT INTO %1$I.block AS t (id, face, geom, axis_ids)
+    SELECT n.id, n.face, n.geom, n.axis_ids FROM pg_temp._sg_blocks n
+    ON CONFLICT (id) DO UPDATE SET face = EXCLUDED.face, geom = EXCLUDED.geom, axis_ids = EXCLUDED.axis_ids
+     WHERE (t.face, t.geom, t.axis_ids) IS DISTINCT FROM (EXCLUDED.face, EXCLUDED.geom, EXCLUDED.axis_ids)$q$, model);
+END
+$$;
+
+-- How sound a model's details are, the acceptance measures of issue 5 for sidewalks, crossings
+-- and blocks: invalid geometries; the area of sidewalks on a roadway of their layer (the
+-- sections and junctions) and of sidewalks overlapping each other; crossings outside their
+-- section; and how blocks, street surfaces and sidewalks tile the bounded faces of the
+-- ground-level network: face_area, the area covered twice inside the faces (overlap_area: street
+-- pieces on each other, blocks on streets) and the area covered by nothing (gap_area). Overlays
+-- snap to a micrometre grid (OverlayNG with a grid size): without it GEOS throws on some
+-- nearly coincident edges of real networks.
+CREATE FUNCTION streetgen.detail_quality(model text,
+    OUT sidewalks bigint, OUT crossings bigint, OUT blocks bigint, OUT invalid_geometries bigint,
+    OUT sidewalk_area double precision, OUT sidewalk_roadway_overlap_area double precision,
+    OUT sidewalk_overlap_area double precision, OUT crossing_outside_area double precision,
+    OUT face_area double precision, OUT overlap_area double precision, OUT gap_area double precision)
+  RETURNS record
+  LANGUAGE plpgsql STABLE
+  SET search_path FROM CURRENT
+  SET jit = off
+  AS $$
+BEGIN
+  PERFORM streetgen.model_srid(model);
+  EXECUTE format($q$
+    WITH w AS (
+      SELECT w.*, coalesce(a.layer, n.layer) AS layer
+        FROM %1$I.sidewalk w LEFT JOIN %1$I.axis a ON a.id = w.axis_id LEFT JOIN %1$I.node n ON n.id = w.node_id),
+    roadway AS (
+      SELECT s.geom, a.layer FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id WHERE s.geom IS NOT NULL
+      UNION ALL SELECT i.geom, n.layer FROM %1$I.intersection i JOIN %1$I.node n ON n.id = i.node_id),
+    tiles AS (
+      SELECT ST_Area(b.face) AS a, coalesce(ST_Area(b.geom), 0) AS b, p.s_sum, ST_Area(p.s_union) AS s_union,
+             CASE WHEN b.geom IS NULL OR p.s_union IS NULL THEN 0 ELSE ST_Area(ST_Intersection(b.geom, p.s_union, 1e-6)) END AS bs
+        FROM %1$I.block b,
+             LATERAL (SELECT coalesce(sum(ST_Area(x.piece)), 0) AS s_sum, ST_Union(x.piece, 1e-6) AS s_union
+                        FROM (SELECT ST_CollectionExtract(ST_Intersection(b.face, g.geom, 1e-6), 3) AS piece
+                                FROM (SELECT geom FROM roadway WHERE layer = 0 AND geom && b.face
+                                      UNION ALL SELECT geom FROM w WHERE layer = 0 AND geom && b.face) AS g) AS x) AS p)
+    SELECT (SELECT count(*) FROM %1$I.sidewalk),
+           (SELECT count(*) FROM %1$I.crossing),
+           (SELECT count(*) FROM %1$I.block),
+           (SELECT count(*) FROM %1$I.sidewalk WHERE NOT ST_IsValid(geom) OR ST_IsEmpty(geom))
+             + (SELECT count(*) FROM %1$I.crossing WHERE NOT ST_IsValid(geom) OR ST_IsEmpty(geom))
+             + (SELECT count(*) FROM %1$I.block WHERE NOT ST_IsValid(face) OR (geom IS NOT NULL AND NOT ST_IsValid(geom))),
+           coalesce((SELECT sum(ST_Area(geom)) FROM %1$I.sidewalk), 0),
+           coalesce((SELECT sum(ST_Area(ST_Intersection(w.geom, r.geom, 1e-6))) FROM w JOIN roadway r ON r.geom && w.geom AND r.layer = w.layer), 0),
+           coalesce((SELECT sum(ST_Area(ST_Intersection(a.geom, b.geom, 1e-6)))
+                       FROM w a JOIN w b ON a.geom && b.geom AND a.layer = b.layer
+                        AND (coalesce(a.axis_id, 0), coalesce(a.part, 0), coalesce(a.node_id, 0), a.side)
+                          < (coalesce(b.axis_id, 0), coalesce(b.part, 0), coalesce(b.node_id, 0), b.side)), 0),
+           coalesce((SELECT sum(ST_Area(ST_Difference(c.geom, s.geom, 1e-6))) FROM %1$I.crossing c JOIN %1$I.section s USING (axis_id, part)), 0),
+           coalesce((SELECT sum(a) FROM tiles), 0),
+           coalesce((SELECT sum(s_sum - s_union + bs) FROM tiles), 0),
+           coalesce((SELECT sum(a - (b + s_union - bs)) FROM tiles), 0)
+  $q$, model)
+  INTO sidewalks, crossings, blocks, invalid_geometries, sidewalk_area, sidewalk_roadway_overlap_area,
+       sidewalk_overlap_area, crossing_outside_area, face_area, overlap_area, gap_area;
+END
+$$;
+COMMENT ON FUNCTION streetgen.detail_quality(text) IS
+  'Checks a model''s sidewalks, crossings and blocks: validity, sidewalks on roadways or on each other, crossings outside their section, and how blocks, street surfaces and sidewalks tile the network''s bounded faces';
