@@ -56,6 +56,7 @@ CREATE FUNCTION streetgen.sidewalk_widths(road_class text, sidewalk_width double
         FROM t),
     sides AS (
       SELECT p.tags,
+             p.tags ?| ARRAY['sidewalk:left:width', 'sidewalk:right:width', 'sidewalk:both:width', 'sidewalk:width'] AS has_width,
              CASE WHEN p.left_ IN ('yes', 'no', 'separate', 'none') THEN p.left_ = 'yes'
                   WHEN p.both_ IN ('yes', 'no', 'separate', 'none') THEN p.both_ = 'yes'
                   WHEN p.main IS NOT NULL THEN p.main IN ('both', 'yes', 'left')
@@ -68,15 +69,18 @@ CREATE FUNCTION streetgen.sidewalk_widths(road_class text, sidewalk_width double
                                                     'living_street', 'track', 'busway', 'raceway'), false) END AS has_right
         FROM present p),
     widths AS (
+      -- (most ways tag no sidewalk width: the parsers run only on those that do)
       SELECT s.has_left, s.has_right,
+             CASE WHEN s.has_width THEN
              (SELECT x FROM pg_catalog.unnest(ARRAY[streetgen.osm_parse_length(s.tags->>'sidewalk:left:width'),
                                                      streetgen.osm_parse_length(s.tags->>'sidewalk:both:width'),
                                                      streetgen.osm_parse_length(s.tags->>'sidewalk:width')]) WITH ORDINALITY AS u(x, i)
-               WHERE x > 0 AND x <= 20 ORDER BY i LIMIT 1) AS tagged_left,
+               WHERE x > 0 AND x <= 20 ORDER BY i LIMIT 1) END AS tagged_left,
+             CASE WHEN s.has_width THEN
              (SELECT x FROM pg_catalog.unnest(ARRAY[streetgen.osm_parse_length(s.tags->>'sidewalk:right:width'),
                                                      streetgen.osm_parse_length(s.tags->>'sidewalk:both:width'),
                                                      streetgen.osm_parse_length(s.tags->>'sidewalk:width')]) WITH ORDINALITY AS u(x, i)
-               WHERE x > 0 AND x <= 20 ORDER BY i LIMIT 1) AS tagged_right,
+               WHERE x > 0 AND x <= 20 ORDER BY i LIMIT 1) END AS tagged_right,
              pg_catalog.lower(s.tags->>'oneway') IN ('-1', 'reverse') AS reversed
         FROM sides s),
     lr AS (

@@ -8,7 +8,10 @@
 -- bound faces nor are subtracted: a block is what lies between the streets on the ground.
 
 -- The blocks of MODEL whose faces lie inside AREA (all of them when AREA is NULL), from its
--- stored sections, junctions and sidewalks, into pg_temp._sg_blocks.
+-- stored sections, junctions and sidewalks, into pg_temp._sg_blocks. The pieces are clipped to
+-- the face before their union (half the time: the far side of each street drops out), and the
+-- overlays snap to a micrometre grid (OverlayNG with a grid size never fails; without it GEOS
+-- throws on some nearly coincident edges of real networks, which would abort an edit).
 CREATE FUNCTION streetgen._compute_blocks(model text, area geometry)
   RETURNS void
   LANGUAGE plpgsql VOLATILE
@@ -30,7 +33,8 @@ BEGIN
     SELECT ('x' || substr(md5(ST_AsEWKB(ST_Normalize(f.face))), 1, 16))::bit(64)::bigint,
            f.face,
            (SELECT CASE WHEN ST_IsEmpty(d) THEN NULL ELSE ST_Multi(d) END
-              FROM (SELECT ST_CollectionExtract(coalesce(ST_Difference(f.face, ST_Union(x.geom)), f.face), 3) AS d
+              FROM (SELECT ST_CollectionExtract(coalesce(ST_Difference(f.face, ST_Union(ST_CollectionExtract(ST_Intersection(x.geom, f.face, 1e-6), 3), 1e-6), 1e-6),
+                                                        f.face), 3) AS d
                       FROM (SELECT s.geom FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id
                              WHERE a.layer = 0 AND s.geom && f.face
                             UNION ALL

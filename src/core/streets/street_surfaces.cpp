@@ -1030,10 +1030,21 @@ class SurfaceBuilder {
       Item& it = items[i];
       try {
         GeomPtr rest = own(ctx_, GEOSGeom_clone_r(ctx_.handle(), it.geom), "clone");
+        // Boxes overlap far more often than shapes (long diagonal streets): only what the claim
+        // really meets goes into the union (a predicate that fails counts as meeting).
+        std::vector<GEOSGeometry*> raw;
         if (!blockers[i].empty()) {
           std::sort(blockers[i].begin(), blockers[i].end());
-          std::vector<GEOSGeometry*> raw;
-          for (std::size_t b : blockers[i]) raw.push_back(GEOSGeom_clone_r(ctx_.handle(), items[b].geom));
+          const GEOSPreparedGeometry* prepared = GEOSPrepare_r(ctx_.handle(), it.geom);
+          if (prepared == nullptr) ctx_.fail("prepare");
+          for (std::size_t b : blockers[i]) {
+            char meets = GEOSPreparedIntersects_r(ctx_.handle(), prepared, items[b].geom);
+            if (meets == 2) ctx_.clear_error();
+            if (meets != 0) raw.push_back(GEOSGeom_clone_r(ctx_.handle(), items[b].geom));
+          }
+          GEOSPreparedGeom_destroy_r(ctx_.handle(), prepared);
+        }
+        if (!raw.empty()) {
           GeomPtr all = own(ctx_, GEOSGeom_createCollection_r(ctx_.handle(), GEOS_GEOMETRYCOLLECTION, raw.data(),
                                                               static_cast<unsigned>(raw.size())),
                             "collection");
