@@ -168,10 +168,11 @@ BEGIN
       id bigint PRIMARY KEY,
       face geometry(Polygon, %2$s) NOT NULL,
       geom geometry(MultiPolygon, %2$s),
-      axis_ids bigint[] NOT NULL
+      axis_ids bigint[] NOT NULL,
+      kind text NOT NULL CHECK (kind IN ('block', 'island'))
     );
     CREATE INDEX block_face_idx ON %1$I.block USING gist (face);
-    COMMENT ON TABLE %1$I.block IS 'City blocks: each bounded face of the ground-level axis network (face) minus street surfaces and sidewalks (geom, NULL when the streets fill it); axis_ids: the axes around it';
+    COMMENT ON TABLE %1$I.block IS 'City blocks: each bounded face of the ground-level axis network (face) minus street surfaces and sidewalks (geom, NULL when the streets fill it); axis_ids: the axes around it; kind: block, or island (a traffic island between one-way carriageways or links)';
 
     CREATE TABLE %1$I.issue (
       axis_id bigint REFERENCES %1$I.axis (id) ON DELETE CASCADE,

@@ -6,6 +6,8 @@
 -- line work is noded), which drops dangling axes (they do not split a face) and leaves the
 -- unbounded outside of the network without a block. Bridges and tunnels (layer <> 0) neither
 -- bound faces nor are subtracted: a block is what lies between the streets on the ground.
+-- Traffic islands are the faces of under 2,500 m2 bounded only by one-way axes and links (the
+-- gap between dual carriageways, a slip lane and its main road): kind 'island'.
 
 -- The blocks of MODEL whose faces lie inside AREA (all of them when AREA is NULL), from its
 -- stored sections, junctions and sidewalks, into pg_temp._sg_blocks. The pieces are clipped to
@@ -29,7 +31,7 @@ BEGIN
       FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id
      WHERE a.layer = 0 AND s.status <> 'duplicate' AND ($1 IS NULL OR s.centre_line && $1)$q$, model) USING area;
   EXECUTE format($q$
-    INSERT INTO pg_temp._sg_blocks (id, face, geom, axis_ids)
+    INSERT INTO pg_temp._sg_blocks (id, face, geom, axis_ids, kind)
     SELECT ('x' || substr(md5(ST_AsEWKB(ST_Normalize(f.face))), 1, 16))::bit(64)::bigint,
            f.face,
            (SELECT CASE WHEN ST_IsEmpty(d) THEN NULL ELSE ST_Multi(d) END
@@ -46,11 +48,14 @@ BEGIN
                             UNION ALL
                             SELECT w.geom FROM %1$I.sidewalk w JOIN %1$I.node n ON n.id = w.node_id
                              WHERE n.layer = 0 AND w.geom && f.face) AS x) AS u),
-           coalesce((SELECT array_agg(DISTINCT s.axis_id ORDER BY s.axis_id)
-                       FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id
-                      WHERE a.layer = 0 AND s.status <> 'duplicate' AND s.centre_line && f.face
-                        AND ST_DWithin(ST_LineInterpolatePoint(s.centre_line, 0.5), ST_Boundary(f.face), 1e-6)), '{}')
-      FROM pg_temp._sg_faces f
+           coalesce(r.axis_ids, '{}'),
+           CASE WHEN ST_Area(f.face) < 2500 AND r.one_way_or_link THEN 'island' ELSE 'block' END
+      FROM pg_temp._sg_faces f,
+           LATERAL (SELECT array_agg(DISTINCT s.axis_id ORDER BY s.axis_id) AS axis_ids,
+                           bool_and(a.oneway OR a.road_class LIKE '%%\_link') AS one_way_or_link
+                      FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id
+                     WHERE a.layer = 0 AND s.status <> 'duplicate' AND s.centre_line && f.face
+                       AND ST_DWithin(ST_LineInterpolatePoint(s.centre_line, 0.5), ST_Boundary(f.face), 1e-6)) AS r
      WHERE $1 IS NULL OR f.face @ $1$q$, model) USING area;
 END
 $$;
@@ -102,10 +107,11 @@ BEGIN
     DELETE FROM %1$I.block b WHERE ($1 IS NULL OR b.face @ $1)
        AND NOT EXISTS (SELECT 1 FROM pg_temp._sg_blocks n WHERE n.id = b.id)$q$, model) USING area;
   EXECUTE format($q$
-    INSERT INTO %1$I.block AS t (id, face, geom, axis_ids)
-    SELECT n.id, n.face, n.geom, n.axis_ids FROM pg_temp._sg_blocks n
-    ON CONFLICT (id) DO UPDATE SET face = EXCLUDED.face, geom = EXCLUDED.geom, axis_ids = EXCLUDED.axis_ids
-     WHERE (t.face, t.geom, t.axis_ids) IS DISTINCT FROM (EXCLUDED.face, EXCLUDED.geom, EXCLUDED.axis_ids)$q$, model);
+    INSERT INTO %1$I.block AS t (id, face, geom, axis_ids, kind)
+    SELECT n.id, n.face, n.geom, n.axis_ids, n.kind FROM pg_temp._sg_blocks n
+    ON CONFLICT (id) DO UPDATE SET face = EXCLUDED.face, geom = EXCLUDED.geom, axis_ids = EXCLUDED.axis_ids,
+                                   kind = EXCLUDED.kind
+     WHERE (t.face, t.geom, t.axis_ids, t.kind) IS DISTINCT FROM (EXCLUDED.face, EXCLUDED.geom, EXCLUDED.axis_ids, EXCLUDED.kind)$q$, model);
 END
 $$;
 

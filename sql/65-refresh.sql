@@ -50,7 +50,7 @@ BEGIN
     '_sg_scope_axes (id bigint)',
     '_sg_scope_out (geom geometry)',
     '_sg_faces (face geometry)',
-    '_sg_blocks (id bigint, face geometry, geom geometry, axis_ids bigint[])'] LOOP
+    '_sg_blocks (id bigint, face geometry, geom geometry, axis_ids bigint[], kind text)'] LOOP
     EXECUTE 'CREATE TEMP TABLE IF NOT EXISTS ' || definition;
     EXECUTE format('GRANT ALL ON pg_temp.%I TO PUBLIC', split_part(definition, ' ', 1));
   END LOOP;
@@ -472,7 +472,7 @@ BEGIN
     SELECT 'block', coalesce(t.id, b.id)::text,
            CASE WHEN t.id IS NULL THEN 'missing' WHEN b.id IS NULL THEN 'extra' ELSE 'differs' END
       FROM %1$I.block t FULL JOIN pg_temp._sg_blocks b ON b.id = t.id
-     WHERE t.id IS NULL OR b.id IS NULL OR t.axis_ids <> b.axis_ids
+     WHERE t.id IS NULL OR b.id IS NULL OR t.axis_ids <> b.axis_ids OR t.kind <> b.kind
         OR ST_HausdorffDistance(t.face, b.face) > 1e-6
         OR (t.geom IS NULL) <> (b.geom IS NULL)
         OR (t.geom IS NOT NULL AND ST_HausdorffDistance(t.geom, b.geom) > 1e-6)

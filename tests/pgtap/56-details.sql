@@ -116,6 +116,20 @@ INSERT INTO dt.axis (geom, roadway_width, speed_kmh) VALUES ('SRID=32631;LINESTR
 SELECT is((SELECT count(*) FROM dt.block), 1::bigint, 'an INSERT closing the face makes the block again');
 SELECT * FROM pg_temp.sound('after an insert');
 
+-- Traffic islands: the face between the two one-way carriageways of a dual carriageway.
+SELECT streetgen.create_model('di', 32631);
+INSERT INTO di.axis (geom, roadway_width, speed_kmh, road_class, oneway) VALUES
+  ('SRID=32631;LINESTRING(-100 0, 0 0)', 12, 50, 'primary', false),
+  ('SRID=32631;LINESTRING(0 0, 20 10, 80 10, 100 0)', 6, 50, 'primary', true),
+  ('SRID=32631;LINESTRING(100 0, 80 -10, 20 -10, 0 0)', 6, 50, 'primary', true),
+  ('SRID=32631;LINESTRING(100 0, 200 0)', 12, 50, 'primary', false);
+SELECT results_eq('SELECT kind, round(ST_Area(face)) FROM di.block', $$VALUES ('island', 1600::float8)$$,
+                  'the gap between the carriageways is a traffic island');
+SELECT ok((SELECT geom IS NULL OR ST_Area(geom) < 1600 FROM di.block), 'the island is what the carriageways and sidewalks leave');
+UPDATE di.axis SET oneway = false WHERE road_class = 'primary' AND ST_Length(geom) < 150 AND ST_NPoints(geom) = 4;
+SELECT is((SELECT kind FROM di.block), 'block', 'two-way streets around it: a block, not an island');
+SELECT is_empty('SELECT * FROM streetgen.outdated(''di'')', 'islands equal a full recompute');
+
 -- Bad input.
 SELECT throws_ok(format('UPDATE dt.axis SET sidewalk_width = -1 WHERE id = %s', :south), '23514', NULL, 'a negative sidewalk_width');
 SELECT throws_ok(format('UPDATE dt.axis SET sidewalk_width = 100 WHERE id = %s', :south), '23514', NULL, 'an absurd sidewalk_width (100 m)');
