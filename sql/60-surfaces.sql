@@ -43,53 +43,57 @@ CREATE FUNCTION streetgen._lane_tags(tags jsonb)
 CREATE FUNCTION streetgen.sidewalk_widths(road_class text, sidewalk_width double precision, tags jsonb,
                                           default_width double precision)
   RETURNS double precision[]
-  LANGUAGE sql IMMUTABLE PARALLEL SAFE
+  LANGUAGE plpgsql IMMUTABLE PARALLEL SAFE
   SET search_path FROM CURRENT
+  -- (PL/pgSQL: its expressions are planned once per session; the same rule as an SQL function
+  -- with a SET clause was planned on every call, 0.75 ms per axis)
   AS $$
-    WITH t AS (SELECT CASE WHEN jsonb_typeof(tags) = 'object' THEN tags ELSE '{}'::jsonb END AS tags),
-    present AS (
-      SELECT t.tags,
-             pg_catalog.lower(t.tags->>'sidewalk') AS main,
-             pg_catalog.lower(t.tags->>'sidewalk:both') AS both_,
-             pg_catalog.lower(t.tags->>'sidewalk:left') AS left_,
-             pg_catalog.lower(t.tags->>'sidewalk:right') AS right_
-        FROM t),
-    sides AS (
-      SELECT p.tags,
-             p.tags ?| ARRAY['sidewalk:left:width', 'sidewalk:right:width', 'sidewalk:both:width', 'sidewalk:width'] AS has_width,
-             CASE WHEN p.left_ IN ('yes', 'no', 'separate', 'none') THEN p.left_ = 'yes'
-                  WHEN p.both_ IN ('yes', 'no', 'separate', 'none') THEN p.both_ = 'yes'
-                  WHEN p.main IS NOT NULL THEN p.main IN ('both', 'yes', 'left')
-                  ELSE NOT coalesce(road_class IN ('motorway', 'motorway_link', 'trunk', 'trunk_link', 'service',
-                                                    'living_street', 'track', 'busway', 'raceway'), false) END AS has_left,
-             CASE WHEN p.right_ IN ('yes', 'no', 'separate', 'none') THEN p.right_ = 'yes'
-                  WHEN p.both_ IN ('yes', 'no', 'separate', 'none') THEN p.both_ = 'yes'
-                  WHEN p.main IS NOT NULL THEN p.main IN ('both', 'yes', 'right')
-                  ELSE NOT coalesce(road_class IN ('motorway', 'motorway_link', 'trunk', 'trunk_link', 'service',
-                                                    'living_street', 'track', 'busway', 'raceway'), false) END AS has_right
-        FROM present p),
-    widths AS (
-      -- (most ways tag no sidewalk width: the parsers run only on those that do)
-      SELECT s.has_left, s.has_right,
-             CASE WHEN s.has_width THEN
-             (SELECT x FROM pg_catalog.unnest(ARRAY[streetgen.osm_parse_length(s.tags->>'sidewalk:left:width'),
-                                                     streetgen.osm_parse_length(s.tags->>'sidewalk:both:width'),
-                                                     streetgen.osm_parse_length(s.tags->>'sidewalk:width')]) WITH ORDINALITY AS u(x, i)
-               WHERE x > 0 AND x <= 20 ORDER BY i LIMIT 1) END AS tagged_left,
-             CASE WHEN s.has_width THEN
-             (SELECT x FROM pg_catalog.unnest(ARRAY[streetgen.osm_parse_length(s.tags->>'sidewalk:right:width'),
-                                                     streetgen.osm_parse_length(s.tags->>'sidewalk:both:width'),
-                                                     streetgen.osm_parse_length(s.tags->>'sidewalk:width')]) WITH ORDINALITY AS u(x, i)
-               WHERE x > 0 AND x <= 20 ORDER BY i LIMIT 1) END AS tagged_right,
-             pg_catalog.lower(s.tags->>'oneway') IN ('-1', 'reverse') AS reversed
-        FROM sides s),
-    lr AS (
-      SELECT CASE WHEN w.has_left THEN coalesce(w.tagged_left, sidewalk_width, default_width) ELSE 0 END AS l,
-             CASE WHEN w.has_right THEN coalesce(w.tagged_right, sidewalk_width, default_width) ELSE 0 END AS r,
-             w.reversed
-        FROM widths w)
-    SELECT CASE WHEN lr.reversed THEN ARRAY[lr.r, lr.l] ELSE ARRAY[lr.l, lr.r] END FROM lr
-  $$;
+DECLARE
+  t jsonb := CASE WHEN jsonb_typeof(tags) = 'object' THEN tags ELSE '{}'::jsonb END;
+  main text := lower(t->>'sidewalk');
+  both_ text := lower(t->>'sidewalk:both');
+  by_class boolean := NOT coalesce(road_class IN ('motorway', 'motorway_link', 'trunk', 'trunk_link', 'service',
+                                                  'living_street', 'track', 'busway', 'raceway'), false);
+  has boolean;
+  side text;
+  w double precision;
+  l double precision := 0;
+  r double precision := 0;
+  k text;
+BEGIN
+  FOREACH side IN ARRAY ARRAY['left', 'right'] LOOP
+    k := lower(t->>('sidewalk:' || side));
+    IF k IN ('yes', 'no', 'separate', 'none') THEN
+      has := k = 'yes';
+    ELSIF both_ IN ('yes', 'no', 'separate', 'none') THEN
+      has := both_ = 'yes';
+    ELSIF main IS NOT NULL THEN
+      has := main IN ('both', 'yes', side);
+    ELSE
+      has := by_class;
+    END IF;
+    IF NOT has THEN
+      CONTINUE;
+    END IF;
+    w := NULL;
+    FOREACH k IN ARRAY ARRAY['sidewalk:' || side || ':width', 'sidewalk:both:width', 'sidewalk:width'] LOOP
+      IF t ? k THEN
+        w := streetgen.osm_parse_length(t->>k);
+        IF w > 0 AND w <= 20 THEN
+          EXIT;
+        END IF;
+        w := NULL;
+      END IF;
+    END LOOP;
+    w := coalesce(w, sidewalk_width, default_width);
+    IF side = 'left' THEN l := w; ELSE r := w; END IF;
+  END LOOP;
+  IF lower(t->>'oneway') IN ('-1', 'reverse') THEN
+    RETURN ARRAY[r, l];
+  END IF;
+  RETURN ARRAY[l, r];
+END
+$$;
 COMMENT ON FUNCTION streetgen.sidewalk_widths(text, double precision, jsonb, double precision) IS
   'Sidewalk widths {left, right} (m, looking along the axis) from road class, sidewalk_width and OSM sidewalk tags: the rule the sidewalks follow';
 

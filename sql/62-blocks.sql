@@ -119,15 +119,18 @@ $$;
 -- and blocks: invalid geometries; the area of sidewalks on a roadway of their layer (the
 -- sections and junctions) and of sidewalks overlapping each other; crossings outside their
 -- section; and how blocks, street surfaces and sidewalks tile the bounded faces of the
--- ground-level network: face_area, the area covered twice inside the faces (overlap_area: street
--- pieces on each other, blocks on streets) and the area covered by nothing (gap_area). Overlays
+-- ground-level network: face_area, the area covered twice inside the faces by what the details
+-- add (overlap_area: sidewalks on roadways or on each other, blocks on streets), the area where
+-- roadways (sections, junctions) overlap each other there (roadway_overlap_area: the street
+-- surfaces' own matter, see surface_quality), and the area covered by nothing (gap_area). Overlays
 -- snap to a micrometre grid (OverlayNG with a grid size): without it GEOS throws on some
 -- nearly coincident edges of real networks.
 CREATE FUNCTION streetgen.detail_quality(model text,
     OUT sidewalks bigint, OUT crossings bigint, OUT blocks bigint, OUT invalid_geometries bigint,
     OUT sidewalk_area double precision, OUT sidewalk_roadway_overlap_area double precision,
     OUT sidewalk_overlap_area double precision, OUT crossing_outside_area double precision,
-    OUT face_area double precision, OUT overlap_area double precision, OUT gap_area double precision)
+    OUT face_area double precision, OUT overlap_area double precision, OUT roadway_overlap_area double precision,
+    OUT gap_area double precision)
   RETURNS record
   LANGUAGE plpgsql STABLE
   SET search_path FROM CURRENT
@@ -143,13 +146,17 @@ BEGIN
       SELECT s.geom, a.layer FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id WHERE s.geom IS NOT NULL
       UNION ALL SELECT i.geom, n.layer FROM %1$I.intersection i JOIN %1$I.node n ON n.id = i.node_id),
     tiles AS (
-      SELECT ST_Area(b.face) AS a, coalesce(ST_Area(b.geom), 0) AS b, p.s_sum, ST_Area(p.s_union) AS s_union,
+      SELECT ST_Area(b.face) AS a, coalesce(ST_Area(b.geom), 0) AS b, p.r_sum, p.w_sum, ST_Area(p.r_union) AS r_union,
+             ST_Area(p.s_union) AS s_union,
              CASE WHEN b.geom IS NULL OR p.s_union IS NULL THEN 0 ELSE ST_Area(ST_Intersection(b.geom, p.s_union, 1e-6)) END AS bs
         FROM %1$I.block b,
-             LATERAL (SELECT coalesce(sum(ST_Area(x.piece)), 0) AS s_sum, ST_Union(x.piece, 1e-6) AS s_union
-                        FROM (SELECT ST_CollectionExtract(ST_Intersection(b.face, g.geom, 1e-6), 3) AS piece
-                                FROM (SELECT geom FROM roadway WHERE layer = 0 AND geom && b.face
-                                      UNION ALL SELECT geom FROM w WHERE layer = 0 AND geom && b.face) AS g) AS x) AS p)
+             LATERAL (SELECT coalesce(sum(ST_Area(x.piece)) FILTER (WHERE x.roadway), 0) AS r_sum,
+                             coalesce(sum(ST_Area(x.piece)) FILTER (WHERE NOT x.roadway), 0) AS w_sum,
+                             coalesce(ST_Union(x.piece, 1e-6) FILTER (WHERE x.roadway), 'GEOMETRYCOLLECTION EMPTY') AS r_union,
+                             ST_Union(x.piece, 1e-6) AS s_union
+                        FROM (SELECT g.roadway, ST_CollectionExtract(ST_Intersection(b.face, g.geom, 1e-6), 3) AS piece
+                                FROM (SELECT true AS roadway, geom FROM roadway WHERE layer = 0 AND geom && b.face
+                                      UNION ALL SELECT false, geom FROM w WHERE layer = 0 AND geom && b.face) AS g) AS x) AS p)
     SELECT (SELECT count(*) FROM %1$I.sidewalk),
            (SELECT count(*) FROM %1$I.crossing),
            (SELECT count(*) FROM %1$I.block),
@@ -164,11 +171,12 @@ BEGIN
                           < (coalesce(b.axis_id, 0), coalesce(b.part, 0), coalesce(b.node_id, 0), b.side)), 0),
            coalesce((SELECT sum(ST_Area(ST_Difference(c.geom, s.geom, 1e-6))) FROM %1$I.crossing c JOIN %1$I.section s USING (axis_id, part)), 0),
            coalesce((SELECT sum(a) FROM tiles), 0),
-           coalesce((SELECT sum(s_sum - s_union + bs) FROM tiles), 0),
+           coalesce((SELECT sum(r_union + w_sum - s_union + bs) FROM tiles), 0),
+           coalesce((SELECT sum(r_sum - r_union) FROM tiles), 0),
            coalesce((SELECT sum(a - (b + s_union - bs)) FROM tiles), 0)
   $q$, model)
   INTO sidewalks, crossings, blocks, invalid_geometries, sidewalk_area, sidewalk_roadway_overlap_area,
-       sidewalk_overlap_area, crossing_outside_area, face_area, overlap_area, gap_area;
+       sidewalk_overlap_area, crossing_outside_area, face_area, overlap_area, roadway_overlap_area, gap_area;
 END
 $$;
 COMMENT ON FUNCTION streetgen.detail_quality(text) IS

@@ -39,6 +39,7 @@ psql -X -c "SELECT d.model, q.sidewalks, q.crossings, q.blocks, q.invalid_geomet
                    round(q.crossing_outside_area::numeric, 6) AS crossing_out_m2,
                    round(q.face_area::numeric) AS face_m2,
                    round((100 * q.overlap_area / greatest(q.face_area, 1e-9))::numeric, 6) AS tiling_overlap_pct,
+                   round((100 * q.roadway_overlap_area / greatest(q.face_area, 1e-9))::numeric, 6) AS roadway_overlap_pct,
                    round((100 * q.gap_area / greatest(q.face_area, 1e-9))::numeric, 6) AS tiling_gap_pct
               FROM detail_dataset d, streetgen.detail_quality(d.model) q ORDER BY d.kind DESC, d.model"
 assert_no_crash_since "$mark" || status=1

@@ -100,8 +100,8 @@ SELECT is(pg_temp.argument_names('streetgen.lane_quality(text)'),
           'lane_quality(model) -> (sections, sections_without_lanes, lanes, markings, invalid_geometries, max_coverage_difference, sections_over_tolerance, lane_overlap_area, outside_section_area, foreign_overlap_area)');
 
 SELECT is(pg_temp.argument_names('streetgen.detail_quality(text)'),
-          'model,sidewalks,crossings,blocks,invalid_geometries,sidewalk_area,sidewalk_roadway_overlap_area,sidewalk_overlap_area,crossing_outside_area,face_area,overlap_area,gap_area',
-          'detail_quality(model) -> (sidewalks, crossings, blocks, invalid_geometries, sidewalk_area, sidewalk_roadway_overlap_area, sidewalk_overlap_area, crossing_outside_area, face_area, overlap_area, gap_area)');
+          'model,sidewalks,crossings,blocks,invalid_geometries,sidewalk_area,sidewalk_roadway_overlap_area,sidewalk_overlap_area,crossing_outside_area,face_area,overlap_area,roadway_overlap_area,gap_area',
+          'detail_quality(model) -> (sidewalks, crossings, blocks, invalid_geometries, sidewalk_area, sidewalk_roadway_overlap_area, sidewalk_overlap_area, crossing_outside_area, face_area, overlap_area, roadway_overlap_area, gap_area)');
 SELECT is(pg_temp.argument_names('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)'),
           'example,region,seeds,obstacles,params,existing,id,from_node,to_node,road_class,origin,geom',
           'grow_example(example, region, seeds, obstacles, params, existing) -> (id, from_node, to_node, road_class, origin, geom)');
