@@ -245,10 +245,21 @@ BEGIN
   UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Expand(ST_Envelope(s.geom), reach) FROM pg_temp._sg_k_nodes k,
          LATERAL (SELECT s.* FROM section s WHERE s.to_node = k.id) AS s
   UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Expand(ST_Envelope(s.geom), reach) FROM pg_temp._sg_changed_geom g,
-         LATERAL (SELECT s.* FROM section s WHERE s.geom && ST_Expand(g.geom, max_width + reach)) AS s;
+         LATERAL (SELECT s.* FROM section s WHERE s.geom && ST_Expand(g.geom, max_width + reach)) AS s
+  UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Expand(ST_Envelope(s.geom), reach) FROM pg_temp._sg_changed_geom g,
+         LATERAL (SELECT i.node_id FROM intersection i WHERE reach > 0 AND i.geom && ST_Expand(g.geom, max_width + reach)) AS j,
+         LATERAL (SELECT s.* FROM section s WHERE s.from_node = j.node_id
+                  UNION ALL SELECT s.* FROM section s WHERE s.to_node = j.node_id) AS s;
   INSERT INTO pg_temp._sg_s2
   SELECT p.axis_id, p.part, p.from_node, p.to_node, ST_Expand(ST_Envelope(p.geom), reach) FROM pg_temp._sg_s1 k,
          LATERAL (SELECT p.* FROM section p WHERE p.geom && k.envelope) AS p
+  -- A junction's sidewalk gives way to the sidewalks around junctions near it: the sections at
+  -- junctions within reach come in, so that those junctions are in scope with their context
+  -- (their own sections may have no surface to be found by).
+  UNION SELECT p.axis_id, p.part, p.from_node, p.to_node, ST_Expand(ST_Envelope(p.geom), reach) FROM pg_temp._sg_s1 k,
+         LATERAL (SELECT i.node_id FROM intersection i WHERE reach > 0 AND i.geom && k.envelope) AS j,
+         LATERAL (SELECT p.* FROM section p WHERE p.from_node = j.node_id
+                  UNION ALL SELECT p.* FROM section p WHERE p.to_node = j.node_id) AS p
   UNION SELECT axis_id, part, from_node, to_node, envelope FROM pg_temp._sg_s1;
   -- The junction of a node in scope is cut from the sections at that node, and a narrowed one
   -- among them was split with a section it overlapped: so that section joins Q as well (a soak
@@ -311,10 +322,11 @@ BEGIN
        AND (o.axis_id = ANY (changed)
             OR EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE k.axis_id = o.axis_id AND k.part = o.part)
             OR (o.status = 'narrowed' AND (o.node_id IN (SELECT id FROM ends) OR o.to_node IN (SELECT id FROM ends))))
-    -- The sidewalks that may be rewritten: a section cut too long where the context ends would
-    -- have cut them short.
+    -- The sidewalks that may be rewritten, as their boxes grown by the sidewalks' reach: a
+    -- section cut too long where the context ends would have cut them short, by its roadway or
+    -- by its own sidewalk's claim (which reaches beyond its roadway).
     UNION ALL
-    SELECT ST_GeomFromEWKB(o.geom) FROM pg_temp._streetgen_out o
+    SELECT ST_Expand(ST_Envelope(ST_GeomFromEWKB(o.geom)), reach) FROM pg_temp._streetgen_out o
      WHERE o.kind = 'sidewalk'
        AND (o.axis_id = ANY (changed)
             OR EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE k.axis_id = o.axis_id AND k.part = o.part)
