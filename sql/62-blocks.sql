@@ -111,8 +111,9 @@ BEGIN
       SELECT ST_Envelope(ST_Collect(ST_Envelope(f.face))) INTO grown
         FROM pg_temp._sg_faces f WHERE f.face && region AND NOT f.face @ area;
       EXIT WHEN grown IS NULL;
+      area := ST_Envelope(ST_Collect(area, grown));
       EXECUTE format('SELECT ST_Envelope(ST_Collect(ST_Envelope(b.face))) FROM %I.block b WHERE b.face && $1', model)
-        INTO grown USING ST_Envelope(ST_Collect(area, grown));
+        INTO grown USING area;
       area := ST_Envelope(ST_Collect(area, grown));
       IF round = 8 THEN
         area := NULL;
