@@ -236,3 +236,43 @@ TEST(StreetSurfaces, DegreeEightJunctionAndDeadEnds) {
   }
   expect_valid_and_disjoint(ctx, r);
 }
+
+// Sidewalks (issue 5): beside each section and around the junction, never on a roadway or on
+// each other; crossings on the arms of a junction of degree >= 3 with sidewalks on both sides,
+// and none on a street without sidewalks.
+TEST(StreetDetails, SidewalksStayOffRoadwaysAndCrossingsFollowTheRule) {
+  GeosContext ctx;
+  std::vector<SurfaceAxis> axes{axis(1, {{-60, 0}, {0, 0}}, 8, 30), axis(2, {{0, 0}, {60, 0}}, 8, 30),
+                                axis(3, {{0, 0}, {0, 60}}, 8, 30), axis(4, {{0, 0}, {10, -30}, {0, -60}}, 8, 30)};
+  for (std::size_t i = 0; i < 3; ++i) axes[i].sidewalk_left = axes[i].sidewalk_right = 2.0;
+  axes[3].sidewalk_left = 3.0;  // a sidewalk on one side only: no crossing on that arm
+  SurfaceResult r = street_surfaces(ctx, axes, {}, SurfaceSettings{});
+  expect_valid_and_disjoint(ctx, r);
+  int around = 0;
+  for (const auto& w : r.sidewalks) {
+    ASSERT_TRUE(w.surface);
+    EXPECT_EQ(GEOSisValid_r(ctx.handle(), w.surface.get()), 1);
+    if (w.side == "around") ++around;
+    for (const auto& s : r.sections) {
+      if (s.surface) {
+        EXPECT_LT(overlap_area(ctx, w.surface.get(), s.surface.get()), 1e-9);
+      }
+    }
+    for (const auto& i : r.intersections) EXPECT_LT(overlap_area(ctx, w.surface.get(), i.surface.get()), 1e-9);
+    for (const auto& o : r.sidewalks) {
+      if (&o != &w) {
+        EXPECT_LT(overlap_area(ctx, w.surface.get(), o.surface.get()), 1e-9);
+      }
+    }
+  }
+  EXPECT_EQ(around, 1);
+  EXPECT_EQ(r.sidewalks.size(), 3u * 2u + 1u + 1u);
+  ASSERT_EQ(r.crossings.size(), 3u);
+  for (const auto& c : r.crossings) {
+    EXPECT_NE(c.axis_id, 4);
+    EXPECT_NEAR(area(ctx, c.surface.get()), 8.0 * 3.0, 1e-6);
+  }
+  // A negative sidewalk width is refused.
+  axes[0].sidewalk_left = -1;
+  EXPECT_THROW(street_surfaces(ctx, axes, {}, SurfaceSettings{}), Error);
+}
