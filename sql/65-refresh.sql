@@ -279,6 +279,13 @@ BEGIN
   UNION SELECT p.axis_id, p.part, p.from_node, p.to_node FROM narrowed_at_ends k,
          LATERAL (SELECT p.* FROM section p
                    WHERE p.geom && ST_Expand(k.geom, 1e-3) AND ST_DWithin(p.geom, k.geom, 1e-3)) AS p
+  -- The junction sidewalk of an end of S2 is rewritten, and gives way to the roadways and
+  -- sidewalk claims within its reach: the sections there join Q, so that they are computed, with
+  -- their context. (A soak found one written too large: a section whose sidewalk claim cut it
+  -- had not been given at all, and nothing in the output could call for it.)
+  UNION SELECT p.axis_id, p.part, p.from_node, p.to_node FROM ends e,
+         LATERAL (SELECT i.geom FROM intersection i WHERE reach > 0 AND i.node_id = e.id) AS j,
+         LATERAL (SELECT p.* FROM section p WHERE p.geom && ST_Expand(j.geom, reach)) AS p
   UNION SELECT axis_id, part, from_node, to_node FROM pg_temp._sg_s2;
   -- The engine cannot be trusted beyond its context: an axis whose nodes were not all given is
   -- cut too long there. Such a section may overlap a section in scope where the true one does
