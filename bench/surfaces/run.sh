@@ -120,7 +120,9 @@ if [[ " ${names[*]} " == *" c_neukolln "* ]]; then
   EXCLUDE_SERVICE=1 bash "$repo/bench/surfaces/export-surfaces.sh" c_neukolln "$out/neukolln-main"
   say ""
   say "streetgen, all car roads: $(/usr/bin/python3 "$repo/bench/peers/fidelity-neukoelln.py" "$out/neukolln/streetgen-roads.geojson" "$out/neukolln/streetgen-junctions.geojson" 2>/dev/null)"
-  say "streetgen, main roads (no highway=service, which the real carriageway layer leaves out): $(/usr/bin/python3 "$repo/bench/peers/fidelity-neukoelln.py" "$out/neukolln-main/streetgen-roads.geojson" "$out/neukolln-main/streetgen-junctions.geojson" 2>/dev/null)"
+  say "streetgen, main roads (no highway=service): $(/usr/bin/python3 "$repo/bench/peers/fidelity-neukoelln.py" "$out/neukolln-main/streetgen-roads.geojson" "$out/neukolln-main/streetgen-junctions.geojson" 2>/dev/null)"
+  EXCLUDE_DRIVEWAYS=1 bash "$repo/bench/surfaces/export-surfaces.sh" c_neukolln "$out/neukolln-public"
+  say "streetgen, public roads (no service=driveway|parking_aisle: the real carriageway has the public service road but no driveway on a private plot): $(/usr/bin/python3 "$repo/bench/peers/fidelity-neukoelln.py" "$out/neukolln-public/streetgen-roads.geojson" "$out/neukolln-public/streetgen-junctions.geojson" 2>/dev/null)"
 fi
 if [[ " $datasets " == *" cases "* ]]; then
   say ""
