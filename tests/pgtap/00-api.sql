@@ -49,6 +49,7 @@ SELECT set_eq(
     ('streetgen._create_output_tables(text,integer)', 'void', 'v', false),
     ('streetgen._streetgen_street_surfaces(bigint[],bytea[],double precision[],double precision[],integer[],double precision[],double precision[],bigint[],bigint[],double precision[],integer[],boolean[],text[])', 'SETOF record', 'i', false),
     ('streetgen._lane_tags(jsonb)', 'text', 'i', false),
+    ('streetgen._street_parking_widths(text)', 'double precision[]', 'i', false),
     ('streetgen._compute_model(text,bigint[])', 'void', 'v', false),
     ('streetgen._store(text,boolean)', 'void', 'v', false),
     ('streetgen._lock_outputs(text)', 'void', 'v', false),

@@ -383,6 +383,11 @@ LanePlan plan_lanes(const LaneInput& in, double roadway_width, const LaneRules& 
   return plan;
 }
 
+std::pair<double, double> street_parking_widths(const LaneInput& in, const LaneRules& rules) {
+  std::vector<LaneNote> ignored;
+  return {parking_width(in, "left", rules, ignored), parking_width(in, "right", rules, ignored)};
+}
+
 double signed_offset(const Polyline& line, Point p) {
   double best = std::numeric_limits<double>::infinity();
   Point foot{}, tangent{};

@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/geos_context.hpp"
@@ -58,6 +59,10 @@ struct LaneRules {
 };
 
 LanePlan plan_lanes(const LaneInput& input, double roadway_width, const LaneRules& rules = {});
+
+// The roadway that street parking takes on each side, m (left, right), as plan_lanes reads the
+// tags: what an estimated roadway width adds to its traffic lanes.
+std::pair<double, double> street_parking_widths(const LaneInput& input, const LaneRules& rules = {});
 
 struct LaneResult {
   std::int64_t axis_id = 0;
