@@ -243,6 +243,109 @@ void simplify(GeosContext& geos, Polyline& line, double tolerance) {
   line.swap(result);
 }
 
+// World -> pixel space (col, row), the inverse of the raster's affine georeference.
+Point to_pixel(const GeoTransform& t, Point p) {
+  double det = t.scale_x * t.scale_y - t.skew_x * t.skew_y;
+  double dx = p.x - t.ip_x, dy = p.y - t.ip_y;
+  return {(t.scale_y * dx - t.skew_x * dy) / det, (-t.skew_y * dx + t.scale_x * dy) / det};
+}
+
+// Distance (m) from a point to the nearest background pixel of the cleaned mask: the local half
+// width of the painted road. Searched in square rings up to 64 pixels; pixels outside the raster
+// do not count (a road leaving the raster is not narrower there).
+double clearance(const BinaryImage& mask, const GeoTransform& t, Point world) {
+  Point px = to_pixel(t, world);
+  int r0 = static_cast<int>(std::floor(px.y)), c0 = static_cast<int>(std::floor(px.x));
+  double best = -1.0;
+  for (int k = 0; k <= 64; ++k) {
+    if (best >= 0 && best <= k - 1) break;
+    for (int r = r0 - k; r <= r0 + k; ++r) {
+      for (int c = c0 - k; c <= c0 + k; ++c) {
+        if (std::max(std::abs(r - r0), std::abs(c - c0)) != k) continue;
+        if (r < 0 || c < 0 || r >= mask.height || c >= mask.width || mask.at(r, c)) continue;
+        double d = std::hypot(c + 0.5 - px.x, r + 0.5 - px.y);
+        if (best < 0 || d < best) best = d;
+      }
+    }
+  }
+  return best < 0 ? 64.0 * std::sqrt(t.pixel_area()) : best * std::sqrt(t.pixel_area());
+}
+
+// Thinning a wide crossing often leaves two junctions joined by a short link where the roads
+// meet. A link between two junctions (degree >= 3) shorter than the painted half width at
+// either end is contracted: the junctions become one, at the middle of the link.
+std::size_t contract_junction_links(Graph& g, const BinaryImage& mask, const GeoTransform& t) {
+  std::size_t contracted = 0;
+  for (;;) {
+    poll_interrupts();
+    auto inc = incidence(g);
+    std::vector<char> touched(g.nodes.size(), 0);
+    std::size_t round = 0;
+    for (std::size_t i = 0; i < g.chains.size(); ++i) {
+      Chain& c = g.chains[i];
+      if (!c.alive || c.a == c.b || touched[c.a] || touched[c.b]) continue;
+      if (inc[c.a].size() < 3 || inc[c.b].size() < 3) continue;
+      double reach = std::max(clearance(mask, t, g.nodes[c.a]), clearance(mask, t, g.nodes[c.b]));
+      if (length(c.line) >= reach) continue;
+      const int keep = c.a, gone = c.b;
+      Point mid = 0.5 * (g.nodes[keep] + g.nodes[gone]);
+      c.alive = false;
+      g.nodes[keep] = mid;
+      for (int node : {keep, gone}) {
+        for (auto [ci, end] : inc[node]) {
+          Chain& other = g.chains[ci];
+          if (!other.alive) continue;
+          if (end == 0) {
+            other.a = keep;
+            other.line.front() = mid;
+          } else {
+            other.b = keep;
+            other.line.back() = mid;
+          }
+        }
+      }
+      touched[keep] = touched[gone] = 1;
+      ++round;
+    }
+    if (round == 0) break;
+    contracted += round;
+    merge_degree2(g);
+  }
+  return contracted;
+}
+
+// Thinning stops a dead end about half a road width before the painted road ends (and before a
+// road leaves the raster). Each dead end is carried on along its last direction to where the
+// cleaned mask ends, so dead-end lengths match the painted roads.
+void extend_dead_ends(Graph& g, const BinaryImage& mask, const GeoTransform& t) {
+  auto inc = incidence(g);
+  const double pixel = std::sqrt(t.pixel_area());
+  for (std::size_t v = 0; v < g.nodes.size(); ++v) {
+    if (inc[v].size() != 1) continue;
+    Chain& c = g.chains[inc[v][0].first];
+    const bool at_end = inc[v][0].second == 1;
+    Polyline back = at_end ? Polyline(c.line.rbegin(), c.line.rend()) : c.line;  // starts at the dead end
+    Point tip = back.front();
+    Point dir = unit(tip - probe(back, 3.0 * pixel));
+    if (norm(dir) == 0.0) continue;
+    Point last = tip;
+    for (double s = 0.5 * pixel;; s += 0.5 * pixel) {
+      Point q = tip + s * dir;
+      Point px = to_pixel(t, q);
+      int r = static_cast<int>(std::floor(px.y)), col = static_cast<int>(std::floor(px.x));
+      if (r < 0 || col < 0 || r >= mask.height || col >= mask.width || !mask.at(r, col)) break;
+      last = q;
+    }
+    if (distance(last, tip) == 0.0) continue;
+    g.nodes[v] = last;
+    if (at_end) {
+      c.line.push_back(last);
+    } else {
+      c.line.insert(c.line.begin(), last);
+    }
+  }
+}
+
 void require_non_negative(double v, const char* name) {
   if (!(v >= 0.0) || !std::isfinite(v)) {
     throw_invalid_argument(std::string(name) + " must be a finite number >= 0", "It is " + std::to_string(v) + ".");
@@ -257,8 +360,8 @@ void require_steps(int v, const char* name) {
 
 }  // namespace
 
-RasterNetwork skeleton_to_network(GeosContext& geos, const BinaryImage& skeleton, const GeoTransform& transform,
-                                  const RasterNetworkParams& params) {
+RasterNetwork skeleton_to_network(GeosContext& geos, const BinaryImage& skeleton, const BinaryImage& cleaned,
+                                  const GeoTransform& transform, const RasterNetworkParams& params) {
   RasterNetwork result;
   const int w = skeleton.width, h = skeleton.height;
   const std::size_t size = static_cast<std::size_t>(w) * h;
@@ -389,8 +492,10 @@ RasterNetwork skeleton_to_network(GeosContext& geos, const BinaryImage& skeleton
   merge_degree2(g);
   result.stats.small_faces = remove_small_faces(g, params.min_block_area);
   result.stats.dead_ends_pruned = prune_dead_ends(g, params.min_dead_end_length);
-  // Pruning can leave a small face that a spur used to split; one more pass catches it.
+  result.stats.junctions_merged = contract_junction_links(g, cleaned, transform);
+  // Pruning and contraction can leave a small face that a spur used to split; one more pass.
   result.stats.small_faces += remove_small_faces(g, params.min_block_area);
+  extend_dead_ends(g, cleaned, transform);
 
   std::vector<std::int64_t> out_id(g.nodes.size(), 0);
   std::int64_t next_node = 0, next_edge = 0;
@@ -427,11 +532,11 @@ RasterNetwork raster_to_network(GeosContext& geos, const RoadRaster& raster, con
   BinaryImage image = mask;
   erode(image, params.erode);
   dilate(image, params.dilate);
-  std::size_t cleaned = image.count();
+  const BinaryImage cleaned = image;
   zhang_suen_thin(image);
-  RasterNetwork result = skeleton_to_network(geos, image, raster.transform, params);
+  RasterNetwork result = skeleton_to_network(geos, image, cleaned, raster.transform, params);
   result.stats.road_pixels = road;
-  result.stats.cleaned_pixels = cleaned;
+  result.stats.cleaned_pixels = cleaned.count();
   return result;
 }
 

@@ -39,6 +39,7 @@ struct RasterNetworkStats {
   std::size_t raw_edges = 0;         // chains of the skeleton graph
   std::size_t small_faces = 0;       // artefact blocks removed
   std::size_t dead_ends_pruned = 0;
+  std::size_t junctions_merged = 0;  // short links between two junctions contracted
 };
 
 struct RasterNetwork {
@@ -51,9 +52,9 @@ struct RasterNetwork {
 // all-road raster has no streets to find: usually a wrong threshold).
 RasterNetwork raster_to_network(GeosContext& geos, const RoadRaster& raster, const RasterNetworkParams& params);
 
-// The graph steps alone, on a mask that is already a skeleton or not (thinning is idempotent):
-// for the unit tests.
-RasterNetwork skeleton_to_network(GeosContext& geos, const BinaryImage& skeleton, const GeoTransform& transform,
-                                  const RasterNetworkParams& params);
+// The graph steps alone: `skeleton` is the thinned mask, `cleaned` the mask before thinning (its
+// road width decides which junction links are contracted and where dead ends stop).
+RasterNetwork skeleton_to_network(GeosContext& geos, const BinaryImage& skeleton, const BinaryImage& cleaned,
+                                  const GeoTransform& transform, const RasterNetworkParams& params);
 
 }  // namespace streetgen::core
