@@ -17,6 +17,7 @@ CREATE FUNCTION streetgen.rasterise_network(edges text, pixel_size double precis
   SET jit = off
   AS $$
 DECLARE
+  geoms geometry[];
   lines geometry;
   srids integer[];
   kinds text[];
@@ -39,9 +40,9 @@ BEGIN
       DETAIL = format('It is %s.', coalesce(road_width_px::text, 'null'));
   END IF;
   BEGIN
-    EXECUTE format('SELECT ST_Collect(q.geom), array_agg(DISTINCT ST_SRID(q.geom)), array_agg(DISTINCT ST_GeometryType(q.geom))
+    EXECUTE format('SELECT array_agg(q.geom), array_agg(DISTINCT ST_SRID(q.geom)), array_agg(DISTINCT ST_GeometryType(q.geom))
                       FROM (%s) AS q WHERE q.geom IS NOT NULL', edges)
-      INTO lines, srids, kinds;
+      INTO geoms, srids, kinds;
   EXCEPTION WHEN undefined_column OR undefined_function THEN
     RAISE EXCEPTION 'the edges query must return a geometry column named geom'
       USING ERRCODE = 'invalid_parameter_value', DETAIL = SQLERRM;
@@ -54,6 +55,7 @@ BEGIN
     RAISE EXCEPTION 'edges must be LineStrings or MultiLineStrings' USING ERRCODE = 'invalid_parameter_value',
       DETAIL = format('The query returns %s.', array_to_string(kinds, ', '));
   END IF;
+  lines := ST_Collect(geoms);
   IF extent IS NOT NULL AND srids IS NOT NULL AND ST_SRID(extent) <> srids[1] THEN
     RAISE EXCEPTION 'extent must have the SRID of the edges' USING ERRCODE = 'invalid_parameter_value',
       DETAIL = format('The extent has SRID %s, the edges %s.', ST_SRID(extent), srids[1]);
