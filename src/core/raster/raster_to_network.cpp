@@ -257,14 +257,23 @@ double clearance(const BinaryImage& mask, const GeoTransform& t, Point world) {
   Point px = to_pixel(t, world);
   int r0 = static_cast<int>(std::floor(px.y)), c0 = static_cast<int>(std::floor(px.x));
   double best = -1.0;
-  for (int k = 0; k <= 64; ++k) {
-    if (best >= 0 && best <= k - 1) break;
-    for (int r = r0 - k; r <= r0 + k; ++r) {
-      for (int c = c0 - k; c <= c0 + k; ++c) {
-        if (std::max(std::abs(r - r0), std::abs(c - c0)) != k) continue;
-        if (r < 0 || c < 0 || r >= mask.height || c >= mask.width || mask.at(r, c)) continue;
-        double d = std::hypot(c + 0.5 - px.x, r + 0.5 - px.y);
-        if (best < 0 || d < best) best = d;
+  auto visit = [&](int r, int c) {
+    if (r < 0 || c < 0 || r >= mask.height || c >= mask.width || mask.at(r, c)) return;
+    double d = std::hypot(c + 0.5 - px.x, r + 0.5 - px.y);
+    if (best < 0 || d < best) best = d;
+  };
+  // Ring k holds the pixels at Chebyshev distance k, all at Euclidean distance >= k - 1 from px.
+  for (int k = 0; k <= 64 && !(best >= 0 && best <= k - 1); ++k) {
+    if (k == 0) {
+      visit(r0, c0);
+      continue;
+    }
+    for (int d = -k; d <= k; ++d) {
+      visit(r0 - k, c0 + d);
+      visit(r0 + k, c0 + d);
+      if (d != -k && d != k) {
+        visit(r0 + d, c0 - k);
+        visit(r0 + d, c0 + k);
       }
     }
   }
@@ -276,6 +285,11 @@ double clearance(const BinaryImage& mask, const GeoTransform& t, Point world) {
 // either end is contracted: the junctions become one, at the middle of the link.
 std::size_t contract_junction_links(Graph& g, const BinaryImage& mask, const GeoTransform& t) {
   std::size_t contracted = 0;
+  std::vector<double> reach_of(g.nodes.size(), -1.0);  // clearance per node, until the node moves
+  auto reach = [&](int node) {
+    if (reach_of[node] < 0) reach_of[node] = clearance(mask, t, g.nodes[node]);
+    return reach_of[node];
+  };
   for (;;) {
     poll_interrupts();
     auto inc = incidence(g);
@@ -285,12 +299,12 @@ std::size_t contract_junction_links(Graph& g, const BinaryImage& mask, const Geo
       Chain& c = g.chains[i];
       if (!c.alive || c.a == c.b || touched[c.a] || touched[c.b]) continue;
       if (inc[c.a].size() < 3 || inc[c.b].size() < 3) continue;
-      double reach = std::max(clearance(mask, t, g.nodes[c.a]), clearance(mask, t, g.nodes[c.b]));
-      if (length(c.line) >= reach) continue;
+      if (length(c.line) >= std::max(reach(c.a), reach(c.b))) continue;
       const int keep = c.a, gone = c.b;
       Point mid = 0.5 * (g.nodes[keep] + g.nodes[gone]);
       c.alive = false;
       g.nodes[keep] = mid;
+      reach_of[keep] = -1.0;
       for (int node : {keep, gone}) {
         for (auto [ci, end] : inc[node]) {
           Chain& other = g.chains[ci];
@@ -367,76 +381,70 @@ RasterNetwork skeleton_to_network(GeosContext& geos, const BinaryImage& skeleton
   const std::size_t size = static_cast<std::size_t>(w) * h;
   InterruptPoller poller(1 << 16);
 
-  // Degrees of the skeleton pixels, and the pixels themselves in raster order.
+  // The skeleton pixels in raster order; one image-sized array maps a pixel to its index in
+  // that list, and everything else is per skeleton pixel (a few % of the image).
   std::vector<int> pixels;
-  std::vector<std::uint8_t> degree(size, 0);
-  int nb[8];
-  for (int r = 0; r < h; ++r) {
-    for (int c = 0; c < w; ++c) {
-      if (!skeleton.at(r, c)) continue;
-      pixels.push_back(r * w + c);
-      degree[static_cast<std::size_t>(r) * w + c] = static_cast<std::uint8_t>(links(skeleton, r, c, nb));
+  std::vector<int> index_of(size, -1);
+  for (int i = 0; i < static_cast<int>(size); ++i) {
+    if (skeleton.pixels[i]) {
+      index_of[i] = static_cast<int>(pixels.size());
+      pixels.push_back(i);
     }
   }
+  const int n_pix = static_cast<int>(pixels.size());
   result.stats.skeleton_pixels = pixels.size();
+  int nb[8];
+  std::vector<std::uint8_t> degree(n_pix);
+  for (int s = 0; s < n_pix; ++s) {
+    degree[s] = static_cast<std::uint8_t>(links(skeleton, pixels[s] / w, pixels[s] % w, nb));
+  }
+  // Links between skeleton indices.
+  auto linked = [&](int s, int out[8]) {
+    int n = links(skeleton, pixels[s] / w, pixels[s] % w, out);
+    for (int k = 0; k < n; ++k) out[k] = index_of[out[k]];
+    return n;
+  };
 
   // Junction pixels (degree >= 3) that touch form one node, placed at their centroid.
-  std::vector<int> node_of(size, -1);
-  std::vector<int> junction_index(size, -1);
-  std::vector<int> junctions;
-  for (int p : pixels) {
-    if (degree[p] >= 3) {
-      junction_index[p] = static_cast<int>(junctions.size());
-      junctions.push_back(p);
-    }
-  }
-  UnionFind clusters(junctions.size());
-  for (std::size_t j = 0; j < junctions.size(); ++j) {
-    int p = junctions[j];
-    int n = links(skeleton, p / w, p % w, nb);
+  UnionFind clusters(pixels.size());
+  for (int s = 0; s < n_pix; ++s) {
+    if (degree[s] < 3) continue;
+    int n = linked(s, nb);
     for (int k = 0; k < n; ++k) {
-      if (junction_index[nb[k]] >= 0) clusters.unite(j, static_cast<std::size_t>(junction_index[nb[k]]));
+      if (degree[nb[k]] >= 3) clusters.unite(static_cast<std::size_t>(s), static_cast<std::size_t>(nb[k]));
     }
   }
   Graph g;
   g.pixel_size = std::sqrt(transform.pixel_area());
   g.origin = transform.at(0, 0);
+  std::vector<int> node_of(n_pix, -1);
   std::vector<Point> sum;  // pixel-space centroid sums per node
   std::vector<int> members;
-  std::vector<int> root_node(junctions.size(), -1);
-  for (int p : pixels) {
-    if (degree[p] == 2 || degree[p] == 0) continue;
-    int node;
-    if (degree[p] >= 3) {
-      std::size_t root = clusters.find(static_cast<std::size_t>(junction_index[p]));
-      if (root_node[root] < 0) {
-        root_node[root] = static_cast<int>(sum.size());
-        sum.push_back({0, 0});
-        members.push_back(0);
-      }
-      node = root_node[root];
-    } else {
-      node = static_cast<int>(sum.size());
+  for (int s = 0; s < n_pix; ++s) {
+    if (degree[s] == 2 || degree[s] == 0) continue;
+    int root = degree[s] >= 3 ? static_cast<int>(clusters.find(static_cast<std::size_t>(s))) : s;
+    if (node_of[root] < 0) {  // the root comes first in raster order: it is the smallest index
+      node_of[root] = static_cast<int>(sum.size());
       sum.push_back({0, 0});
       members.push_back(0);
     }
-    node_of[p] = node;
-    sum[node] = sum[node] + Point{p % w + 0.5, p / w + 0.5};
+    const int node = node_of[root];
+    node_of[s] = node;
+    sum[node] = sum[node] + Point{pixels[s] % w + 0.5, pixels[s] / w + 0.5};
     members[node] += 1;
   }
   for (std::size_t n = 0; n < sum.size(); ++n) {
     g.nodes.push_back(transform.at(sum[n].x / members[n], sum[n].y / members[n]));
   }
-  auto centre = [&](int p) { return transform.at(p % w + 0.5, p / w + 0.5); };
+  auto centre = [&](int s) { return transform.at(pixels[s] % w + 0.5, pixels[s] / w + 0.5); };
 
   // Chains from each node pixel along degree-2 pixels to the next node pixel.
-  std::vector<std::uint8_t> visited(size, 0);
-  for (int s : pixels) {
+  std::vector<std::uint8_t> visited(n_pix, 0);
+  for (int s = 0; s < n_pix; ++s) {
     poller.tick();
     if (node_of[s] < 0) continue;
-    int n = links(skeleton, s / w, s % w, nb);
     int first[8];
-    std::copy(nb, nb + n, first);
+    int n = linked(s, first);
     for (int k = 0; k < n; ++k) {
       int q = first[k];
       if (node_of[q] >= 0) {
@@ -454,9 +462,9 @@ RasterNetwork skeleton_to_network(GeosContext& geos, const BinaryImage& skeleton
       while (node_of[cur] < 0) {
         visited[cur] = 1;
         chain.line.push_back(centre(cur));
-        int m = links(skeleton, cur / w, cur % w, nb);
-        int next = nb[0] == prev ? nb[1] : nb[0];
+        int m = linked(cur, nb);
         if (m != 2) throw Error(ErrorKind::internal, "skeleton chain walk met a pixel of degree " + std::to_string(m));
+        int next = nb[0] == prev ? nb[1] : nb[0];
         prev = cur;
         cur = next;
       }
@@ -466,7 +474,7 @@ RasterNetwork skeleton_to_network(GeosContext& geos, const BinaryImage& skeleton
     }
   }
   // Rings without any junction or end: one node on their first pixel, one closed chain.
-  for (int s : pixels) {
+  for (int s = 0; s < n_pix; ++s) {
     if (degree[s] != 2 || visited[s]) continue;
     int node = static_cast<int>(g.nodes.size());
     g.nodes.push_back(centre(s));
@@ -474,12 +482,12 @@ RasterNetwork skeleton_to_network(GeosContext& geos, const BinaryImage& skeleton
     chain.a = chain.b = node;
     chain.line.push_back(centre(s));
     visited[s] = 1;
-    links(skeleton, s / w, s % w, nb);
+    linked(s, nb);
     int prev = s, cur = nb[0];
     while (cur != s) {
       visited[cur] = 1;
       chain.line.push_back(centre(cur));
-      links(skeleton, cur / w, cur % w, nb);
+      linked(cur, nb);
       int next = nb[0] == prev ? nb[1] : nb[0];
       prev = cur;
       cur = next;
