@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
     GeosContext geos;
     RasterNetworkParams params;
     std::vector<double> t_read, t_morph, t_thin, t_graph, t_total;
-    RasterNetwork net;
+    RasterNetwork net, whole;
     for (int r = 0; r < runs; ++r) {
       auto t0 = Clock::now();
       RoadRaster raster = read_wkb_raster(bytes.data(), bytes.size(), threshold);
@@ -62,17 +62,17 @@ int main(int argc, char** argv) {
       t_graph.push_back(seconds_since(t3));
       // The same work through the one entry point the SQL function calls.
       auto t4 = Clock::now();
-      RasterNetwork whole = raster_to_network(geos, read_wkb_raster(bytes.data(), bytes.size(), threshold), params);
+      whole = raster_to_network(geos, read_wkb_raster(bytes.data(), bytes.size(), threshold), params);
       t_total.push_back(seconds_since(t4));
       if (whole.edges.size() != net.edges.size()) throw std::runtime_error("phases and entry point disagree");
     }
     std::printf(
         "{\"read\": %.6f, \"morphology\": %.6f, \"thinning\": %.6f, \"graph\": %.6f, \"total\": %.6f, "
         "\"edges\": %zu, \"nodes\": %zu, \"skeleton_pixels\": %zu, \"raw_edges\": %zu, \"small_faces\": %zu, "
-        "\"dead_ends_pruned\": %zu, \"junctions_merged\": %zu}\n",
+        "\"dead_ends_pruned\": %zu, \"junctions_merged\": %zu, \"road_pixels\": %zu, \"cleaned_pixels\": %zu}\n",
         median(t_read), median(t_morph), median(t_thin), median(t_graph), median(t_total), net.edges.size(),
         net.node_count, net.stats.skeleton_pixels, net.stats.raw_edges, net.stats.small_faces,
-        net.stats.dead_ends_pruned, net.stats.junctions_merged);
+        net.stats.dead_ends_pruned, net.stats.junctions_merged, whole.stats.road_pixels, whole.stats.cleaned_pixels);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "raster bench: %s\n", e.what());
     return 1;

@@ -14,19 +14,20 @@ std::size_t BinaryImage::count() const {
 
 namespace {
 
-// `steps` cross steps on a padded copy (a background frame, so no bounds checks), ping-ponging
-// between two buffers: each step reads the previous one only, as the definition says. Erosion
-// keeps a road pixel whose 4-neighbours are all road; dilation sets a pixel with a road
-// 4-neighbour.
+// `steps` cross steps on a padded copy (a frame, so no bounds checks), ping-ponging between two
+// buffers: each step reads the previous one only, as the definition says. Erosion keeps a road
+// pixel whose 4-neighbours are all road; dilation sets a pixel with a road 4-neighbour. For
+// erosion the frame is road, so a road leaving the raster is not eaten at the raster's edge (as
+// scipy/scikit-image's binary_erosion does); for dilation it is background.
 void cross_steps(BinaryImage& image, int steps, bool erosion) {
   if (steps <= 0 || image.pixels.empty()) return;
   const int w = image.width + 2, h = image.height + 2;
-  std::vector<std::uint8_t> a(static_cast<std::size_t>(w) * h, 0);
+  std::vector<std::uint8_t> a(static_cast<std::size_t>(w) * h, erosion ? 1 : 0);
   for (int r = 0; r < image.height; ++r) {
     std::copy(image.pixels.begin() + static_cast<std::size_t>(r) * image.width,
               image.pixels.begin() + static_cast<std::size_t>(r + 1) * image.width, a.begin() + (r + 1) * w + 1);
   }
-  std::vector<std::uint8_t> b = a;
+  std::vector<std::uint8_t> b = a;  // frame cells are never written
   for (int step = 0; step < steps; ++step) {
     poll_interrupts();
     for (int r = 1; r < h - 1; ++r) {

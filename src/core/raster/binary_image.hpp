@@ -30,8 +30,9 @@ struct BinaryImage {
   std::size_t count() const;
 };
 
-// `steps` erosions (a pixel stays only if its four 4-neighbours are road) or dilations (a pixel
-// becomes road if one of its 4-neighbours is), the paper's 3 x 3 cross structuring element.
+// `steps` erosions (a pixel stays only if its four 4-neighbours are road; outside the raster
+// counts as road here, so roads are not eaten where they leave it) or dilations (a pixel becomes
+// road if one of its 4-neighbours is), the paper's 3 x 3 cross structuring element.
 void erode(BinaryImage& image, int steps);
 void dilate(BinaryImage& image, int steps);
 
