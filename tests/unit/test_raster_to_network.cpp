@@ -85,6 +85,18 @@ TEST(BinaryImage, CrossErosionAndDilation) {
   EXPECT_EQ(img.at(1, 1), 1);
 }
 
+TEST(BinaryImage, ErosionKeepsRoadsWhereTheyLeaveTheRaster) {
+  BinaryImage img(5, 5);
+  for (int c = 0; c < 5; ++c)
+    for (int r = 1; r <= 3; ++r) img.set(r, c, 1);  // a 3-pixel road across the raster
+  erode(img, 1);
+  EXPECT_EQ(img.count(), 5u) << "its middle row stays, out to both edges";
+  EXPECT_EQ(img.at(2, 0), 1);
+  EXPECT_EQ(img.at(2, 4), 1);
+  dilate(img, 1);
+  EXPECT_EQ(img.count(), 15u) << "and grows back";
+}
+
 TEST(BinaryImage, ZhangSuenThinsARoadToOnePixel) {
   Canvas c = canvas(60, 1.0);
   road(c, {5, 30}, {55, 30}, 9);
