@@ -25,13 +25,22 @@ SELECT ok((SELECT ST_Covers(ST_Envelope(rast), ST_Expand(e, 22.5)) AND ST_Area(S
           'the default extent is the edges'' box grown by half the road width, on whole pixels');
 SELECT ok((SELECT ST_UpperLeftX(rast)::numeric % 3 = 0 AND ST_UpperLeftY(rast)::numeric % 3 = 0 FROM paper),
           'the grid is aligned on multiples of the pixel size');
--- Road where a pixel centre is within 7.5 px (22.5 m) of an edge: on every edge's midpoint, and
--- nowhere farther than 22.5 m + half a pixel diagonal from all edges.
+-- Road exactly where a pixel centre is within half the road width of an edge: on every edge's
+-- midpoint, and, pixel by pixel on a coarser raster (10 m, 5 px: 25 m), road if and only if an
+-- edge is that close, up to GEOS's buffer, whose round ends and joins are chords (8 per
+-- quarter circle: at most 25 m x (1 - cos(pi / 16)) = 0.48 m inside the true circle).
 SELECT is((SELECT count(*) FROM paper, patch p WHERE p.name = 'new-york'
             AND ST_Value(rast, 1, ST_LineInterpolatePoint(p.geom, 0.5)) <> 1), 0::bigint, 'every edge''s midpoint is road');
-SELECT is((SELECT count(*) FROM paper, ST_PixelAsCentroids(rast, 1, true) AS c
-            WHERE c.val = 1 AND NOT ST_DWithin(c.geom, (SELECT ST_Collect(geom) FROM patch WHERE name = 'new-york'), 22.5 + 1e-6)),
-          0::bigint, 'no road pixel centre is farther than half the road width from an edge');
+CREATE TEMP TABLE ny_edges AS SELECT geom FROM patch WHERE name = 'new-york';
+CREATE INDEX ON ny_edges USING gist (geom);
+CREATE TEMP TABLE coarse AS
+SELECT c.val, c.geom FROM ST_PixelAsCentroids(streetgen.rasterise_network('SELECT geom FROM ny_edges', 10, 5), 1, false) AS c;
+SELECT ok((SELECT count(*) = 69000 AND count(*) FILTER (WHERE val = 1) > 20000 FROM coarse), 'the coarse raster, 69,000 pixels');
+SELECT is((SELECT count(*) FROM coarse c
+            WHERE (c.val = 1) <> EXISTS (SELECT 1 FROM ny_edges e WHERE ST_DWithin(e.geom, c.geom, 25))
+              AND NOT EXISTS (SELECT 1 FROM ny_edges e WHERE ST_DWithin(e.geom, c.geom, 25 + 0.5)
+                                                        AND NOT ST_DWithin(e.geom, c.geom, 25 - 0.5))),
+          0::bigint, 'a pixel is road if and only if its centre is within half the road width of an edge');
 SELECT is((SELECT ARRAY[ST_Width(r), ST_Height(r), ST_UpperLeftX(r)::integer, ST_UpperLeftY(r)::integer]
              FROM (SELECT streetgen.rasterise_network($$SELECT geom FROM patch WHERE name = 'new-york'$$, 2, 5,
                                                       ST_MakeEnvelope(-101, -199, 99, 1, 0)) AS r) s),
@@ -147,6 +156,19 @@ SELECT throws_ok($$SELECT streetgen.rasterise_network('SELECT geom FROM patch WH
 SELECT throws_ok($$SELECT streetgen.rasterise_network('SELECT geom FROM patch', 0.01)$$, '22023', NULL, 'too many pixels');
 SELECT throws_ok($$SELECT streetgen.rasterise_network('SELECT geom FROM patch', 3, 15, 'SRID=3857;POLYGON((0 0, 1 0, 1 1, 0 0))')$$,
                  '22023', 'extent must have the SRID of the edges', 'extent in another SRID');
+
+-- Cancellation: one road pixel dilated 100 times on 2000 x 2000 pixels runs for seconds;
+-- statement_timeout must stop it inside the C++ loops with PostgreSQL's own 57014.
+CREATE TEMP TABLE big AS
+SELECT ST_AsBinary(ST_SetValue(ST_AddBand(ST_MakeEmptyRaster(2000, 2000, 0, 2000, 1, -1, 0, 0, 0), '8BUI'::text, 0, NULL),
+                               1, 1000, 1000, 1)) AS wkb;
+CREATE TEMP TABLE outcome (state text, seconds double precision);
+SET LOCAL statement_timeout = '300ms';
+INSERT INTO outcome SELECT * FROM test_helpers.sqlstate_and_seconds(
+  $$SELECT count(*) FROM big, streetgen._streetgen_raster_to_network(wkb, 0.5, 0, 100, 100, 25, 5, 3)$$);
+RESET statement_timeout;
+SELECT is((SELECT state FROM outcome), '57014', 'statement_timeout cancels raster_to_network with 57014');
+SELECT cmp_ok((SELECT seconds FROM outcome), '<', 2.0::double precision, 'within the computation, not after it');
 
 SELECT * FROM finish();
 ROLLBACK;
