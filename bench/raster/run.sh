@@ -101,3 +101,36 @@ print(f"  same input to thinning? cleaned pixels streetgen {core['cleaned_pixels
       f" which streetgen skips when linking pixels)")
 PY
 done
+
+# The round trip of issue 9's evaluation on two example patches (grid, organic), with the
+# settings of tests/pgtap/90-raster.sql, and a picture of each: example, raster, traced network.
+out="${STREETGEN_BENCH_OUT:-$repo/build/bench-raster}"
+mkdir -p "$out"
+psql -X -q -v ON_ERROR_STOP=1 -c "CREATE TABLE patch (name text, geom geometry(LineString, 0))"
+for name in new-york canberra_south_large; do
+  /usr/bin/python3 "$repo/tests/metrics/geojson_edges.py" "$data/examples/patches/$name.geojson" |
+    psql -X -q -c "TRUNCATE city_in" -c "COPY city_in FROM STDIN"
+  psql -X -q -c "INSERT INTO patch SELECT '$name', geom FROM city_in"
+done
+params='{"dilate": 2, "min_dead_end_length": 12}'
+echo "round trip example -> rasterise_network (3 m, 7 px) -> raster_to_network ($params) -> network_stats:"
+psql -X -q -At -v ON_ERROR_STOP=1 -v params="$params" <<'SQL'
+CREATE TABLE patch_raster AS
+SELECT name, streetgen.rasterise_network(format('SELECT geom FROM patch WHERE name = %L', name), 3, 7) AS rast
+  FROM (SELECT DISTINCT name FROM patch) s;
+CREATE TABLE traced AS SELECT r.name, t.* FROM patch_raster r, streetgen.raster_to_network(r.rast, :'params') AS t;
+SELECT format('  %-22s %-26s example %10s  traced %10s  %s', p.name, c.metric, round(c.reference_value::numeric, 3),
+              round(c.candidate_value::numeric, 3), to_char(100 * c.relative_difference, 'FMSG990.0') || ' %')
+  FROM (SELECT DISTINCT name FROM patch) p,
+       streetgen.compare_networks(streetgen.network_stats(format('SELECT geom FROM patch WHERE name = %L', p.name)),
+                                  streetgen.network_stats(format('SELECT geom FROM traced WHERE name = %L', p.name))) c
+ WHERE c.metric IN ('dead_end_share', 'connected_node_ratio', 'total_length', 'intersection_count', 'block_count',
+                    'block_area_median', 'block_compactness_median', 'block_aspect_ratio_median')
+ ORDER BY p.name, c.metric;
+SQL
+for name in new-york canberra_south_large; do
+  /usr/bin/python3 "$repo/bench/raster/plot.py" "host=$PGHOST port=$PGPORT user=postgres dbname=bench" \
+    "SELECT geom FROM patch WHERE name = '$name'" "SELECT rast FROM patch_raster WHERE name = '$name'" \
+    "SELECT geom FROM traced WHERE name = '$name'" "$name: 3 m pixels, roads 7 px, params $params" "$out/$name.png"
+done
+echo "pictures: $out/new-york.png, $out/canberra_south_large.png"
