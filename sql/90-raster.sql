@@ -104,6 +104,7 @@ CREATE FUNCTION streetgen.raster_to_network(rast raster, params jsonb DEFAULT '{
   LANGUAGE plpgsql IMMUTABLE PARALLEL SAFE
   COST 100000 ROWS 1000
   SET search_path FROM CURRENT
+  SET jit = off
   AS $$
 DECLARE
   known constant text[] := ARRAY['dilate', 'erode', 'min_block_area', 'min_dead_end_length', 'simplify_tolerance',

@@ -48,19 +48,36 @@ SELECT w.name, streetgen.rasterise_network(format('SELECT c.geom FROM city c WHE
   FROM win w;
 SQL
 
-time_sql() {  # median ms of RUNS evaluations of the expression $1 for raster $2
+# Medians (ms) of RUNS rounds for raster $1, each round timing, by the server clock and
+# interleaved so that they share the machine's state: the SQL function on the raster, the C
+# function on the raster's WKB made beforehand (the difference is the boundary crossing and the
+# wrapper), ST_AsBinary alone, and ST_DumpValues (the float8[][] way, for comparison). One warm-up
+# round first (library loading, first detoasting).
+time_sql() {
   psql -X -q -At <<SQL
-CREATE TEMP TABLE t (ms float8);
+CREATE TEMP TABLE t (what text, ms float8);
 DO \$\$
-DECLARE s timestamptz; n bigint; r raster := (SELECT rast FROM road_raster WHERE name = '$2');
+DECLARE s timestamptz; n bigint; r raster := (SELECT rast FROM road_raster WHERE name = '$1');
+  w bytea := (SELECT ST_AsBinary(rast) FROM road_raster WHERE name = '$1');
 BEGIN
-  FOR i IN 1..$runs LOOP
+  FOR i IN 0..$runs LOOP
     s := clock_timestamp();
-    $1;
-    INSERT INTO t VALUES (extract(epoch FROM clock_timestamp() - s) * 1000);
+    SELECT count(*) INTO n FROM streetgen.raster_to_network(r);
+    INSERT INTO t SELECT 'sql', extract(epoch FROM clock_timestamp() - s) * 1000 WHERE i > 0;
+    s := clock_timestamp();
+    SELECT count(*) INTO n FROM streetgen._streetgen_raster_to_network(w, 0.5, 1, 5, 100, 25, 5, 3);
+    INSERT INTO t SELECT 'c', extract(epoch FROM clock_timestamp() - s) * 1000 WHERE i > 0;
+    s := clock_timestamp();
+    SELECT length(ST_AsBinary(r)) INTO n;
+    INSERT INTO t SELECT 'wkb', extract(epoch FROM clock_timestamp() - s) * 1000 WHERE i > 0;
+    s := clock_timestamp();
+    SELECT array_length(ST_DumpValues(r, 1), 1) INTO n;
+    INSERT INTO t SELECT 'dump', extract(epoch FROM clock_timestamp() - s) * 1000 WHERE i > 0;
   END LOOP;
 END \$\$;
-SELECT percentile_cont(0.5) WITHIN GROUP (ORDER BY ms) FROM t;
+SELECT string_agg(m::text, ' ' ORDER BY o) FROM (
+  SELECT o, (SELECT percentile_cont(0.5) WITHIN GROUP (ORDER BY ms) FROM t WHERE what = k) AS m
+    FROM unnest(ARRAY['sql', 'c', 'wkb', 'dump']) WITH ORDINALITY AS u(k, o) ORDER BY o) s;
 SQL
 }
 
@@ -70,16 +87,14 @@ for name in new-york paris; do
     xxd -r -p >"$work/$name.wkb"
   size=$(psql -X -At -c "SELECT ST_Width(rast) || ' x ' || ST_Height(rast) || ', ' || ST_BandPixelType(rast) FROM road_raster WHERE name = '$name'")
   edges=$(psql -X -At -c "SELECT count(*) FROM road_raster, streetgen.raster_to_network(rast) WHERE name = '$name'")
-  sql_ms=$(time_sql "SELECT count(*) INTO n FROM streetgen.raster_to_network(r)" "$name")
-  wkb_ms=$(time_sql "SELECT length(ST_AsBinary(r)) INTO n" "$name")
-  dump_ms=$(time_sql "SELECT array_length(ST_DumpValues(r, 1), 1) INTO n" "$name")
+  read -r sql_ms c_ms wkb_ms dump_ms <<<"$(time_sql "$name")"
   core=$("$bench_bin" "$work/$name.wkb" "$runs")
   peer=$(/usr/bin/python3 "$repo/bench/raster/skimage_peer.py" "$work/$name.wkb" "$runs")
-  /usr/bin/python3 - "$name" "$size" "$edges" "$sql_ms" "$wkb_ms" "$dump_ms" "$core" "$peer" <<'PY'
+  /usr/bin/python3 - "$name" "$size" "$edges" "$sql_ms" "$c_ms" "$wkb_ms" "$dump_ms" "$core" "$peer" <<'PY'
 import json, sys
 name, size, edges = sys.argv[1], sys.argv[2], int(sys.argv[3])
-sql, wkb, dump = (float(v) / 1000 for v in sys.argv[4:7])
-core, peer = json.loads(sys.argv[7]), json.loads(sys.argv[8])
+sql, c, wkb, dump = (float(v) / 1000 for v in sys.argv[4:8])
+core, peer = json.loads(sys.argv[8]), json.loads(sys.argv[9])
 ours_image = core["morphology"] + core["thinning"]
 peer_image = peer["morphology"] + peer["thinning"]
 print(f"{name}: {size}, {edges} edges, {core['nodes']} nodes ({core['road_pixels']} road pixels, "
@@ -87,8 +102,8 @@ print(f"{name}: {size}, {edges} edges, {core['nodes']} nodes ({core['road_pixels
       f"{core['dead_ends_pruned']} dead ends pruned, {core['small_faces']} small faces)")
 print(f"  streetgen SQL raster_to_network: {sql:.3f} s  (goal < 0.3 s: {'met' if sql < 0.3 else 'NOT met'}; "
       f"paper's post-processing ~5 s: {5 / sql:.0f}x)")
-print(f"    boundary crossing, ST_AsBinary of the raster: {wkb * 1000:.1f} ms ({100 * wkb / sql:.0f} % of the call); "
-      f"ST_DumpValues instead would take {dump * 1000:.0f} ms")
+print(f"    the C function on the WKB made beforehand: {c:.3f} s, so crossing + wrapper {1000 * (sql - c):+.1f} ms; "
+      f"ST_AsBinary alone {wkb * 1000:.1f} ms; ST_DumpValues (float8[][]) instead would take {dump * 1000:.0f} ms")
 print(f"  streetgen core: {core['total']:.3f} s = read {core['read'] * 1000:.1f} ms + morphology {core['morphology'] * 1000:.1f} ms"
       f" + thinning {core['thinning'] * 1000:.1f} ms + graph {core['graph'] * 1000:.1f} ms")
 print(f"  scikit-image: morphology {peer['morphology'] * 1000:.1f} ms + skeletonize {peer['thinning'] * 1000:.1f} ms = {peer_image:.3f} s")
