@@ -214,6 +214,24 @@ TEST(RasterToNetwork, TinyArtefactLoopIsRemoved) {
   EXPECT_EQ(net.node_count, 2u);
 }
 
+TEST(RasterToNetwork, RasterWithRowsGoingNorthGivesTheSameGraph) {
+  // The same artefact loop with scale_y > 0 (row 0 at the south): faces are found in world
+  // coordinates, so the flip changes nothing but the coordinates.
+  Canvas c = canvas(61, 1.0);
+  c.transform.scale_y = 1.0;
+  c.transform.ip_y = 2000.0;
+  road(c, {0, 30.5}, {61, 30.5}, 7);
+  c.image.set(30, 30, 0);
+  RasterNetworkParams params;
+  params.erode = params.dilate = 0;
+  params.min_dead_end_length = 0;
+  RasterNetwork net = run(c, params);
+  EXPECT_EQ(net.stats.small_faces, 1u);
+  EXPECT_EQ(net.edges.size(), 1u);
+  ASSERT_EQ(net.node_count, 2u);
+  EXPECT_NEAR(net.edges[0].line.front().y, 2030.5, 0.5);
+}
+
 TEST(RasterToNetwork, DiagonalRoadHasNoStaircaseTriangles) {
   Canvas c = canvas(101, 3.0);
   road(c, {0, 0}, {101, 101}, 15);
@@ -330,6 +348,9 @@ TEST(WkbRaster, BadInput) {
   cut.insert(cut.end(), {4, 0, 1, 1});  // 2 of 16 pixels
   expect_error(cut, ErrorKind::bad_data, "rast is not a valid WKB raster");
   expect_error({}, ErrorKind::bad_data, "rast is not a valid WKB raster");
+  std::vector<std::uint8_t> huge = header(1, 20000, 20000);
+  huge.insert(huge.end(), {4, 0});
+  expect_error(huge, ErrorKind::invalid_argument, "rast has too many pixels");
   std::vector<std::uint8_t> ok = header(1, 1, 1);
   ok.insert(ok.end(), {4, 0, 1});
   EXPECT_THROW(read_wkb_raster(ok.data(), ok.size(), NAN), Error);

@@ -113,6 +113,14 @@ RoadRaster read_wkb_raster(const std::uint8_t* data, std::size_t size, double th
   if (width == 0 || height == 0) {
     throw_invalid_argument("rast is empty", "It has " + std::to_string(width) + " x " + std::to_string(height) + " pixels.");
   }
+  // About 10 bytes of working memory per pixel (mask, cleaned copy, padded buffers, skeleton
+  // index): 100 million pixels is about 1 GB, a 30 km square at 3 m.
+  if (static_cast<double>(width) * height > kMaxRasterPixels) {
+    throw_invalid_argument("rast has too many pixels",
+                           "It has " + std::to_string(width) + " x " + std::to_string(height) + " pixels, more than " +
+                               std::to_string(static_cast<long long>(kMaxRasterPixels)) + ".",
+                           "Trace it in tiles (ST_Tile) that overlap by a few road widths.");
+  }
   if (bands != 1) {
     throw_invalid_argument("rast must have exactly one band", "It has " + std::to_string(bands) + ".",
                            "Pick the road band with ST_Band(rast, n).");

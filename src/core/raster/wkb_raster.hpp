@@ -34,9 +34,11 @@ struct RoadRaster {
   BinaryImage mask;  // value > threshold and not nodata (NaN is background)
 };
 
+constexpr double kMaxRasterPixels = 1e8;
+
 // Reads a one-band WKB raster (either byte order). Throws invalid_argument for another band
-// count, an out-of-database band, a pixel type other than 1BB, 8BUI, 32BF or 64BF, or an empty
-// raster; bad_data for truncated or inconsistent bytes; invalid_argument for a non-finite
+// count, an out-of-database band, a pixel type other than 1BB, 8BUI, 32BF or 64BF, an empty
+// raster or one of more than kMaxRasterPixels pixels; bad_data for truncated or inconsistent bytes; invalid_argument for a non-finite
 // threshold.
 RoadRaster read_wkb_raster(const std::uint8_t* data, std::size_t size, double threshold);
 
