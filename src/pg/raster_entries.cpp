@@ -42,8 +42,9 @@ Datum _streetgen_raster_to_network(PG_FUNCTION_ARGS) {
                     errmsg("_streetgen_raster_to_network expects %d arguments, got %d", kArgs, PG_NARGS()),
                     errhint("Run ALTER EXTENSION streetgen UPDATE, or re-create the extension.")));
   }
-  static const char* const names[] = {"rast",           "threshold",           "erode",             "dilate",
-                                      "min_block_area", "min_dead_end_length", "smooth_iterations", "simplify_tolerance"};
+  static const char* const names[] = {"rast",           "threshold",           "erode",
+                                      "dilate",         "min_block_area",      "min_dead_end_length",
+                                      "smooth_iterations", "simplify_tolerance"};
   for (int a = 0; a < kArgs; ++a) {
     if (PG_ARGISNULL(a)) pg::raise_null_argument(names[a]);
   }

@@ -24,7 +24,8 @@ struct BinaryImage {
   BinaryImage() = default;
   BinaryImage(int w, int h) : width(w), height(h), pixels(static_cast<std::size_t>(w) * h, 0) {}
   std::uint8_t at(int row, int col) const {
-    return row < 0 || col < 0 || row >= height || col >= width ? 0 : pixels[static_cast<std::size_t>(row) * width + col];
+    if (row < 0 || col < 0 || row >= height || col >= width) return 0;
+    return pixels[static_cast<std::size_t>(row) * width + col];
   }
   void set(int row, int col, std::uint8_t v) { pixels[static_cast<std::size_t>(row) * width + col] = v; }
   std::size_t count() const;

@@ -133,7 +133,8 @@ std::size_t remove_small_faces(Graph& g, double min_area) {
     }
     std::vector<int> position(nh, 0);
     for (auto& list : around) {
-      std::sort(list.begin(), list.end(), [&](int x, int y) { return angle[x] < angle[y] || (angle[x] == angle[y] && x < y); });
+      std::sort(list.begin(), list.end(),
+                [&](int x, int y) { return angle[x] < angle[y] || (angle[x] == angle[y] && x < y); });
       for (int k = 0; k < static_cast<int>(list.size()); ++k) position[list[k]] = k;
     }
     std::vector<char> seen(nh, 0);

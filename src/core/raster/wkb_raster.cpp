@@ -91,7 +91,9 @@ RoadRaster read_wkb_raster(const std::uint8_t* data, std::size_t size, double th
   if (!std::isfinite(threshold)) throw_invalid_argument("threshold must be a finite number");
   Reader in(data, size);
   std::uint8_t order = in.read<std::uint8_t>("header");
-  if (order > 1) throw Error(ErrorKind::bad_data, "rast is not a valid WKB raster", "Its byte order flag is not 0 or 1.");
+  if (order > 1) {
+    throw Error(ErrorKind::bad_data, "rast is not a valid WKB raster", "Its byte order flag is not 0 or 1.");
+  }
   in.set_swap((order == 1) != host_is_little_endian());
   std::uint16_t version = in.read<std::uint16_t>("header");
   if (version != 0) {
@@ -111,7 +113,8 @@ RoadRaster read_wkb_raster(const std::uint8_t* data, std::size_t size, double th
   int width = in.read<std::uint16_t>("header");
   int height = in.read<std::uint16_t>("header");
   if (width == 0 || height == 0) {
-    throw_invalid_argument("rast is empty", "It has " + std::to_string(width) + " x " + std::to_string(height) + " pixels.");
+    throw_invalid_argument("rast is empty",
+                           "It has " + std::to_string(width) + " x " + std::to_string(height) + " pixels.");
   }
   // About 10 bytes of working memory per pixel (mask, cleaned copy, padded buffers, skeleton
   // index): 100 million pixels is about 1 GB, a 30 km square at 3 m.

@@ -38,8 +38,8 @@ constexpr double kMaxRasterPixels = 1e8;
 
 // Reads a one-band WKB raster (either byte order). Throws invalid_argument for another band
 // count, an out-of-database band, a pixel type other than 1BB, 8BUI, 32BF or 64BF, an empty
-// raster or one of more than kMaxRasterPixels pixels; bad_data for truncated or inconsistent bytes; invalid_argument for a non-finite
-// threshold.
+// raster, one of more than kMaxRasterPixels pixels, or a non-finite threshold; bad_data for
+// truncated or inconsistent bytes.
 RoadRaster read_wkb_raster(const std::uint8_t* data, std::size_t size, double threshold);
 
 // The opposite direction, for tests and the benchmark: a one-band 8BUI raster without nodata.
