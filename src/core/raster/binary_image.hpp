@@ -16,6 +16,7 @@
 namespace streetgen::core {
 
 // Row-major, row 0 first; 1 = road, 0 = background. Pixels outside the image are background.
+// Pixel indices are int throughout src/core/raster: read_wkb_raster refuses more than 1e8 pixels.
 struct BinaryImage {
   int width = 0;
   int height = 0;
