@@ -45,6 +45,11 @@ SELECT is((SELECT ARRAY[ST_Width(r), ST_Height(r), ST_UpperLeftX(r)::integer, ST
              FROM (SELECT streetgen.rasterise_network($$SELECT geom FROM patch WHERE name = 'new-york'$$, 2, 5,
                                                       ST_MakeEnvelope(-101, -199, 99, 1, 0)) AS r) s),
           ARRAY[101, 101, -102, 2], 'an explicit extent, snapped outwards to the pixel grid');
+SELECT is((SELECT array_agg(ST_Value(r, 1, p::geometry) ORDER BY p)
+             FROM (SELECT streetgen.rasterise_network($$SELECT 'LINESTRING(0 0, 100 0)'::geometry AS geom
+                                                      UNION ALL SELECT 'MULTILINESTRING((0 50, 100 50), (50 0, 50 100))'$$, 3, 5) AS r) s,
+                  unnest(ARRAY['POINT(30 0)', 'POINT(30 50)', 'POINT(50 80)', 'POINT(80 25)']) AS p),
+          ARRAY[1, 1, 1, 0]::double precision[], 'LineStrings and MultiLineStrings together');
 SELECT is((SELECT (ST_SummaryStats(streetgen.rasterise_network('SELECT geom FROM patch WHERE false', 3, 15,
                                                                ST_MakeEnvelope(0, 0, 30, 30, 0)), 1, false)).sum),
           0::double precision, 'no edges and an extent: an all-background raster');
