@@ -10,7 +10,7 @@ packages=(
   libgtest-dev valgrind
   osm2pgsql osmium-tool gdal-bin
   python3 python3-psycopg python3-qgis
-  python3-osmnx python3-scipy
+  python3-osmnx python3-scipy python3-skimage
 )
 
 missing=()

@@ -69,7 +69,10 @@ SELECT set_eq(
     ('streetgen.surface_quality(text)', 'record', 's', false),
     ('streetgen.lane_quality(text)', 'record', 's', false),
     ('streetgen._streetgen_grow_example(bytea[],text[],bigint[],bytea,double precision[],double precision[],bytea[],double precision,double precision,boolean,bigint,integer,boolean,double precision,double precision,integer,bytea[])', 'SETOF record', 'i', false),
-    ('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)', 'SETOF record', 'v', false)
+    ('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)', 'SETOF record', 'v', false),
+    ('streetgen.rasterise_network(text,double precision,integer,geometry)', 'raster', 'v', false),
+    ('streetgen._streetgen_raster_to_network(bytea,double precision,integer,integer,double precision,double precision,integer,double precision)', 'SETOF record', 'i', false),
+    ('streetgen.raster_to_network(raster,jsonb)', 'SETOF record', 'i', false)
   $$,
   'the extension ships exactly the documented functions, with these results and volatilities');
 
@@ -97,6 +100,11 @@ SELECT is(pg_temp.argument_names('streetgen.lane_quality(text)'),
 SELECT is(pg_temp.argument_names('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)'),
           'example,region,seeds,obstacles,params,existing,id,from_node,to_node,road_class,origin,geom',
           'grow_example(example, region, seeds, obstacles, params, existing) -> (id, from_node, to_node, road_class, origin, geom)');
+
+SELECT is(pg_temp.argument_names('streetgen.rasterise_network(text,double precision,integer,geometry)'),
+          'edges,pixel_size,road_width_px,extent', 'rasterise_network(edges, pixel_size, road_width_px, extent)');
+SELECT is(pg_temp.argument_names('streetgen.raster_to_network(raster,jsonb)'), 'rast,params,id,from_node,to_node,geom',
+          'raster_to_network(rast, params) -> (id, from_node, to_node, geom)');
 
 SELECT is_empty(
   'SELECT signature FROM streetgen_functions WHERE security_definer',
