@@ -374,3 +374,26 @@ TEST(SectionLanes, ParkingShiftsTheRoadwayAndItsCorners) {
   }
   EXPECT_EQ(checked, 2);
 }
+
+// OSM `placement`: where the way runs across its lanes (counted as `lanes` counts them).
+TEST(PlanLanes, PlacementSaysWhereTheWayRuns) {
+  // A one-way of three 3 m lanes drawn along the right edge of its first lane (Fremantle).
+  LanePlan p = plan_lanes(input(3, true, {{"placement", "right_of:1"}}), 9.0);
+  EXPECT_DOUBLE_EQ(p.centre_offset, 3.0 - 4.5);  // 3 m of roadway on its left, 6 m on its right
+  EXPECT_TRUE(p.notes.empty());
+  p = plan_lanes(input(3, true, {{"placement", "left_of:1"}}), 9.0);
+  EXPECT_DOUBLE_EQ(p.centre_offset, -4.5);
+  p = plan_lanes(input(3, true, {{"placement", "middle_of:2"}}), 9.0);
+  EXPECT_DOUBLE_EQ(p.centre_offset, 0.0);
+  // A cycle lane at the left curb is not counted, but its width lies left of lane 1.
+  p = plan_lanes(input(2, true, {{"placement", "left_of:1"}, {"cycleway:left", "lane"}}), 7.5);
+  EXPECT_EQ(layout(p), "cycle/forward driving/forward driving/forward");
+  EXPECT_DOUBLE_EQ(p.centre_offset, 1.5 - 3.75);
+  // transition: the default; a lane that does not exist or junk: noted and the default.
+  EXPECT_DOUBLE_EQ(plan_lanes(input(3, true, {{"placement", "transition"}}), 9.0).centre_offset, 0.0);
+  p = plan_lanes(input(2, true, {{"placement", "right_of:4"}}), 6.0);
+  EXPECT_DOUBLE_EQ(p.centre_offset, 0.0);
+  EXPECT_TRUE(noted(p, "lane_tag_ignored"));
+  p = plan_lanes(input(2, true, {{"placement", "centre"}}), 6.0);
+  EXPECT_TRUE(noted(p, "lane_tag_ignored"));
+}

@@ -166,6 +166,41 @@ double parking_width(const LaneInput& in, const std::string& side, const LaneRul
   return share * width;
 }
 
+// OSM `placement` (left_of:N, middle_of:N, right_of:N): where the way runs, as a distance from
+// the roadway's left edge (looking along the way). Lanes are counted from the left as OSM's
+// `lanes` counts them: driving and bus lanes, not cycle or parking lanes. `transition` and no tag:
+// nullopt (the default placement); a value it cannot use is noted and ignored.
+std::optional<double> placement_from_left(const LaneInput& in, const std::vector<LaneSpec>& lanes, std::vector<LaneNote>& notes) {
+  const std::string* v = tag(in, "placement");
+  if (v == nullptr || *v == "transition") return std::nullopt;
+  auto ignored = [&](const std::string& why) {
+    notes.push_back({"lane_tag_ignored", "placement=" + *v + ": " + why});
+    return std::nullopt;
+  };
+  std::size_t colon = v->find(':');
+  if (colon == std::string::npos) return ignored("not left_of:N, middle_of:N or right_of:N");
+  std::string where = v->substr(0, colon);
+  std::string number = v->substr(colon + 1);
+  if ((where != "left_of" && where != "middle_of" && where != "right_of") || number.empty() || number.size() > 2 ||
+      !std::all_of(number.begin(), number.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return ignored("not left_of:N, middle_of:N or right_of:N");
+  }
+  int wanted = std::stoi(number);
+  int counted = 0;
+  double edge = 0.0;  // the left edge of the lane at hand
+  for (const LaneSpec& l : lanes) {
+    if (l.type == "driving" || l.type == "bus") {
+      if (++counted == wanted) {
+        if (where == "left_of") return edge;
+        if (where == "middle_of") return edge + l.width / 2;
+        return edge + l.width;
+      }
+    }
+    edge += l.width;
+  }
+  return ignored("the road has " + std::to_string(counted) + " lanes");
+}
+
 }  // namespace
 
 LanePlan plan_lanes(const LaneInput& in, double roadway_width, const LaneRules& rules) {
@@ -376,10 +411,14 @@ LanePlan plan_lanes(const LaneInput& in, double roadway_width, const LaneRules& 
   for (std::size_t i = 0; i + 1 < lanes.size(); ++i) sum += lanes[i].width;
   lanes.back().width = width - sum;
 
-  // 7. Parking at the curbs; the traffic lanes stay centred on the axis.
+  // 7. Parking at the curbs; the traffic lanes stay centred on the axis unless `placement` says
+  // where the way runs.
   if (park_left > 0.0) lanes.insert(lanes.begin(), LaneSpec{"parking", in.oneway ? "forward" : "backward", park_left, {}});
   if (park_right > 0.0) lanes.push_back(LaneSpec{"parking", "forward", park_right, {}});
   plan.centre_offset = (park_left - park_right) / 2;
+  if (std::optional<double> from_left = placement_from_left(in, lanes, notes)) {
+    plan.centre_offset = *from_left - roadway_width / 2;
+  }
   return plan;
 }
 
