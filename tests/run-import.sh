@@ -1,7 +1,6 @@
 #!/usr/bin/env bash
-# Import layer: every OSM file of ../shared/data/osm (all four formats) through streetgen-import
-# (osmium export), two of them also through osm2pgsql and the shipped flex style (the same axes
-# must come out), and the GeoJSON demo network (Gothenburg, npm geojson-path-finder@2.1.0)
+# Import layer: every OSM file of ../shared/data/osm (all four formats) through osm2pgsql and the
+# shipped flex style, and the GeoJSON demo network (Gothenburg, npm geojson-path-finder@2.1.0)
 # through ogr2ogr, into models of one database; then tests/import/check-import.sql checks the
 # result against facts gathered here with independent tools (osmium, python's json);
 # tests/import/check-surfaces.sql generates street surfaces on every network and checks them;
@@ -45,17 +44,6 @@ for file in "$osm_dir"/*.osm "$osm_dir"/*.osm.gz "$osm_dir"/*.osm.bz2 "$osm_dir"
   read -r loaded not_driveable degenerate < <(echo "$out" | sed -n 's/.*: \([0-9]*\) axes loaded, \([0-9]*\) highway ways not driveable, \([0-9]*\) degenerate.*/\1 \2 \3/p')
   psql -X -q -v ON_ERROR_STOP=1 -c "INSERT INTO import_fact VALUES ('$model', '$base', 'osm', $highway_ways, $class_ways,
     $loaded, $not_driveable, $degenerate, $minlon, $minlat, $maxlon, $maxlat, $seconds)"
-done
-
-# The other stager: osm2pgsql with the shipped flex style (style/streetgen-osm.lua), for those who
-# run osm2pgsql themselves; load_osm_ways must give the same axes as streetgen-import.
-for file in "$osm_dir"/munich.osm.pbf "$osm_dir"/krems.osm.gz; do
-  model=$(basename "$file"); model="${model%%.*}"
-  STREETGEN_STAGING_SCHEMA=public STREETGEN_STAGING_TABLE="${model}_osm2pgsql" \
-    osm2pgsql --output=flex --style="$SRC/style/streetgen-osm.lua" --create --log-level=warn --log-progress=false \
-      --database="$db" "$file"
-  psql -X -q -v ON_ERROR_STOP=1 -c "SELECT streetgen.create_model('${model}_o2p', streetgen.model_srid('$model'));
-    SELECT * FROM streetgen.load_osm_ways('${model}_o2p', 'public.${model}_osm2pgsql')" >/dev/null
 done
 
 # The README's demo network, fetched from the npm registry like the main job does.

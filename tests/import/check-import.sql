@@ -43,18 +43,6 @@ SELECT is((SELECT loaded + not_driveable + degenerate FROM import_fact WHERE mod
           (SELECT highway_ways FROM import_fact WHERE model = 'gothenburg'),
           'GeoJSON: every feature is accounted for (loaded, not driveable or degenerate)');
 
--- The two stagers agree: osm2pgsql with the shipped flex style, loaded by the same
--- load_osm_ways, gives the same axes (source, line, attributes) as streetgen-import.
-SELECT is_empty('(' || format($$SELECT %1$L, source, ST_AsEWKB(geom), roadway_width, lanes, speed_kmh, oneway, tags FROM %1$I.axis
-                         EXCEPT SELECT %1$L, source, ST_AsEWKB(geom), roadway_width, lanes, speed_kmh, oneway, tags FROM %2$I.axis$$,
-                        m, m || '_o2p')
-                  || ') UNION ALL (' ||
-                  format($$SELECT %1$L, source, ST_AsEWKB(geom), roadway_width, lanes, speed_kmh, oneway, tags FROM %2$I.axis
-                         EXCEPT SELECT %1$L, source, ST_AsEWKB(geom), roadway_width, lanes, speed_kmh, oneway, tags FROM %1$I.axis$$,
-                        m, m || '_o2p') || ')',
-                format('%s: osm2pgsql and the flex style stage the same axes as streetgen-import', m))
-  FROM unnest(ARRAY['munich', 'krems']) AS m;
-
 -- The axes themselves.
 SELECT is_empty($$SELECT model, id FROM axes WHERE NOT (roadway_width > 0 AND speed_kmh > 0)$$,
                 'every axis has a positive roadway width and speed');
