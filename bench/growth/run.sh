@@ -74,8 +74,10 @@ CREATE TABLE headline AS
 SELECT * FROM cmp WHERE metric IN ('street_density', 'intersection_density', 'mean_degree', 'dead_end_share',
                                    'degree4_share', 'connected_node_ratio', 'orientation_order', 'block_area_median');
 \pset footer off
-\echo speed of each growth (one SQL call, one core)
-SELECT g.name, g.seed, count(*) AS edges, round((sum(ST_Length(g.geom)) / 1000)::numeric, 1) AS km,
+\echo speed of each growth (one SQL call, one core); fallback_pct: share of edges grown by the parametric fallback
+SELECT g.name, g.seed, count(*) AS edges,
+       round(100.0 * count(*) FILTER (WHERE g.origin = 'grow_parametric') / count(*), 1) AS fallback_pct,
+       round((sum(ST_Length(g.geom)) / 1000)::numeric, 1) AS km,
        round(t.seconds::numeric, 2) AS seconds, round((sum(ST_Length(g.geom)) / 1000 / t.seconds)::numeric, 0) AS km_per_s
   FROM grown g JOIN timing t USING (name, seed) GROUP BY g.name, g.seed, t.seconds ORDER BY g.name, g.seed;
 \echo headline metrics: example value, grown value (median over seeds), relative difference in % (median over seeds)

@@ -77,10 +77,85 @@ SELECT ok((SELECT count(*) FROM (SELECT name, node FROM (SELECT name, from_node 
 SELECT is((SELECT count(*) FROM grown g WHERE g.road_class NOT IN (SELECT DISTINCT road_class FROM patch)), 0::bigint,
           'road classes come from the example');
 SELECT is((SELECT count(*) FROM grown g
-            WHERE NOT EXISTS (SELECT 1 FROM patch p
+            WHERE g.origin <> 'grow_parametric'
+              AND NOT EXISTS (SELECT 1 FROM patch p
                                WHERE p.name = CASE g.name WHEN 'canberra' THEN 'canberra_south_large' ELSE g.name END
                                  AND 'grow_example:' || p.id = g.origin)), 0::bigint,
-          'origin names the example edge each grown edge was copied from');
+          'origin names the example edge each grown edge was copied from (or grow_parametric for the fallback)');
+-- The parametric fallback (Teng & Bidarra) fires where no example node matches, and only then.
+SELECT ok((SELECT count(*) FILTER (WHERE origin = 'grow_parametric') BETWEEN 1 AND count(*) / 5 FROM grown),
+          'the parametric fallback grew some edges, and at most a fifth');
+SELECT is((SELECT count(*) FROM region r, streetgen.grow_example(
+             $$SELECT id, road_class, geom FROM patch WHERE name = 'new-york'$$, r.geom, r.centre, NULL,
+             '{"seed": 11, "max_edges": 1500, "epsilon": 20, "fallback": false}') AS g
+            WHERE r.name = 'new-york' AND g.origin = 'grow_parametric'), 0::bigint,
+          'fallback false: no parametric edge');
+-- A model name stands for the model's axes.
+SELECT streetgen.create_model('example_model', 0);
+INSERT INTO example_model.axis (geom, roadway_width, speed_kmh, road_class)
+SELECT geom, 8, 30, road_class FROM patch WHERE name = 'tokyo';
+SELECT is((SELECT count(*) FROM region r, streetgen.grow_example('example_model', r.geom, r.centre, NULL,
+             '{"seed": 4, "max_edges": 300, "rotation": false}') AS g WHERE r.name = 'tokyo'), 300::bigint,
+          'a model name is accepted as the example');
+SELECT is((SELECT count(*) FROM region r, streetgen.grow_example('example_model', r.geom, r.centre, NULL,
+             '{"seed": 4, "max_edges": 300, "rotation": false}') AS g
+            WHERE r.name = 'tokyo' AND g.origin <> 'grow_parametric'
+              AND NOT EXISTS (SELECT 1 FROM example_model.axis a WHERE 'grow_example:' || a.id = g.origin)), 0::bigint,
+          'and origin names the model''s axis ids');
+
+-- Parametric growth alone (grow_parametric): a square kilometre with a pond, the paper's
+-- parameters (length 50 ± 10 m, at least 20 m, degree 2-4, 70 degree minimum angle, snap 20 m).
+CREATE TEMP TABLE pond AS SELECT 'POLYGON((600 600, 800 600, 800 800, 600 800, 600 600))'::geometry AS geom;
+CREATE TEMP TABLE para AS
+SELECT g.* FROM pond, streetgen.grow_parametric('POLYGON((0 0, 1000 0, 1000 1000, 0 1000, 0 0))',
+                                               'MULTIPOINT(500 500, 200 200)', pond.geom, '{"seed": 1}') AS g;
+CREATE TEMP VIEW para_nodes AS
+SELECT node, count(*) AS degree FROM (SELECT from_node AS node FROM para UNION ALL SELECT to_node FROM para) e GROUP BY node;
+SELECT ok((SELECT count(*) FROM para) >= 300, 'grow_parametric fills the square (at least 300 edges)');
+SELECT is((SELECT count(*) FROM para WHERE origin <> 'grow_parametric' OR road_class <> 'main'), 0::bigint,
+          'its edges say grow_parametric, class main');
+SELECT is((SELECT count(*) FROM para a JOIN para b ON a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
+          0::bigint, 'parametric planarity: no crossing without a shared node');
+SELECT is((SELECT count(*) FROM para WHERE NOT ST_CoveredBy(geom, 'POLYGON((0 0, 1000 0, 1000 1000, 0 1000, 0 0))'))
+          + (SELECT count(*) FROM para, pond WHERE ST_Intersects(para.geom, pond.geom)), 0::bigint,
+          'parametric edges stay in the region and out of the obstacle');
+SELECT cmp_ok((SELECT min(ST_Length(geom)) FROM para), '>=', (20 - 1e-9)::double precision, 'no edge shorter than min_length');
+SELECT ok((SELECT percentile_cont(0.5) WITHIN GROUP (ORDER BY ST_Length(geom)) BETWEEN 40 AND 60 FROM para),
+          'the median edge is length ± length_deviation');
+SELECT is((SELECT max(degree) FROM para_nodes), 4::bigint, 'no node above max_degree, and some at it');
+SELECT ok((SELECT count(*) FILTER (WHERE degree = 3) > 10 AND count(*) FILTER (WHERE degree = 1) > 0 FROM para_nodes),
+          'T junctions and dead ends');
+-- The smallest angle between two edges at a node: at least min_angle (70 degrees).
+SELECT cmp_ok((SELECT min(least(x, 360 - x)) FROM (SELECT abs(degrees(ST_Azimuth(a.p, a.q) - ST_Azimuth(b.p, b.q))) AS x
+                 FROM (SELECT id, from_node AS n, ST_StartPoint(geom) AS p, ST_PointN(geom, 2) AS q FROM para
+                       UNION ALL SELECT id, to_node, ST_EndPoint(geom), ST_PointN(geom, 1) FROM para) a
+                 JOIN (SELECT id, from_node AS n, ST_StartPoint(geom) AS p, ST_PointN(geom, 2) AS q FROM para
+                       UNION ALL SELECT id, to_node, ST_EndPoint(geom), ST_PointN(geom, 1) FROM para) b
+                   ON a.n = b.n AND a.id < b.id) d), '>=', (70 - 1e-6)::double precision,
+          'no two edges at a node closer than min_angle');
+SELECT results_eq(
+  $$SELECT ST_AsEWKB(geom) FROM streetgen.grow_parametric('POLYGON((0 0, 1000 0, 1000 1000, 0 1000, 0 0))',
+      'POINT(500 500)', NULL, '{"seed": 9, "max_edges": 300}') ORDER BY id$$,
+  $$SELECT ST_AsEWKB(geom) FROM streetgen.grow_parametric('POLYGON((0 0, 1000 0, 1000 1000, 0 1000, 0 0))',
+      'POINT(500 500)', NULL, '{"seed": 9, "max_edges": 300}') ORDER BY id$$,
+  'parametric: the same seed gives the same edges');
+SELECT ok((SELECT count(*) FROM (
+             (SELECT ST_AsEWKB(geom) FROM streetgen.grow_parametric('POLYGON((0 0, 1000 0, 1000 1000, 0 1000, 0 0))',
+                'POINT(500 500)', NULL, '{"seed": 9, "max_edges": 300}'))
+             EXCEPT
+             (SELECT ST_AsEWKB(geom) FROM streetgen.grow_parametric('POLYGON((0 0, 1000 0, 1000 1000, 0 1000, 0 0))',
+                'POINT(500 500)', NULL, '{"seed": 10, "max_edges": 300}'))) d) > 100,
+          'parametric: different seeds give different edges');
+SELECT ok((SELECT avg(ST_Length(geom)) FROM streetgen.grow_parametric('POLYGON((0 0, 1000 0, 1000 1000, 0 1000, 0 0))',
+             'POINT(500 500)', NULL, '{"seed": 2, "length": 120, "length_deviation": 5, "min_length": 60, "snap": 30}'))
+          > 100, 'the length parameter sets the street length');
+SELECT is((SELECT max(degree) FROM (SELECT node, count(*) AS degree FROM (
+             SELECT from_node AS node FROM streetgen.grow_parametric('POLYGON((0 0, 1000 0, 1000 1000, 0 1000, 0 0))',
+               'POINT(500 500)', NULL, '{"seed": 2, "min_degree": 2, "max_degree": 3}')
+             UNION ALL SELECT to_node FROM streetgen.grow_parametric('POLYGON((0 0, 1000 0, 1000 1000, 0 1000, 0 0))',
+               'POINT(500 500)', NULL, '{"seed": 2, "min_degree": 2, "max_degree": 3}')) e GROUP BY node) d), 3::bigint,
+          'max_degree bounds the degree');
 -- Determinism.
 CREATE TEMP VIEW ny AS SELECT geom, road_class FROM patch WHERE name = 'new-york';
 SELECT results_eq(
@@ -201,6 +276,31 @@ SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo') FROM streetgen.
                    'POLYGON((2300 -400, 3700 -400, 3700 1390, 2300 1390, 2300 -400))', 'POINT(3000 500)', NULL, '{}',
                    'SELECT ''SRID=3857;LINESTRING(0 0, 1 1)''::geometry AS geom')$$, '22023',
                  'the existing network must have the SRID of the region', 'existing network in another SRID');
+CREATE FUNCTION pg_temp.para(params jsonb) RETURNS bigint LANGUAGE sql AS $$
+  SELECT count(*) FROM streetgen.grow_parametric('POLYGON((0 0, 1000 0, 1000 1000, 0 1000, 0 0))', 'POINT(500 500)',
+                                                 NULL, params)
+$$;
+SELECT throws_ok($$SELECT pg_temp.para('{"epsilon": 30}')$$, '22023', 'unknown params key: epsilon',
+                 'grow_parametric rejects example keys');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"length": 30}')$$, '22023',
+                 'unknown params key: length', 'grow_example rejects parametric keys');
+SELECT throws_ok($$SELECT pg_temp.para('{"length": 0}')$$, '22023', 'length must be a finite number > 0', 'length = 0');
+SELECT throws_ok($$SELECT pg_temp.para('{"length_deviation": 50}')$$, '22023', 'length_deviation must be in [0, length)',
+                 'length_deviation >= length');
+SELECT throws_ok($$SELECT pg_temp.para('{"min_length": 80}')$$, '22023', 'min_length must be in (0, length]',
+                 'min_length > length');
+SELECT throws_ok($$SELECT pg_temp.para('{"min_degree": 3, "max_degree": 2}')$$, '22023',
+                 'degree range must satisfy 1 <= min_degree <= max_degree <= 8', 'min_degree > max_degree');
+SELECT throws_ok($$SELECT pg_temp.para('{"min_degree": 0}')$$, '22023',
+                 'degree range must satisfy 1 <= min_degree <= max_degree <= 8', 'min_degree 0');
+SELECT throws_ok($$SELECT pg_temp.para('{"angle_deviation": 95}')$$, '22023', 'angle_deviation must be in [0, 90) degrees',
+                 'angle_deviation >= 90');
+SELECT throws_ok($$SELECT pg_temp.para('{"min_angle": 90}')$$, '22023', 'min_angle must be in [0, 90) degrees',
+                 'min_angle >= 90');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_parametric('POLYGON((0 0, 1 0, 1 1, 0 0))', 'POINT(5 5)')$$, '22023',
+                 'seed 1 is outside the region', 'grow_parametric: seed outside the region');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_parametric(NULL, 'POINT(0.5 0.2)')$$, '22004', 'region must not be null',
+                 'grow_parametric: NULL region');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_example(NULL, 'POLYGON((0 0, 1 0, 1 1, 0 0))', 'POINT(0.5 0.2)')$$,
                  '22004', 'example must not be null', 'NULL example');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_example('SELECT geom FROM tokyo', NULL, 'POINT(0.5 0.2)')$$,

@@ -234,3 +234,36 @@ TEST(GrowExample, ExtendsAnExistingNetworkWithoutCrossingIt) {
   }
   EXPECT_GT(touching_border, 5u);  // the growth is attached to the network around the hole
 }
+
+TEST(GrowParametric, GrowsAPlanarNetworkWithinTheParameters) {
+  Fixture f;
+  GrowInput in;
+  in.region = f.region.get();
+  in.obstacles = {f.lake.get()};
+  in.seeds = {{500.0, 500.0}};
+  GrowParams p;
+  p.parametric = true;
+  p.seed = 5;
+  p.snap = 20.0;
+  p.min_angle = 70.0;
+  GrowResult r = grow_example(f.geos, in, p);
+  ASSERT_GT(r.edges.size(), 200u);
+  std::map<std::int64_t, int> degree;
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < r.edges.size(); ++i) {
+    const GrownEdge& e = r.edges[i];
+    EXPECT_EQ(e.example, -1);
+    EXPECT_EQ(e.road_class, "main");
+    EXPECT_GE(distance(e.a, e.b), p.shape.min_length - 1e-9);
+    ++degree[e.from_node];
+    ++degree[e.to_node];
+    for (std::size_t j = i + 1; j < r.edges.size(); ++j) bad += crosses_without_node(e, r.edges[j]);
+  }
+  EXPECT_EQ(bad, 0u);
+  int max_degree = 0;
+  for (auto& [node, d] : degree) max_degree = std::max(max_degree, d);
+  EXPECT_EQ(max_degree, p.shape.max_degree);
+  GrowParams bad_shape = p;
+  bad_shape.shape.min_degree = 5;
+  EXPECT_THROW(grow_example(f.geos, in, bad_shape), Error);
+}
