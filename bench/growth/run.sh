@@ -5,6 +5,7 @@
 #   bash bench/growth/run.sh                  the streetgen installed for the pg_config on PATH
 #   OUT=/tmp/pics bash bench/growth/run.sh    where the PNGs go (default: build/bench-growth)
 #   PARAMS='{"rotation": false}' SEEDS='1 2 3 4 5' bash bench/growth/run.sh   params and seeds of part 1
+#   SPEED=0 bash bench/growth/run.sh          part 1 only
 #
 # 1. Realism: for tokyo, canberra_south_large, barcelona_east, new-york and strasbourg, grow the
 #    example's convex hull from one seed point at its centre (default params; seeds 1, 2, 3), then
@@ -101,6 +102,10 @@ SELECT (SELECT count(*) FROM grown) AS edges_checked,
        (SELECT count(*) FROM grown g JOIN region r USING (name) WHERE NOT ST_CoveredBy(g.geom, r.geom)) AS outside_region;
 SQL
 
+if [ "${SPEED:-1}" = 0 ]; then
+  echo "Road data: © OpenStreetMap contributors, ODbL 1.0 (example patches of Nishida et al. 2016)"
+  exit 0
+fi
 echo "== speed: squares grown from tokyo (rotation off), one SQL call each"
 psql -X -q -v ON_ERROR_STOP=1 <<'SQL'
 CREATE FUNCTION square(side double precision) RETURNS text LANGUAGE plpgsql AS $$

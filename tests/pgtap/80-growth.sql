@@ -215,6 +215,72 @@ SELECT is((SELECT count(*) FROM filled a JOIN filled b ON a.id < b.id AND ST_Int
             WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
           0::bigint, 'the filled hole is planar');
 
+-- Direction control: a guide curve (a sine across a square) sets θ instead of node matching. Edges
+-- within 100 m of it follow its tangent at the nearest point (the tokyo grid and the parametric
+-- lattice both have right angles, so the deviation is folded to [0, 45] degrees); without the
+-- guide, they do not.
+CREATE TEMP TABLE guide AS
+SELECT ST_MakeLine(array_agg(ST_MakePoint(x, 750 + 250 * sin(2 * pi() * x / 1500)) ORDER BY x)) AS geom
+  FROM generate_series(0, 1500, 10) AS x;
+CREATE FUNCTION pg_temp.guide_deviation(edges geometry[]) RETURNS double precision LANGUAGE sql AS $$
+  SELECT avg(least(d, 90 - d)) FROM (
+    SELECT mod(abs(degrees(ST_Azimuth(ST_StartPoint(e), ST_EndPoint(e))
+                           - ST_Azimuth(ST_LineInterpolatePoint(g.geom, greatest(f - 0.002, 0)),
+                                        ST_LineInterpolatePoint(g.geom, least(f + 0.002, 1)))))::numeric, 90)::double precision AS d
+      FROM unnest(edges) AS e, guide g, LATERAL (SELECT ST_LineLocatePoint(g.geom, ST_Centroid(e)) AS f) l
+     WHERE ST_DWithin(e, g.geom, 100)) x
+$$;
+CREATE TEMP TABLE steered AS
+SELECT 'example' AS kind, true AS guided, g.* FROM guide, streetgen.grow_example(
+  $$SELECT id, road_class, geom FROM patch WHERE name = 'tokyo'$$, 'POLYGON((0 0, 1500 0, 1500 1500, 0 1500, 0 0))',
+  'POINT(10 750)', NULL, '{"seed": 3, "max_edges": 1500}', NULL, guide.geom) AS g
+UNION ALL
+SELECT 'example', false, g.* FROM streetgen.grow_example(
+  $$SELECT id, road_class, geom FROM patch WHERE name = 'tokyo'$$, 'POLYGON((0 0, 1500 0, 1500 1500, 0 1500, 0 0))',
+  'POINT(10 750)', NULL, '{"seed": 3, "max_edges": 1500}') AS g
+UNION ALL
+SELECT 'parametric', true, g.* FROM guide, streetgen.grow_parametric(
+  'POLYGON((0 0, 1500 0, 1500 1500, 0 1500, 0 0))', 'POINT(10 750)', NULL, '{"seed": 3, "max_edges": 1500}', NULL,
+  guide.geom) AS g
+UNION ALL
+SELECT 'parametric', false, g.* FROM streetgen.grow_parametric(
+  'POLYGON((0 0, 1500 0, 1500 1500, 0 1500, 0 0))', 'POINT(10 750)', NULL, '{"seed": 3, "max_edges": 1500}') AS g;
+CREATE TEMP TABLE steering AS
+SELECT s.kind, s.guided, count(*) FILTER (WHERE ST_DWithin(s.geom, g.geom, 100)) AS near,
+       pg_temp.guide_deviation(array_agg(s.geom)) AS deviation
+  FROM steered s, guide g GROUP BY s.kind, s.guided;
+SELECT ok((SELECT bool_and(near >= 150) FROM steering), 'at least 150 edges near the guide in each growth');
+SELECT cmp_ok((SELECT deviation FROM steering WHERE kind = 'example' AND guided), '<', 10.0::double precision,
+              'grow_example with a guide: edges near it follow its tangent (mean deviation below 10 degrees)');
+SELECT cmp_ok((SELECT deviation FROM steering WHERE kind = 'example' AND NOT guided), '>', 15.0::double precision,
+              'grow_example without the guide: they do not (mean deviation above 15 degrees)');
+SELECT cmp_ok((SELECT deviation FROM steering WHERE kind = 'parametric' AND guided), '<', 10.0::double precision,
+              'grow_parametric with a guide: edges near it follow its tangent');
+SELECT cmp_ok((SELECT deviation FROM steering WHERE kind = 'parametric' AND NOT guided), '>', 15.0::double precision,
+              'grow_parametric without the guide: they do not');
+SELECT is((SELECT count(*) FROM steered a JOIN steered b ON a.kind = b.kind AND a.guided = b.guided AND a.id < b.id
+             AND ST_Intersects(a.geom, b.geom)
+            WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
+          0::bigint, 'guided growth stays planar');
+SELECT is((SELECT count(*) FROM steered WHERE NOT ST_CoveredBy(geom, 'POLYGON((0 0, 1500 0, 1500 1500, 0 1500, 0 0))')),
+          0::bigint, 'guided growth stays in the region');
+SELECT results_eq(
+  $$SELECT ST_AsEWKB(g.geom) FROM guide, streetgen.grow_example('SELECT geom, road_class FROM patch WHERE name = ''tokyo''',
+      'POLYGON((0 0, 1500 0, 1500 1500, 0 1500, 0 0))', 'POINT(10 750)', NULL, '{"seed": 3, "max_edges": 300}', NULL,
+      guide.geom) AS g ORDER BY g.id$$,
+  $$SELECT ST_AsEWKB(g.geom) FROM guide, streetgen.grow_example('SELECT geom, road_class FROM patch WHERE name = ''tokyo''',
+      'POLYGON((0 0, 1500 0, 1500 1500, 0 1500, 0 0))', 'POINT(10 750)', NULL, '{"seed": 3, "max_edges": 300}', NULL,
+      guide.geom) AS g ORDER BY g.id$$,
+  'guided growth: the same seed gives the same edges');
+-- guide_reach: farther than that from the guide, node matching sets θ again (the guide is moved
+-- 5 km away; the deviation is still measured against the sine).
+SELECT cmp_ok((SELECT pg_temp.guide_deviation(array_agg(g.geom)) FROM guide, streetgen.grow_example(
+                 $$SELECT id, road_class, geom FROM patch WHERE name = 'tokyo'$$,
+                 'POLYGON((0 0, 1500 0, 1500 1500, 0 1500, 0 0))', 'POINT(10 750)', NULL,
+                 '{"seed": 3, "max_edges": 1500, "guide_reach": 1}', NULL,
+                 ST_Translate(guide.geom, 0, 5000)) AS g), '>', 15.0::double precision,
+              'a guide beyond guide_reach does not steer');
+
 -- Bad input, by SQLSTATE.
 CREATE TEMP VIEW tokyo AS SELECT geom, road_class FROM patch WHERE name = 'tokyo';
 CREATE FUNCTION pg_temp.grow(example text, region text DEFAULT 'POLYGON((2300 -400, 3700 -400, 3700 1390, 2300 1390, 2300 -400))',
@@ -301,6 +367,19 @@ SELECT throws_ok($$SELECT * FROM streetgen.grow_parametric('POLYGON((0 0, 1 0, 1
                  'seed 1 is outside the region', 'grow_parametric: seed outside the region');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_parametric(NULL, 'POINT(0.5 0.2)')$$, '22004', 'region must not be null',
                  'grow_parametric: NULL region');
+SELECT throws_ok($$SELECT count(*) FROM streetgen.grow_example('SELECT geom FROM tokyo',
+                   'POLYGON((2300 -400, 3700 -400, 3700 1390, 2300 1390, 2300 -400))', 'POINT(3000 500)', NULL, '{}', NULL,
+                   'POLYGON((0 0, 1 0, 1 1, 0 0))')$$, '22023', 'guide must be a LineString or MultiLineString',
+                 'a guide that is not a line');
+SELECT throws_ok($$SELECT count(*) FROM streetgen.grow_example('SELECT geom FROM tokyo',
+                   'POLYGON((2300 -400, 3700 -400, 3700 1390, 2300 1390, 2300 -400))', 'POINT(3000 500)', NULL, '{}', NULL,
+                   'SRID=3857;LINESTRING(0 0, 1 1)')$$, '22023', 'guide must have the SRID of the region',
+                 'a guide in another SRID');
+SELECT throws_ok($$SELECT count(*) FROM streetgen.grow_example('SELECT geom FROM tokyo',
+                   'POLYGON((2300 -400, 3700 -400, 3700 1390, 2300 1390, 2300 -400))', 'POINT(3000 500)', NULL, '{}', NULL,
+                   'LINESTRING(5 5, 5 5)')$$, '22023', 'guide has no segment', 'a guide of one point');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"guide_reach": 0}')$$, '22023',
+                 'guide_reach must be a number > 0', 'guide_reach = 0');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_example(NULL, 'POLYGON((0 0, 1 0, 1 1, 0 0))', 'POINT(0.5 0.2)')$$,
                  '22004', 'example must not be null', 'NULL example');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_example('SELECT geom FROM tokyo', NULL, 'POINT(0.5 0.2)')$$,
