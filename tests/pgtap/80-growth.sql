@@ -281,6 +281,49 @@ SELECT cmp_ok((SELECT pg_temp.guide_deviation(array_agg(g.geom)) FROM guide, str
                  ST_Translate(guide.geom, 0, 5000)) AS g), '>', 15.0::double precision,
               'a guide beyond guide_reach does not steer');
 
+-- Blending (Yu & Steed's Figure 5): two examples, a selection function over space. Each step draws
+-- its example from the weights at its node; origin says which example an edge came from
+-- (grow_example:<k>:<id>). The share of edges from example 1 (tokyo) falls from west to east
+-- across the four quarters of the region, with the gradient and with Gaussian seed points.
+CREATE TEMP TABLE blended AS
+SELECT 'gradient'::text AS kind, g.* FROM streetgen.grow_example(
+  ARRAY[$$SELECT id, road_class, geom FROM patch WHERE name = 'tokyo'$$,
+        $$SELECT id, road_class, geom FROM patch WHERE name = 'canberra_south_large'$$],
+  'POLYGON((0 0, 2000 0, 2000 1200, 0 1200, 0 0))', 'MULTIPOINT(300 600, 1000 600, 1700 600)', NULL,
+  '{"seed": 3, "max_edges": 3000, "blend": "gradient"}') AS g
+UNION ALL
+SELECT 'points', g.* FROM streetgen.grow_example(
+  ARRAY[$$SELECT id, road_class, geom FROM patch WHERE name = 'tokyo'$$,
+        $$SELECT id, road_class, geom FROM patch WHERE name = 'canberra_south_large'$$],
+  'POLYGON((0 0, 2000 0, 2000 1200, 0 1200, 0 0))', 'MULTIPOINT(300 600, 1000 600, 1700 600)', NULL,
+  '{"seed": 3, "max_edges": 3000, "blend": "points", "blend_points": [[0, 600], [2000, 600]], "blend_sigma": 600}') AS g;
+CREATE TEMP TABLE blend_share AS
+SELECT kind, width_bucket(ST_X(ST_Centroid(geom)), 0, 2000, 4) AS quarter, count(*) AS edges,
+       avg((origin LIKE 'grow_example:1:%')::integer) AS share_first
+  FROM blended WHERE origin <> 'grow_parametric' GROUP BY 1, 2;
+SELECT is((SELECT count(*) FROM blended WHERE origin !~ '^grow_example:[12]:[0-9]+$' AND origin <> 'grow_parametric'),
+          0::bigint, 'origin names the example (1 or 2) and its edge');
+SELECT ok((SELECT bool_and(edges >= 100) AND count(*) = 8 FROM blend_share), 'at least 100 edges in every quarter');
+SELECT ok((SELECT bool_and(d) FROM (SELECT share_first < lag(share_first) OVER (PARTITION BY kind ORDER BY quarter) AS d
+                                      FROM blend_share) x WHERE d IS NOT NULL),
+          'the share of example 1 decreases from quarter to quarter, west to east (gradient and points)');
+SELECT ok((SELECT bool_and(share_first > 0.6) FROM blend_share WHERE quarter = 1)
+          AND (SELECT bool_and(share_first < 0.4) FROM blend_share WHERE quarter = 4),
+          'example 1 dominates the west quarter, example 2 the east one');
+SELECT is((SELECT count(*) FROM blended a JOIN blended b ON a.kind = b.kind AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
+          0::bigint, 'blended growth stays planar');
+SELECT is((SELECT count(*) FROM blended WHERE NOT ST_CoveredBy(geom, 'POLYGON((0 0, 2000 0, 2000 1200, 0 1200, 0 0))')),
+          0::bigint, 'blended growth stays in the region');
+SELECT results_eq(
+  $$SELECT origin, ST_AsEWKB(geom) FROM streetgen.grow_example(ARRAY['SELECT geom FROM patch WHERE name = ''tokyo''', 'SELECT geom FROM ny'],
+      'POLYGON((0 0, 2000 0, 2000 1200, 0 1200, 0 0))', 'POINT(1000 600)', NULL,
+      '{"seed": 8, "max_edges": 400, "blend": "gradient", "blend_angle": 90}') ORDER BY id$$,
+  $$SELECT origin, ST_AsEWKB(geom) FROM streetgen.grow_example(ARRAY['SELECT geom FROM patch WHERE name = ''tokyo''', 'SELECT geom FROM ny'],
+      'POLYGON((0 0, 2000 0, 2000 1200, 0 1200, 0 0))', 'POINT(1000 600)', NULL,
+      '{"seed": 8, "max_edges": 400, "blend": "gradient", "blend_angle": 90}') ORDER BY id$$,
+  'blended growth: the same seed gives the same edges');
+
 -- Bad input, by SQLSTATE.
 CREATE TEMP VIEW tokyo AS SELECT geom, road_class FROM patch WHERE name = 'tokyo';
 CREATE FUNCTION pg_temp.grow(example text, region text DEFAULT 'POLYGON((2300 -400, 3700 -400, 3700 1390, 2300 1390, 2300 -400))',
@@ -380,6 +423,31 @@ SELECT throws_ok($$SELECT count(*) FROM streetgen.grow_example('SELECT geom FROM
                    'LINESTRING(5 5, 5 5)')$$, '22023', 'guide has no segment', 'a guide of one point');
 SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"guide_reach": 0}')$$, '22023',
                  'guide_reach must be a number > 0', 'guide_reach = 0');
+CREATE FUNCTION pg_temp.blend(examples text[], params jsonb) RETURNS bigint LANGUAGE sql AS $$
+  SELECT count(*) FROM streetgen.grow_example(examples, 'POLYGON((2300 -400, 3700 -400, 3700 1390, 2300 1390, 2300 -400))',
+                                              'POINT(3000 500)', NULL, params)
+$$;
+SELECT throws_ok($$SELECT pg_temp.blend(ARRAY['SELECT geom FROM tokyo', 'SELECT geom FROM ny'], '{}')$$, '22023',
+                 'several examples need a blend', 'two examples without a blend');
+SELECT throws_ok($$SELECT pg_temp.blend(ARRAY['SELECT geom FROM tokyo', 'SELECT geom FROM ny'], '{"blend": "radial"}')$$,
+                 '22023', 'blend must be ''gradient'' or ''points''', 'an unknown blend');
+SELECT throws_ok($$SELECT pg_temp.blend(ARRAY['SELECT geom FROM tokyo', 'SELECT geom FROM ny'], '{"blend": "points"}')$$,
+                 '22023', 'blend ''points'' needs blend_points', 'blend points without points');
+SELECT throws_ok($$SELECT pg_temp.blend(ARRAY['SELECT geom FROM tokyo', 'SELECT geom FROM ny'],
+                                        '{"blend": "points", "blend_points": [[0, 0]]}')$$,
+                 '22023', 'blend_points must hold one point per example', 'one blend point for two examples');
+SELECT throws_ok($$SELECT pg_temp.blend(ARRAY['SELECT geom FROM tokyo', 'SELECT geom FROM ny'],
+                                        '{"blend": "points", "blend_points": [[0, 0], [1]]}')$$,
+                 '22023', 'blend_points must be an array of [x, y] pairs', 'a malformed blend point');
+SELECT throws_ok($$SELECT pg_temp.blend(ARRAY['SELECT geom FROM tokyo', 'SELECT geom FROM ny'],
+                                        '{"blend": "points", "blend_points": [[0, 0], [1, 1]], "blend_sigma": 0}')$$,
+                 '22023', 'blend_sigma must be a number > 0', 'blend_sigma = 0');
+SELECT throws_ok($$SELECT pg_temp.blend(ARRAY['SELECT geom FROM tokyo', 'SELECT geom FROM tokyo WHERE false'],
+                                        '{"blend": "gradient"}')$$,
+                 '22023', 'example 2 has no edges', 'a blended example without edges');
+SELECT throws_ok($$SELECT pg_temp.blend(ARRAY['SELECT geom FROM tokyo', NULL], '{"blend": "gradient"}')$$,
+                 '22004', 'example must not be null', 'a NULL example among several');
+SELECT throws_ok($$SELECT pg_temp.blend('{}', '{}')$$, '22004', 'example must not be null', 'no example at all');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_example(NULL, 'POLYGON((0 0, 1 0, 1 1, 0 0))', 'POINT(0.5 0.2)')$$,
                  '22004', 'example must not be null', 'NULL example');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_example('SELECT geom FROM tokyo', NULL, 'POINT(0.5 0.2)')$$,

@@ -267,3 +267,35 @@ TEST(GrowParametric, GrowsAPlanarNetworkWithinTheParameters) {
   bad_shape.shape.min_degree = 5;
   EXPECT_THROW(grow_example(f.geos, in, bad_shape), Error);
 }
+
+TEST(GrowExample, BlendingFollowsTheGradient) {
+  // A fine grid (example 0) and a coarse one (example 1): the west half grows mostly from the
+  // first, the east half mostly from the second.
+  Fixture f;
+  GrowInput in = f.input();
+  in.example = grid(8, 50.0);
+  for (ExampleEdge e : grid(4, 140.0)) {
+    e.example = 1;
+    in.example.push_back(e);
+  }
+  in.seeds = {{250.0, 500.0}, {750.0, 500.0}};
+  GrowParams p;
+  p.seed = 6;
+  p.rotation = false;
+  p.max_edges = 600;
+  p.blend.mode = BlendParams::Mode::gradient;
+  GrowResult r = grow_example(f.geos, in, p);
+  ASSERT_GT(r.edges.size(), 200u);
+  double first[2] = {0, 0}, all[2] = {0, 0};
+  for (const GrownEdge& e : r.edges) {
+    if (e.example < 0) continue;
+    int half = 0.5 * (e.a.x + e.b.x) < 500.0 ? 0 : 1;
+    all[half] += 1;
+    first[half] += e.example == 0;
+  }
+  EXPECT_GT(first[0] / all[0], 0.6);
+  EXPECT_LT(first[1] / all[1], 0.4);
+  GrowParams none = p;
+  none.blend.mode = BlendParams::Mode::none;
+  EXPECT_THROW(grow_example(f.geos, in, none), Error);
+}
