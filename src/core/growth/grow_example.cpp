@@ -207,6 +207,7 @@ class Grower {
       edge_tree_.clear();
       node_tree_.clear();
       target_degree_.clear();
+      frames_.clear();
       new_edges_ = 0;
       load_existing();
       place_seeds();
@@ -599,6 +600,7 @@ class Grower {
     auto id = static_cast<std::uint32_t>(nodes_.size());
     nodes_.push_back({p, {}});
     attempts_.push_back(0);
+    frames_.push_back(NAN);
     node_tree_.insert(PointValue(BPoint(p.x, p.y), id));
     return id;
   }
@@ -717,7 +719,11 @@ class Grower {
       return;
     }
     choose_example(p);
-    std::vector<Match> candidates = node_matches(incident, guide);
+    // A node keeps the frame (θ) of the match that made it, so a growth keeps one orientation the
+    // way its example does; only where that frame finds no match is θ free again.
+    const double frame = params_.keep_frame ? node_frame(v) : NAN;
+    std::vector<Match> candidates = node_matches(incident, guide, frame);
+    if (candidates.empty() && !std::isnan(frame)) candidates = node_matches(incident, guide, NAN);
     if (candidates.empty()) {
       ++stats_.unmatched;
       if (params_.fallback) {
@@ -734,6 +740,7 @@ class Grower {
       return;
     }
     const Match& best = candidates[best_match(v, candidates)];
+    step_frame_ = best.theta;
     const ExNode& s = ex().nodes[best.node];
     for (std::size_t k = 0; k < s.halves.size(); ++k) {
       if (best.used[k]) continue;
@@ -753,6 +760,7 @@ class Grower {
     if (target_degree_[v] == 0) {
       target_degree_[v] = static_cast<std::uint8_t>(sh.min_degree + static_cast<int>(uniform(sh.max_degree - sh.min_degree + 1)));
     }
+    step_frame_ = frames_[v];
     const std::size_t d = nodes_[v].edges.size();
     if (d >= target_degree_[v]) {
       done_ = true;
@@ -841,7 +849,7 @@ class Grower {
   // Up to `candidates` matches, drawn at random from the example (bounded work per step).
   // With a guide at v, or rotation off, θ is fixed (the guide's tangent minus the example's
   // dominant direction, either way round; 0) instead of taken from the match.
-  std::vector<Match> node_matches(const std::vector<std::pair<double, int>>& incident, double guide) {
+  std::vector<Match> node_matches(const std::vector<std::pair<double, int>>& incident, double guide, double frame) {
     std::vector<Match> out;
     const std::size_t dv = incident.size();
     const auto& pools = ex().pools;
@@ -852,6 +860,8 @@ class Grower {
       fixed = {wrap(guide - ex().orientation), wrap(guide - ex().orientation + kPi)};
     } else if (!params_.rotation) {
       fixed = {0.0};
+    } else if (!std::isnan(frame)) {
+      fixed = {frame};
     }
     // A seed starts at a junction of the example when it has one: a start on a dead end or a
     // shape point often grows one edge and stops.
@@ -1098,6 +1108,7 @@ class Grower {
       return;
     }
     std::uint32_t n = add_node(q);
+    frames_[n] = step_frame_;
     add_edge(v, n, level, example_id, source);
     ++stats_.accepted;
     if (!finished) unfinished_.push_back(n);
@@ -1159,6 +1170,9 @@ class Grower {
   ParametricParams shape_;
   std::vector<std::uint8_t> target_degree_;  // parametric: the degree a node grows to (0: not drawn yet)
   bool done_ = false;  // the step finished its node on purpose
+  std::vector<double> frames_;  // per node: θ of the match that made it; NaN: none (seeds, existing, splits)
+  double step_frame_ = NAN;     // θ of the current step, inherited by the nodes it makes
+  double node_frame(std::uint32_t v) const { return frames_[v]; }
   double blend_min_ = 0.0, blend_max_ = 0.0, blend_sigma_ = 1.0;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> guide_segments_;
   std::vector<Point> guide_points_;

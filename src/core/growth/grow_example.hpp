@@ -61,6 +61,7 @@ struct GrowParams {
   std::size_t candidates = 16; // node matches compared by neighbourhood matching per step
   bool parametric = false;     // grow by parameters only (no example): grow_parametric
   bool fallback = true;        // example growth: a step no example node matches grows parametrically
+  bool keep_frame = true;      // a node matches under the θ of the match that made it (free θ only if none)
   ParametricParams shape;      // the parametric growth's parameters (with an example: derived from it)
   double guide_reach = 0.0;    // metres: the guide sets θ within this distance of it; 0: everywhere
   BlendParams blend;
