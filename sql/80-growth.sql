@@ -8,7 +8,8 @@ CREATE FUNCTION streetgen._streetgen_grow_example(example_geoms bytea[], example
     example_sources integer[], region bytea, seeds_x double precision[], seeds_y double precision[], obstacles bytea[],
     epsilon double precision, r double precision, rotation boolean, seed bigint, max_edges integer,
     match_levels boolean, snap double precision, min_angle double precision, candidates integer, existing bytea[],
-    parametric boolean, fallback boolean, keep_frame boolean, length double precision, length_deviation double precision,
+    parametric boolean, fallback boolean, keep_frame boolean, coherence double precision,
+    crop_margin double precision, length double precision, length_deviation double precision,
     min_length double precision, min_degree integer, max_degree integer, angle_deviation double precision,
     road_class text, guide bytea, guide_reach double precision, blend text, blend_angle double precision,
     blend_x double precision[], blend_y double precision[], blend_sigma double precision,
@@ -38,8 +39,8 @@ DECLARE
   known constant text[] := CASE WHEN parametric
     THEN shared || ARRAY['angle_deviation', 'length', 'length_deviation', 'max_degree', 'min_degree', 'min_length',
                          'road_class']
-    ELSE shared || ARRAY['blend', 'blend_angle', 'blend_points', 'blend_sigma', 'candidates', 'epsilon', 'fallback',
-                         'keep_frame', 'match_levels', 'r'] END;
+    ELSE shared || ARRAY['blend', 'blend_angle', 'blend_points', 'blend_sigma', 'candidates', 'coherence',
+                         'crop_margin', 'epsilon', 'fallback', 'keep_frame', 'match_levels', 'r'] END;
   p jsonb := coalesce(params, '{}'::jsonb);
   unknown text[];
   geoms bytea[] := '{}';
@@ -92,6 +93,14 @@ BEGIN
   IF NOT coalesce((p ->> 'epsilon')::double precision > 0, NOT p ? 'epsilon') THEN
     RAISE EXCEPTION 'epsilon must be a number > 0 (degrees)' USING ERRCODE = 'invalid_parameter_value',
       DETAIL = format('It is %s.', p -> 'epsilon');
+  END IF;
+  IF p ? 'coherence' AND NOT coalesce((p ->> 'coherence')::double precision BETWEEN 0 AND 1, false) THEN
+    RAISE EXCEPTION 'coherence must be a number in [0, 1]' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It is %s.', p -> 'coherence');
+  END IF;
+  IF p ? 'crop_margin' AND NOT coalesce((p ->> 'crop_margin')::double precision >= 0, false) THEN
+    RAISE EXCEPTION 'crop_margin must be a number >= 0' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It is %s.', p -> 'crop_margin');
   END IF;
   IF p ? 'guide_reach' AND NOT coalesce((p ->> 'guide_reach')::double precision > 0, false) THEN
     RAISE EXCEPTION 'guide_reach must be a number > 0' USING ERRCODE = 'invalid_parameter_value',
@@ -206,6 +215,7 @@ BEGIN
            coalesce((p ->> 'min_angle')::double precision, CASE WHEN parametric THEN 70 ELSE 20 END),
            coalesce((p ->> 'candidates')::integer, 16), coalesce(existing_geoms, '{}'),
            parametric, coalesce((p ->> 'fallback')::boolean, true), coalesce((p ->> 'keep_frame')::boolean, true),
+           coalesce((p ->> 'coherence')::double precision, 1), coalesce((p ->> 'crop_margin')::double precision, -1),
            coalesce((p ->> 'length')::double precision, 50), coalesce((p ->> 'length_deviation')::double precision, 10),
            coalesce((p ->> 'min_length')::double precision, 20), coalesce((p ->> 'min_degree')::integer, 2),
            coalesce((p ->> 'max_degree')::integer, 4), coalesce((p ->> 'angle_deviation')::double precision, 10),
@@ -241,7 +251,7 @@ CREATE FUNCTION streetgen.grow_example(example text, region geometry, seeds geom
   SELECT * FROM streetgen._grow(ARRAY[example], region, seeds, obstacles, params, existing, guide)
 $$;
 COMMENT ON FUNCTION streetgen.grow_example(text, geometry, geometry, geometry, jsonb, text, geometry) IS
-  'Grows a road network inside region from seeds by example (Yu & Steed): node matching of incident edge angles under a rotation within epsilon, neighbourhood matching by weighted line-segment Hausdorff distance within r, copied edges adapted to the region, obstacles, snapping, no crossings and example dead ends. example: a query (columns geom, optionally road_class, id) or a model name. params: epsilon (deg, 30), r (m, 3 x mean example segment), rotation (true), seed (0), max_edges (10000), match_levels (true), snap (m, 0.45 x mean segment), min_angle (deg, 20), candidates (16), fallback (true: a node no example node matches grows parametrically, origin grow_parametric), keep_frame (true: a node matches under the rotation of the match that made it), guide_reach (m, everywhere). existing: a query of a network to extend (column geom), respected and joined but not returned. guide: a (Multi)LineString whose nearest tangent sets the rotation instead of node matching. Returns rows for a model''s axis table';
+  'Grows a road network inside region from seeds by example (Yu & Steed): node matching of incident edge angles under a rotation within epsilon, neighbourhood matching by weighted line-segment Hausdorff distance within r, copied edges adapted to the region, obstacles, snapping, no crossings and example dead ends. example: a query (columns geom, optionally road_class, id) or a model name. params: epsilon (deg, 30), r (m, 3 x mean example segment), rotation (true), seed (0), max_edges (10000), match_levels (true), snap (m, 0.45 x mean segment), min_angle (deg, 20), candidates (16), fallback (true: a node no example node matches grows parametrically, origin grow_parametric), keep_frame (true: a node matches under the rotation of the match that made it), coherence (1: probability that a node first continues the example node it was copied to), crop_margin (m, mean segment: example dead ends this close to its hull are cut streets and grow on), guide_reach (m, everywhere). existing: a query of a network to extend (column geom), respected and joined but not returned. guide: a (Multi)LineString whose nearest tangent sets the rotation instead of node matching. Returns rows for a model''s axis table';
 
 CREATE FUNCTION streetgen.grow_parametric(region geometry, seeds geometry, obstacles geometry DEFAULT NULL,
     params jsonb DEFAULT '{}', existing text DEFAULT NULL, guide geometry DEFAULT NULL,

@@ -46,7 +46,7 @@ struct OutRow {
 enum Arg {
   kExampleGeoms, kExampleClasses, kExampleIds, kExampleSources, kRegion, kSeedsX, kSeedsY, kObstacles, kEpsilon,
   kRadius, kRotation, kSeed, kMaxEdges, kMatchLevels, kSnap, kMinAngle, kCandidates, kExisting, kParametric,
-  kFallback, kKeepFrame, kLength, kLengthDeviation, kMinLength, kMinDegree, kMaxDegree, kAngleDeviation, kRoadClass, kGuide,
+  kFallback, kKeepFrame, kCoherence, kCropMargin, kLength, kLengthDeviation, kMinLength, kMinDegree, kMaxDegree, kAngleDeviation, kRoadClass, kGuide,
   kGuideReach, kBlendMode, kBlendAngle, kBlendX, kBlendY, kBlendSigma, kArgs
 };
 constexpr int kColumns = 6;
@@ -67,7 +67,7 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   static const char* const names[kArgs] = {
       "example", "example road classes", "example ids", "example sources", "region", "seeds x", "seeds y",
       "obstacles", "epsilon", "r", "rotation", "seed", "max_edges", "match_levels", "snap", "min_angle",
-      "candidates", "existing", "parametric", "fallback", "keep_frame", "length", "length_deviation", "min_length",
+      "candidates", "existing", "parametric", "fallback", "keep_frame", "coherence", "crop_margin", "length", "length_deviation", "min_length",
       "min_degree", "max_degree", "angle_deviation", "road_class", "guide", "guide_reach", "blend",
       "blend_angle", "blend_points x", "blend_points y", "blend_sigma"};
   for (int a = kRegion; a < kArgs; ++a) {
@@ -153,6 +153,8 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   params.parametric = PG_GETARG_BOOL(kParametric);
   params.fallback = PG_GETARG_BOOL(kFallback);
   params.keep_frame = PG_GETARG_BOOL(kKeepFrame);
+  params.coherence = PG_GETARG_FLOAT8(kCoherence);
+  params.crop_margin = PG_GETARG_FLOAT8(kCropMargin);
   params.shape.length = PG_GETARG_FLOAT8(kLength);
   params.shape.length_deviation = PG_GETARG_FLOAT8(kLengthDeviation);
   params.shape.min_length = PG_GETARG_FLOAT8(kMinLength);

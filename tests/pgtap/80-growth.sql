@@ -324,6 +324,30 @@ SELECT results_eq(
       '{"seed": 8, "max_edges": 400, "blend": "gradient", "blend_angle": 90}') ORDER BY id$$,
   'blended growth: the same seed gives the same edges');
 
+-- Realism (issue 7's acceptance measure, as in bench/growth): new-york grown over its own convex
+-- hull from one seed point (seeds 1-3), compared with the example inside the hull shrunk by 50 m.
+-- Coherent copying (a node first continues the example node its edge was copied to) keeps the
+-- per-pair median of the headline metrics' relative differences below 10 %; random candidates
+-- only (coherence 0) land further away (measured: 4-7 % against 8-15 % over seeds 1-5).
+CREATE TEMP TABLE ny_hull AS SELECT ST_ConvexHull(ST_Collect(geom)) AS geom FROM patch WHERE name = 'new-york';
+CREATE TEMP TABLE realism AS
+SELECT c.coherence, s.seed, (SELECT score FROM streetgen.compare_networks(
+         streetgen.network_stats($$SELECT geom FROM patch WHERE name = 'new-york'$$, 0, ST_Buffer(h.geom, -50), simplify => true),
+         streetgen.network_stats(ST_Collect(g.geom), 0, ST_Buffer(h.geom, -50), simplify => true))
+        WHERE metric = 'median_abs_relative_difference') AS score
+  FROM ny_hull h, (VALUES (0.0), (1.0)) AS c(coherence), generate_series(1, 3) AS s(seed),
+       LATERAL streetgen.grow_example($$SELECT id, road_class, geom FROM patch WHERE name = 'new-york'$$, h.geom,
+                                      ST_PointOnSurface(h.geom), NULL,
+                                      jsonb_build_object('seed', s.seed, 'coherence', c.coherence)) AS g
+ GROUP BY c.coherence, s.seed, h.geom;
+CREATE TEMP VIEW realism_median AS
+SELECT coherence, percentile_cont(0.5) WITHIN GROUP (ORDER BY score) AS score FROM realism GROUP BY coherence;
+SELECT cmp_ok((SELECT score FROM realism_median WHERE coherence = 1), '<', 0.10::double precision,
+              'new-york regrown (seeds 1-3): median per-pair median of the headline metrics below 10 %');
+SELECT cmp_ok((SELECT score FROM realism_median WHERE coherence = 1), '<',
+              (SELECT score FROM realism_median WHERE coherence = 0),
+              'coherent copying is closer to the example than random candidates only');
+
 -- Bad input, by SQLSTATE.
 CREATE TEMP VIEW tokyo AS SELECT geom, road_class FROM patch WHERE name = 'tokyo';
 CREATE FUNCTION pg_temp.grow(example text, region text DEFAULT 'POLYGON((2300 -400, 3700 -400, 3700 1390, 2300 1390, 2300 -400))',
@@ -448,6 +472,10 @@ SELECT throws_ok($$SELECT pg_temp.blend(ARRAY['SELECT geom FROM tokyo', 'SELECT 
 SELECT throws_ok($$SELECT pg_temp.blend(ARRAY['SELECT geom FROM tokyo', NULL], '{"blend": "gradient"}')$$,
                  '22004', 'example must not be null', 'a NULL example among several');
 SELECT throws_ok($$SELECT pg_temp.blend('{}', '{}')$$, '22004', 'example must not be null', 'no example at all');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"coherence": 1.5}')$$, '22023',
+                 'coherence must be a number in [0, 1]', 'coherence above 1');
+SELECT throws_ok($$SELECT pg_temp.grow('SELECT geom FROM tokyo', params => '{"crop_margin": -1}')$$, '22023',
+                 'crop_margin must be a number >= 0', 'negative crop_margin');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_example(NULL, 'POLYGON((0 0, 1 0, 1 1, 0 0))', 'POINT(0.5 0.2)')$$,
                  '22004', 'example must not be null', 'NULL example');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_example('SELECT geom FROM tokyo', NULL, 'POINT(0.5 0.2)')$$,

@@ -112,7 +112,26 @@ struct Example {
   BoxTree tree;
   double total_length = 0.0;
   double orientation = 0.0;  // radians in [0, pi): the length-weighted dominant street direction
+  std::vector<double> inside;  // per node: distance to the example's convex hull boundary (the crop's edge)
 };
+
+// Convex hull (Andrew's monotone chain), counter-clockwise, without repeating the first point.
+std::vector<Point> convex_hull(std::vector<Point> pts) {
+  std::sort(pts.begin(), pts.end(), [](Point a, Point b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  if (pts.size() < 3) return pts;
+  std::vector<Point> h(2 * pts.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    while (k >= 2 && cross(h[k - 1] - h[k - 2], pts[i] - h[k - 2]) <= 0) --k;
+    h[k++] = pts[i];
+  }
+  for (std::size_t i = pts.size() - 1, t = k + 1; i > 0; --i) {
+    while (k >= t && cross(h[k - 1] - h[k - 2], pts[i - 1] - h[k - 2]) <= 0) --k;
+    h[k++] = pts[i - 1];
+  }
+  h.resize(k - 1);
+  return h;
+}
 
 struct Match {
   std::uint32_t node;
@@ -185,6 +204,7 @@ class Grower {
     snap_ = params.snap > 0.0 ? params.snap : 0.45 * mean_length_;
     min_length_ = params.parametric ? shape_.min_length : 0.15 * mean_length_;
     if (!params.parametric) derive_shape();
+    crop_margin_ = params.crop_margin >= 0.0 ? params.crop_margin : mean_length_;
     epsilon_ = params.epsilon * kPi / 180.0;
     min_angle_ = params.min_angle * kPi / 180.0;
     existing_ = &input.existing;
@@ -208,6 +228,7 @@ class Grower {
       node_tree_.clear();
       target_degree_.clear();
       frames_.clear();
+      copied_from_.clear();
       new_edges_ = 0;
       load_existing();
       place_seeds();
@@ -287,6 +308,12 @@ class Grower {
     }
     if (params_.max_edges == 0) throw_invalid_argument("max_edges must be > 0");
     if (params_.candidates == 0) throw_invalid_argument("candidates must be > 0");
+    if (!(params_.coherence >= 0.0 && params_.coherence <= 1.0)) {
+      throw_invalid_argument("coherence must be in [0, 1]", "It is " + std::to_string(params_.coherence) + ".");
+    }
+    if (std::isnan(params_.crop_margin) || params_.crop_margin == INFINITY) {
+      throw_invalid_argument("crop_margin must be a finite number >= 0");
+    }
     if (!std::isfinite(params_.guide_reach) || params_.guide_reach < 0.0) {
       throw_invalid_argument("guide_reach must be a finite number > 0",
                              "It is " + std::to_string(params_.guide_reach) + " m.");
@@ -411,6 +438,24 @@ class Grower {
     }
     // One scale for snapping and clipping: the examples' pooled mean segment length.
     mean_length_ = total / static_cast<double>(segments);
+    // The example is a crop: its nodes near the crop's edge have lost streets. A coherent copy
+    // (copied_from_) only continues from nodes farther than 3 mean segments inside the hull, and
+    // a dead end within crop_margin of it is taken for a street the crop cut.
+    for (Example& ex : examples_) {
+      std::vector<Point> pts;
+      pts.reserve(ex.nodes.size());
+      for (const ExNode& n : ex.nodes) pts.push_back(n.p);
+      std::vector<Point> hull = convex_hull(std::move(pts));
+      ex.inside.assign(ex.nodes.size(), 0.0);
+      if (hull.size() < 3) continue;
+      for (std::size_t i = 0; i < ex.nodes.size(); ++i) {
+        double d = INFINITY;
+        for (std::size_t j = 0; j < hull.size(); ++j) {
+          d = std::min(d, point_segment_distance(ex.nodes[i].p, hull[j], hull[(j + 1) % hull.size()]));
+        }
+        ex.inside[i] = d;
+      }
+    }
   }
 
   // The length-weighted mode of the segment directions (undirected, 1° bins smoothed over ±5°):
@@ -601,6 +646,7 @@ class Grower {
     nodes_.push_back({p, {}});
     attempts_.push_back(0);
     frames_.push_back(NAN);
+    copied_from_.push_back({-1, 0});
     node_tree_.insert(PointValue(BPoint(p.x, p.y), id));
     return id;
   }
@@ -722,7 +768,13 @@ class Grower {
     // A node keeps the frame (θ) of the match that made it, so a growth keeps one orientation the
     // way its example does; only where that frame finds no match is θ free again.
     const double frame = params_.keep_frame ? node_frame(v) : NAN;
-    std::vector<Match> candidates = node_matches(incident, guide, frame);
+    const std::uint32_t coherent =
+        copied_from_[v].first == static_cast<int>(cur_) && params_.coherence > 0.0 &&
+                (params_.coherence >= 1.0 || uniform01() < params_.coherence)
+            ? copied_from_[v].second
+            : UINT32_MAX;
+    coherent_found_ = false;
+    std::vector<Match> candidates = node_matches(incident, guide, frame, coherent);
     if (candidates.empty() && !std::isnan(frame)) candidates = node_matches(incident, guide, NAN);
     if (candidates.empty()) {
       ++stats_.unmatched;
@@ -739,14 +791,16 @@ class Grower {
       }
       return;
     }
-    const Match& best = candidates[best_match(v, candidates)];
+    const Match& best = candidates[coherent_found_ ? 0 : best_match(v, candidates)];
     step_frame_ = best.theta;
     const ExNode& s = ex().nodes[best.node];
     for (std::size_t k = 0; k < s.halves.size(); ++k) {
       if (best.used[k]) continue;
       if (new_edges_ >= params_.max_edges) return;
       const ExHalf& half = s.halves[k];
-      bool dead_end = ex().nodes[half.to].halves.size() == 1;
+      // A dead end near the crop's edge is most likely a street the crop cut: it grows on.
+      bool dead_end = ex().nodes[half.to].halves.size() == 1 && (crop_margin_ <= 0.0 || ex().inside[half.to] > crop_margin_);
+      step_copy_ = {static_cast<int>(cur_), half.to};
       propose(v, wrap(half.angle + best.theta), half.length, dead_end, half.level, half.example_id,
               static_cast<int>(cur_));
     }
@@ -761,6 +815,7 @@ class Grower {
       target_degree_[v] = static_cast<std::uint8_t>(sh.min_degree + static_cast<int>(uniform(sh.max_degree - sh.min_degree + 1)));
     }
     step_frame_ = frames_[v];
+    step_copy_ = {-1, 0};
     const std::size_t d = nodes_[v].edges.size();
     if (d >= target_degree_[v]) {
       done_ = true;
@@ -849,7 +904,9 @@ class Grower {
   // Up to `candidates` matches, drawn at random from the example (bounded work per step).
   // With a guide at v, or rotation off, θ is fixed (the guide's tangent minus the example's
   // dominant direction, either way round; 0) instead of taken from the match.
-  std::vector<Match> node_matches(const std::vector<std::pair<double, int>>& incident, double guide, double frame) {
+  // `coherent`: the example node v was copied from (UINT32_MAX: none), tried first.
+  std::vector<Match> node_matches(const std::vector<std::pair<double, int>>& incident, double guide, double frame,
+                                  std::uint32_t coherent = UINT32_MAX) {
     std::vector<Match> out;
     const std::size_t dv = incident.size();
     const auto& pools = ex().pools;
@@ -869,8 +926,11 @@ class Grower {
     if (pool.empty()) return out;
     const std::size_t want = params_.candidates;
     const std::size_t tries = std::min<std::size_t>(64 * want, 4 * pool.size());
-    for (std::size_t attempt = 0; attempt < tries && out.size() < want; ++attempt) {
-      std::uint32_t sid = pool[uniform(pool.size())];
+    const bool has_coherent =
+        coherent != UINT32_MAX && dv > 0 && ex().inside[coherent] > 3.0 * mean_length_ &&
+        ex().nodes[coherent].halves.size() > dv;
+    for (std::size_t attempt = has_coherent ? 0 : 1; attempt <= tries && out.size() < want; ++attempt) {
+      std::uint32_t sid = attempt == 0 ? coherent : pool[uniform(pool.size())];
       const std::vector<ExHalf>& hs = ex().nodes[sid].halves;
       if (dv == 0) {
         double theta = fixed.empty()       ? (uniform01() * 2.0 - 1.0) * kPi
@@ -913,6 +973,10 @@ class Grower {
         // The paper's refinement: spread the residual angles evenly (delta = -mean gamma).
         double theta = free ? wrap(theta0 - sum / static_cast<double>(dv)) : theta0;
         out.push_back({sid, theta, std::move(used)});
+        if (attempt == 0) {
+          coherent_found_ = true;
+          ++stats_.coherent;
+        }
       }
     }
     return out;
@@ -1079,7 +1143,7 @@ class Grower {
   // A street end that found nothing to copy goes straight on to the edge ahead if one is within
   // 1.5 mean segment lengths, rather than stopping in a dead end the example did not ask for.
   void close_front(std::uint32_t v) {
-    if (nodes_[v].edges.size() != 1 || new_edges_ + 1 > params_.max_edges) return;
+    if (nodes_[v].edges.size() != 1 || new_edges_ + 2 > params_.max_edges) return;  // a join may split an edge
     const std::uint32_t e = nodes_[v].edges[0];
     const Point p = nodes_[v].p;
     const Point u = unit(p - other_end(e, v));
@@ -1109,6 +1173,7 @@ class Grower {
     }
     std::uint32_t n = add_node(q);
     frames_[n] = step_frame_;
+    copied_from_[n] = step_copy_;
     add_edge(v, n, level, example_id, source);
     ++stats_.accepted;
     if (!finished) unfinished_.push_back(n);
@@ -1145,7 +1210,7 @@ class Grower {
     double along = std::atan2(a.y - x.y, a.x - x.x);
     double back = wrap(angle + kPi);
     if (std::abs(wrap(back - along)) < min_angle_ || std::abs(wrap(back - along - kPi)) < min_angle_ ||
-        new_edges_ + 1 > params_.max_edges || !example_allows_one_more(2)) {
+        new_edges_ + 1 + (e.level >= 0) > params_.max_edges || !example_allows_one_more(2)) {
       ++stats_.rejected;
       return;
     }
@@ -1171,8 +1236,14 @@ class Grower {
   std::vector<std::uint8_t> target_degree_;  // parametric: the degree a node grows to (0: not drawn yet)
   bool done_ = false;  // the step finished its node on purpose
   std::vector<double> frames_;  // per node: θ of the match that made it; NaN: none (seeds, existing, splits)
-  double step_frame_ = NAN;     // θ of the current step, inherited by the nodes it makes
+  double step_frame_ = NAN;
+  double crop_margin_ = 0.0;     // θ of the current step, inherited by the nodes it makes
   double node_frame(std::uint32_t v) const { return frames_[v]; }
+  // Per node: the example node (example, node) it was copied to, {-1, 0} if none. Trying it first
+  // copies the example coherently (as texture synthesis does) where the output still agrees.
+  std::vector<std::pair<int, std::uint32_t>> copied_from_;
+  std::pair<int, std::uint32_t> step_copy_{-1, 0};
+  bool coherent_found_ = false;
   double blend_min_ = 0.0, blend_max_ = 0.0, blend_sigma_ = 1.0;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> guide_segments_;
   std::vector<Point> guide_points_;

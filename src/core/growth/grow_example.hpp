@@ -61,7 +61,11 @@ struct GrowParams {
   std::size_t candidates = 16; // node matches compared by neighbourhood matching per step
   bool parametric = false;     // grow by parameters only (no example): grow_parametric
   bool fallback = true;        // example growth: a step no example node matches grows parametrically
-  bool keep_frame = true;      // a node matches under the θ of the match that made it (free θ only if none)
+  double coherence = 1.0;      // probability that a node first tries the example node its edge was copied
+                               // to (coherent copying, as in texture synthesis); 0: random candidates only
+  bool keep_frame = true;
+  double crop_margin = -1.0;   // metres: an example dead end this close to its hull's edge is a street
+                               // the crop cut and grows on; < 0: the mean example segment length      // a node matches under the θ of the match that made it (free θ only if none)
   ParametricParams shape;      // the parametric growth's parameters (with an example: derived from it)
   double guide_reach = 0.0;    // metres: the guide sets θ within this distance of it; 0: everywhere
   BlendParams blend;
@@ -93,6 +97,7 @@ struct GrowStats {
   std::size_t unmatched = 0;       // steps where no example node matched
   std::size_t fallback = 0;        // of those, steps grown parametrically instead
   std::size_t guided = 0;          // steps whose θ the guide set
+  std::size_t coherent = 0;        // steps that copied the example node their edge was copied to
   std::size_t proposals = 0;
   std::size_t accepted = 0;
   std::size_t snapped = 0;         // proposals ending on an existing node or edge
