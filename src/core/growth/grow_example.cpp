@@ -1145,24 +1145,41 @@ class Grower {
   void close_front(std::uint32_t v) {
     if (nodes_[v].edges.size() != 1 || new_edges_ + 2 > params_.max_edges) return;  // a join may split an edge
     const std::uint32_t e = nodes_[v].edges[0];
+    const int level = std::max(0, edges_[e].level);
     const Point p = nodes_[v].p;
     const Point u = unit(p - other_end(e, v));
     const double reach = 1.5 * mean_length_;
     Point end = p + reach * u;
-    if (!legal(p, end)) return;
-    Contact c = first_contact(p, end, v);
-    if (!c.found || c.t * reach < min_length_) return;
-    const OEdge& hit = edges_[c.edge];
-    Point x = p + (c.t * reach) * u;
-    std::uint32_t near = distance(nodes_[hit.a].p, x) <= distance(nodes_[hit.b].p, x) ? hit.a : hit.b;
-    if (distance(nodes_[near].p, x) <= snap_) {
-      try_connect_node(v, near, std::max(0, edges_[e].level), edges_[e].example_id, edges_[e].source);
-      return;
+    if (legal(p, end)) {
+      Contact c = first_contact(p, end, v);
+      if (c.found && c.t * reach >= min_length_) {
+        const OEdge& hit = edges_[c.edge];
+        Point x = p + (c.t * reach) * u;
+        std::uint32_t near = distance(nodes_[hit.a].p, x) <= distance(nodes_[hit.b].p, x) ? hit.a : hit.b;
+        if (distance(nodes_[near].p, x) <= snap_) {
+          if (try_connect_node(v, near, level, edges_[e].example_id, edges_[e].source)) return;
+        } else {
+          std::uint32_t m = split_edge(c.edge, x);
+          add_edge(v, m, level, edges_[e].example_id, edges_[e].source);
+          ++stats_.accepted;
+          ++stats_.snapped;
+          return;
+        }
+      }
     }
-    std::uint32_t m = split_edge(c.edge, x);
-    add_edge(v, m, std::max(0, edges_[e].level), edges_[e].example_id, edges_[e].source);
-    ++stats_.accepted;
-    ++stats_.snapped;
+    // Nothing straight ahead: the nearest node within reach that v may join (the usual angle,
+    // crossing, region and degree rules), so a street the example did not end does not end here.
+    point_hits_.clear();
+    node_tree_.query(bgi::nearest(BPoint(p.x, p.y), 8), std::back_inserter(point_hits_));
+    std::sort(point_hits_.begin(), point_hits_.end(), [&](const PointValue& a, const PointValue& b) {
+      double da = distance(nodes_[a.second].p, p), db = distance(nodes_[b.second].p, p);
+      return da < db || (da == db && a.second < b.second);
+    });
+    for (const PointValue& pv : point_hits_) {
+      std::uint32_t w = pv.second;
+      if (w == v || distance(nodes_[w].p, p) > reach) continue;
+      if (try_connect_node(v, w, level, edges_[e].example_id, edges_[e].source)) return;
+    }
   }
 
   // A new end node at q; it stays unfinished unless `finished`.
