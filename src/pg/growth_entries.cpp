@@ -188,6 +188,7 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   params.candidates = static_cast<std::size_t>(candidates);
   InitMaterializedSRF(fcinfo, 0);
   auto rows = pg::OwnedResult<std::vector<OutRow>>::create();
+  core::GrowStats stats;  // plain data: reported at DEBUG1 in phase 3
 
   // Phase 2.
   pg::CallError error;
@@ -230,6 +231,7 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
                                input.guide);
     }
     core::GrowResult result = core::grow_example(geos, input, params);
+    stats = result.stats;
     std::vector<OutRow> out;
     out.reserve(result.edges.size());
     for (const core::GrownEdge& e : result.edges) {
@@ -248,6 +250,10 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   pg::raise_if_failed(error);
 
   // Phase 3.
+  ereport(DEBUG1, (errmsg("grow: %zu steps, %zu coherent, %zu unmatched, %zu parametric fallback, %zu guided, "
+                          "%zu proposals, %zu accepted, %zu snapped, %zu clipped, %zu rejected, %zu restarts",
+                          stats.steps, stats.coherent, stats.unmatched, stats.fallback, stats.guided, stats.proposals,
+                          stats.accepted, stats.snapped, stats.clipped, stats.rejected, stats.restarts)));
   auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
   for (const OutRow& row : *rows) {
     Datum v[kColumns];

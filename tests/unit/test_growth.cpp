@@ -300,3 +300,32 @@ TEST(GrowExample, BlendingFollowsTheGradient) {
   none.blend.mode = BlendParams::Mode::none;
   EXPECT_THROW(grow_example(f.geos, in, none), Error);
 }
+
+TEST(GrowExample, DeadEndsOnTheCropEdgeGrowOn) {
+  // The comb again: its teeth end on its convex hull, as streets cut by a crop do. With the
+  // default crop_margin they grow on; with 0 they stay dead ends.
+  Fixture f;
+  GrowInput in = f.input();
+  in.example.clear();
+  for (int i = 0; i < 10; ++i) {
+    in.example.push_back({{{i * 50.0, 0.0}, {(i + 1) * 50.0, 0.0}}, "street", i + 1});
+    in.example.push_back({{{i * 50.0, 0.0}, {i * 50.0, 40.0}}, "street", 100 + i});
+  }
+  auto dead_share = [&](double margin) {
+    GrowParams p;
+    p.seed = 3;
+    p.rotation = false;
+    p.max_edges = 300;
+    p.crop_margin = margin;
+    GrowResult r = grow_example(f.geos, in, p);
+    std::map<std::int64_t, int> degree;
+    for (const GrownEdge& e : r.edges) {
+      ++degree[e.from_node];
+      ++degree[e.to_node];
+    }
+    double dead = 0;
+    for (auto& [node, d] : degree) dead += d == 1;
+    return dead / static_cast<double>(degree.size());
+  };
+  EXPECT_LT(dead_share(-1.0), 0.5 * dead_share(0.0));
+}
