@@ -9,7 +9,7 @@ CREATE FUNCTION streetgen._streetgen_grow_example(example_geoms bytea[], example
     epsilon double precision, r double precision, rotation boolean, seed bigint, max_edges integer,
     match_levels boolean, snap double precision, min_angle double precision, candidates integer, existing bytea[],
     parametric boolean, fallback boolean, keep_frame boolean, coherence double precision,
-    crop_margin double precision, length double precision, length_deviation double precision,
+    crop_margin double precision, fill boolean, length double precision, length_deviation double precision,
     min_length double precision, min_degree integer, max_degree integer, angle_deviation double precision,
     road_class text, guide bytea, guide_reach double precision, blend text, blend_angle double precision,
     blend_x double precision[], blend_y double precision[], blend_sigma double precision,
@@ -35,7 +35,7 @@ CREATE FUNCTION streetgen._grow(examples text[], region geometry, seeds geometry
   AS $$
 DECLARE
   parametric constant boolean := examples IS NULL;
-  shared constant text[] := ARRAY['guide_reach', 'max_edges', 'min_angle', 'rotation', 'seed', 'snap'];
+  shared constant text[] := ARRAY['fill', 'guide_reach', 'max_edges', 'min_angle', 'rotation', 'seed', 'snap'];
   known constant text[] := CASE WHEN parametric
     THEN shared || ARRAY['angle_deviation', 'length', 'length_deviation', 'max_degree', 'min_degree', 'min_length',
                          'road_class']
@@ -216,6 +216,7 @@ BEGIN
            coalesce((p ->> 'candidates')::integer, 16), coalesce(existing_geoms, '{}'),
            parametric, coalesce((p ->> 'fallback')::boolean, true), coalesce((p ->> 'keep_frame')::boolean, true),
            coalesce((p ->> 'coherence')::double precision, 1), coalesce((p ->> 'crop_margin')::double precision, -1),
+           coalesce((p ->> 'fill')::boolean, false),
            coalesce((p ->> 'length')::double precision, 50), coalesce((p ->> 'length_deviation')::double precision, 10),
            coalesce((p ->> 'min_length')::double precision, 20), coalesce((p ->> 'min_degree')::integer, 2),
            coalesce((p ->> 'max_degree')::integer, 4), coalesce((p ->> 'angle_deviation')::double precision, 10),
@@ -251,7 +252,7 @@ CREATE FUNCTION streetgen.grow_example(example text, region geometry, seeds geom
   SELECT * FROM streetgen._grow(ARRAY[example], region, seeds, obstacles, params, existing, guide)
 $$;
 COMMENT ON FUNCTION streetgen.grow_example(text, geometry, geometry, geometry, jsonb, text, geometry) IS
-  'Grows a road network inside region from seeds by example (Yu & Steed): node matching of incident edge angles under a rotation within epsilon, neighbourhood matching by weighted line-segment Hausdorff distance within r, copied edges adapted to the region, obstacles, snapping, no crossings and example dead ends. example: a query (columns geom, optionally road_class, id) or a model name. params: epsilon (deg, 30), r (m, 3 x mean example segment), rotation (true), seed (0), max_edges (10000), match_levels (true), snap (m, 0.45 x mean segment), min_angle (deg, 20), candidates (16), fallback (true: a node no example node matches grows parametrically, origin grow_parametric), keep_frame (true: a node matches under the rotation of the match that made it), coherence (1: probability that a node first continues the example node it was copied to), crop_margin (m, mean segment: example dead ends this close to its hull are cut streets and grow on), guide_reach (m, everywhere). existing: a query of a network to extend (column geom), respected and joined but not returned. guide: a (Multi)LineString whose nearest tangent sets the rotation instead of node matching. Returns rows for a model''s axis table';
+  'Grows a road network inside region from seeds by example (Yu & Steed): node matching of incident edge angles under a rotation within epsilon, neighbourhood matching by weighted line-segment Hausdorff distance within r, copied edges adapted to the region, obstacles, snapping, no crossings and example dead ends. example: a query (columns geom, optionally road_class, id) or a model name. params: epsilon (deg, 30), r (m, 3 x mean example segment), rotation (true), seed (0), max_edges (10000), match_levels (true), snap (m, 0.45 x mean segment), min_angle (deg, 20), candidates (16), fallback (true: a node no example node matches grows parametrically, origin grow_parametric), keep_frame (true: a node matches under the rotation of the match that made it), coherence (1: probability that a node first continues the example node it was copied to), crop_margin (m, mean segment: example dead ends this close to its hull are cut streets and grow on), fill (false; true: when all fronts died before the region is covered, grow on from a new seed farther than r from every edge), guide_reach (m, everywhere). existing: a query of a network to extend (column geom), respected and joined but not returned. guide: a (Multi)LineString whose nearest tangent sets the rotation instead of node matching. Returns rows for a model''s axis table';
 
 CREATE FUNCTION streetgen.grow_parametric(region geometry, seeds geometry, obstacles geometry DEFAULT NULL,
     params jsonb DEFAULT '{}', existing text DEFAULT NULL, guide geometry DEFAULT NULL,
@@ -265,4 +266,4 @@ CREATE FUNCTION streetgen.grow_parametric(region geometry, seeds geometry, obsta
   SELECT * FROM streetgen._grow(NULL, region, seeds, obstacles, params, existing, guide)
 $$;
 COMMENT ON FUNCTION streetgen.grow_parametric(geometry, geometry, geometry, jsonb, text, geometry) IS
-  'Grows a road network inside region from seeds by parameters (Teng & Bidarra), e.g. main streets: params length (m, 50), length_deviation (m, 10), min_length (m, 20), min_degree (2), max_degree (4), min_angle (deg, 70), angle_deviation (deg, 10), snap (m, 20), road_class (main), rotation (true; false aligns the lattice with the axes), seed (0), max_edges (10000), guide_reach (m). Same local constraints as grow_example (region, obstacles, snapping, no crossing); guide: a (Multi)LineString the streets follow. origin is grow_parametric';
+  'Grows a road network inside region from seeds by parameters (Teng & Bidarra), e.g. main streets: params length (m, 50), length_deviation (m, 10), min_length (m, 20), min_degree (2), max_degree (4), min_angle (deg, 70), angle_deviation (deg, 10), snap (m, 20), road_class (main), rotation (true; false aligns the lattice with the axes), seed (0), max_edges (10000), fill (false), guide_reach (m). Same local constraints as grow_example (region, obstacles, snapping, no crossing); guide: a (Multi)LineString the streets follow. origin is grow_parametric';

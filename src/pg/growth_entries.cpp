@@ -46,7 +46,7 @@ struct OutRow {
 enum Arg {
   kExampleGeoms, kExampleClasses, kExampleIds, kExampleSources, kRegion, kSeedsX, kSeedsY, kObstacles, kEpsilon,
   kRadius, kRotation, kSeed, kMaxEdges, kMatchLevels, kSnap, kMinAngle, kCandidates, kExisting, kParametric,
-  kFallback, kKeepFrame, kCoherence, kCropMargin, kLength, kLengthDeviation, kMinLength, kMinDegree, kMaxDegree, kAngleDeviation, kRoadClass, kGuide,
+  kFallback, kKeepFrame, kCoherence, kCropMargin, kFill, kLength, kLengthDeviation, kMinLength, kMinDegree, kMaxDegree, kAngleDeviation, kRoadClass, kGuide,
   kGuideReach, kBlendMode, kBlendAngle, kBlendX, kBlendY, kBlendSigma, kArgs
 };
 constexpr int kColumns = 6;
@@ -67,7 +67,7 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   static const char* const names[kArgs] = {
       "example", "example road classes", "example ids", "example sources", "region", "seeds x", "seeds y",
       "obstacles", "epsilon", "r", "rotation", "seed", "max_edges", "match_levels", "snap", "min_angle",
-      "candidates", "existing", "parametric", "fallback", "keep_frame", "coherence", "crop_margin", "length", "length_deviation", "min_length",
+      "candidates", "existing", "parametric", "fallback", "keep_frame", "coherence", "crop_margin", "fill", "length", "length_deviation", "min_length",
       "min_degree", "max_degree", "angle_deviation", "road_class", "guide", "guide_reach", "blend",
       "blend_angle", "blend_points x", "blend_points y", "blend_sigma"};
   for (int a = kRegion; a < kArgs; ++a) {
@@ -155,6 +155,7 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   params.keep_frame = PG_GETARG_BOOL(kKeepFrame);
   params.coherence = PG_GETARG_FLOAT8(kCoherence);
   params.crop_margin = PG_GETARG_FLOAT8(kCropMargin);
+  params.fill = PG_GETARG_BOOL(kFill);
   params.shape.length = PG_GETARG_FLOAT8(kLength);
   params.shape.length_deviation = PG_GETARG_FLOAT8(kLengthDeviation);
   params.shape.min_length = PG_GETARG_FLOAT8(kMinLength);
@@ -251,9 +252,10 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
 
   // Phase 3.
   ereport(DEBUG1, (errmsg("grow: %zu steps, %zu coherent, %zu unmatched, %zu parametric fallback, %zu guided, "
-                          "%zu proposals, %zu accepted, %zu snapped, %zu clipped, %zu rejected, %zu restarts",
+                          "%zu proposals, %zu accepted, %zu snapped, %zu clipped, %zu rejected, %zu reseeds, "
+                          "%zu restarts",
                           stats.steps, stats.coherent, stats.unmatched, stats.fallback, stats.guided, stats.proposals,
-                          stats.accepted, stats.snapped, stats.clipped, stats.rejected, stats.restarts)));
+                          stats.accepted, stats.snapped, stats.clipped, stats.rejected, stats.reseeds, stats.restarts)));
   auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
   for (const OutRow& row : *rows) {
     Datum v[kColumns];

@@ -67,7 +67,7 @@ SELECT set_eq(
     ('streetgen.street_surfaces(text,jsonb)', 'SETOF record', 'v', false),
     ('streetgen.surface_quality(text)', 'record', 's', false),
     ('streetgen.lane_quality(text)', 'record', 's', false),
-    ('streetgen._streetgen_grow_example(bytea[],text[],bigint[],integer[],bytea,double precision[],double precision[],bytea[],double precision,double precision,boolean,bigint,integer,boolean,double precision,double precision,integer,bytea[],boolean,boolean,boolean,double precision,double precision,double precision,double precision,double precision,integer,integer,double precision,text,bytea,double precision,text,double precision,double precision[],double precision[],double precision)', 'SETOF record', 'i', false),
+    ('streetgen._streetgen_grow_example(bytea[],text[],bigint[],integer[],bytea,double precision[],double precision[],bytea[],double precision,double precision,boolean,bigint,integer,boolean,double precision,double precision,integer,bytea[],boolean,boolean,boolean,double precision,double precision,boolean,double precision,double precision,double precision,integer,integer,double precision,text,bytea,double precision,text,double precision,double precision[],double precision[],double precision)', 'SETOF record', 'i', false),
     ('streetgen._grow(text[],geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
     ('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
     ('streetgen.grow_example(text[],geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),

@@ -218,6 +218,13 @@ class Grower {
     // segments crowds itself out) starts again from the seeds with the next random draws.
     for (int restart = 0;; ++restart) {
       grow();
+      // A growth whose fronts all died before the region was covered starts again from a random
+      // legal point farther than r from every edge (as a new seed), until none is found.
+      for (int reseeds = 0; params_.fill && new_edges_ >= kMinGrowth && new_edges_ < params_.max_edges &&
+                            reseeds < kMaxReseeds && reseed();
+           ++reseeds) {
+        grow();
+      }
       if (new_edges_ >= std::min<std::size_t>(kMinGrowth, params_.max_edges) || restart == kRestarts) break;
       ++stats_.restarts;
       nodes_.clear();
@@ -239,6 +246,28 @@ class Grower {
  private:
   static constexpr std::size_t kMinGrowth = 20;
   static constexpr int kRestarts = 5;
+  static constexpr int kMaxReseeds = 200;
+
+  bool reseed() {
+    GEOSContextHandle_t h = geos_.handle();
+    for (int t = 0; t < 64; ++t) {
+      Point q{env_min_.x + uniform01() * (env_max_.x - env_min_.x), env_min_.y + uniform01() * (env_max_.y - env_min_.y)};
+      if (crowded(q, radius_, UINT32_MAX)) continue;
+      GeomPtr g = own(geos_, GEOSGeom_createPointFromXY_r(h, q.x, q.y), "reseed point");
+      char inside = GEOSPreparedContains_r(h, region_.get(), g.get());
+      if (inside == 2) geos_.fail("reseed in region");
+      if (inside == 0) continue;
+      if (obstacles_prepared_) {
+        char hit = GEOSPreparedIntersects_r(h, obstacles_prepared_.get(), g.get());
+        if (hit == 2) geos_.fail("reseed in obstacle");
+        if (hit == 1) continue;
+      }
+      ++stats_.reseeds;
+      unfinished_.push_back(add_node(q));
+      return true;
+    }
+    return false;
+  }
 
   void grow() {
     while (!unfinished_.empty() && new_edges_ < params_.max_edges) {
@@ -532,6 +561,13 @@ class Grower {
     if (GEOSArea_r(h, input.region, &area) == 0) geos_.fail("area");
     if (!(area > 0.0)) throw_invalid_argument("region has zero area");
     region_geom_ = input.region;
+    {
+      GeomPtr env = own(geos_, GEOSEnvelope_r(h, input.region), "region envelope");
+      if (GEOSGeom_getXMin_r(h, env.get(), &env_min_.x) == 0 || GEOSGeom_getYMin_r(h, env.get(), &env_min_.y) == 0 ||
+          GEOSGeom_getXMax_r(h, env.get(), &env_max_.x) == 0 || GEOSGeom_getYMax_r(h, env.get(), &env_max_.y) == 0) {
+        geos_.fail("region extent");
+      }
+    }
     region_ = PreparedPtr(GEOSPrepare_r(h, input.region), PreparedDeleter{h});
     if (!region_) geos_.fail("prepare region");
     if (!input.obstacles.empty()) {
@@ -768,14 +804,18 @@ class Grower {
     // A node keeps the frame (θ) of the match that made it, so a growth keeps one orientation the
     // way its example does; only where that frame finds no match is θ free again.
     const double frame = params_.keep_frame ? node_frame(v) : NAN;
-    const std::uint32_t coherent =
-        copied_from_[v].first == static_cast<int>(cur_) && params_.coherence > 0.0 &&
-                (params_.coherence >= 1.0 || uniform01() < params_.coherence)
-            ? copied_from_[v].second
-            : UINT32_MAX;
-    coherent_found_ = false;
-    std::vector<Match> candidates = node_matches(incident, guide, frame, coherent);
+    std::vector<Match> candidates;
+    Match coherent;
+    coherent_found_ = std::isnan(guide) && !incident.empty() && params_.coherence > 0.0 &&
+                      (params_.coherence >= 1.0 || uniform01() < params_.coherence) &&
+                      coherent_match(v, incident, coherent);
+    if (coherent_found_) {
+      candidates.push_back(std::move(coherent));
+    } else {
+      candidates = node_matches(incident, guide, frame);
+    }
     if (candidates.empty() && !std::isnan(frame)) candidates = node_matches(incident, guide, NAN);
+
     if (candidates.empty()) {
       ++stats_.unmatched;
       if (params_.fallback) {
@@ -904,9 +944,83 @@ class Grower {
   // Up to `candidates` matches, drawn at random from the example (bounded work per step).
   // With a guide at v, or rotation off, θ is fixed (the guide's tangent minus the example's
   // dominant direction, either way round; 0) instead of taken from the match.
-  // `coherent`: the example node v was copied from (UINT32_MAX: none), tried first.
-  std::vector<Match> node_matches(const std::vector<std::pair<double, int>>& incident, double guide, double frame,
-                                  std::uint32_t coherent = UINT32_MAX) {
+  // Example node sid under the fixed rotation theta covers v's edges (each within epsilon, one to
+  // one, same level): the match, else an empty `used`.
+  Match fixed_match(const std::vector<std::pair<double, int>>& incident, std::uint32_t sid, double theta) const {
+    const std::vector<ExHalf>& hs = examples_[cur_].nodes[sid].halves;
+    Match m{sid, theta, std::vector<char>(hs.size(), 0)};
+    for (const auto& [angle, level] : incident) {
+      std::size_t best = SIZE_MAX;
+      double best_gamma = 0.0;
+      for (std::size_t k = 0; k < hs.size(); ++k) {
+        if (m.used[k] || (params_.match_levels && level >= 0 && hs[k].level != level)) continue;
+        double gamma = wrap(hs[k].angle + theta - angle);
+        if (best == SIZE_MAX || std::abs(gamma) < std::abs(best_gamma)) {
+          best = k;
+          best_gamma = gamma;
+        }
+      }
+      if (best == SIZE_MAX || std::abs(best_gamma) > epsilon_) return {sid, theta, {}};
+      m.used[best] = 1;
+    }
+    return m;
+  }
+
+  // Coherent candidates (k-coherence, as in texture synthesis): the example node v was copied to,
+  // then where each nearby node's copy puts v in the example (its example node plus v's offset,
+  // rotated back by its θ), nearest first. The first that matches under its θ is taken; only
+  // example nodes more than 3 mean segments inside the example's hull, so the crop's edge is not
+  // continued.
+  bool coherent_match(std::uint32_t v, const std::vector<std::pair<double, int>>& incident, Match& out) {
+    const Example& ex = examples_[cur_];
+    const std::size_t dv = incident.size();
+    auto usable = [&](std::uint32_t sid) {
+      return ex.inside[sid] > 3.0 * mean_length_ && ex.nodes[sid].halves.size() > dv;
+    };
+    auto attempt = [&](std::uint32_t sid, double theta) {
+      if (!usable(sid)) return false;
+      Match m = fixed_match(incident, sid, theta);
+      if (m.used.empty()) return false;
+      out = std::move(m);
+      ++stats_.coherent;
+      return true;
+    };
+    if (copied_from_[v].first == static_cast<int>(cur_) && !std::isnan(frames_[v]) &&
+        attempt(copied_from_[v].second, frames_[v])) {
+      return true;
+    }
+    if (neighbours_ == 0) return false;
+    const Point p = nodes_[v].p;
+    point_hits_.clear();
+    node_tree_.query(bgi::nearest(BPoint(p.x, p.y), neighbours_ + 1), std::back_inserter(point_hits_));
+    std::sort(point_hits_.begin(), point_hits_.end(), [&](const PointValue& a, const PointValue& b) {
+      double da = distance(nodes_[a.second].p, p), db = distance(nodes_[b.second].p, p);
+      return da < db || (da == db && a.second < b.second);
+    });
+    std::vector<PointValue> near = point_hits_;
+    for (const PointValue& pv : near) {
+      const std::uint32_t w = pv.second;
+      if (w == v || copied_from_[w].first != static_cast<int>(cur_) || std::isnan(frames_[w])) continue;
+      if (distance(nodes_[w].p, p) > radius_) break;
+      const double theta = frames_[w];
+      const Point d = p - nodes_[w].p;
+      const double cs = std::cos(-theta), sn = std::sin(-theta);
+      const Point t = ex.nodes[copied_from_[w].second].p;
+      const Point q{t.x + cs * d.x - sn * d.y, t.y + sn * d.x + cs * d.y};
+      found_.clear();
+      ex.tree.query(bgi::nearest(BPoint(q.x, q.y), 1), std::back_inserter(found_));
+      if (found_.empty()) continue;
+      const auto& seg = ex.segments[found_[0].second];
+      std::uint32_t sid = distance(ex.nodes[seg.first].p, q) <= distance(ex.nodes[seg.second].p, q) ? seg.first : seg.second;
+      if (distance(ex.nodes[sid].p, q) > snap_) continue;
+      if (attempt(sid, theta)) return true;
+    }
+    return false;
+  }
+  std::vector<BoxValue> found_;
+  std::size_t neighbours_ = 8;
+
+  std::vector<Match> node_matches(const std::vector<std::pair<double, int>>& incident, double guide, double frame) {
     std::vector<Match> out;
     const std::size_t dv = incident.size();
     const auto& pools = ex().pools;
@@ -926,11 +1040,8 @@ class Grower {
     if (pool.empty()) return out;
     const std::size_t want = params_.candidates;
     const std::size_t tries = std::min<std::size_t>(64 * want, 4 * pool.size());
-    const bool has_coherent =
-        coherent != UINT32_MAX && dv > 0 && ex().inside[coherent] > 3.0 * mean_length_ &&
-        ex().nodes[coherent].halves.size() > dv;
-    for (std::size_t attempt = has_coherent ? 0 : 1; attempt <= tries && out.size() < want; ++attempt) {
-      std::uint32_t sid = attempt == 0 ? coherent : pool[uniform(pool.size())];
+    for (std::size_t attempt = 0; attempt < tries && out.size() < want; ++attempt) {
+      std::uint32_t sid = pool[uniform(pool.size())];
       const std::vector<ExHalf>& hs = ex().nodes[sid].halves;
       if (dv == 0) {
         double theta = fixed.empty()       ? (uniform01() * 2.0 - 1.0) * kPi
@@ -973,10 +1084,6 @@ class Grower {
         // The paper's refinement: spread the residual angles evenly (delta = -mean gamma).
         double theta = free ? wrap(theta0 - sum / static_cast<double>(dv)) : theta0;
         out.push_back({sid, theta, std::move(used)});
-        if (attempt == 0) {
-          coherent_found_ = true;
-          ++stats_.coherent;
-        }
       }
     }
     return out;
@@ -1341,6 +1448,7 @@ class Grower {
   std::vector<BoxValue> guide_hits_;
   PreparedPtr region_;
   const GEOSGeometry* region_geom_ = nullptr;
+  Point env_min_, env_max_;
   GeomPtr obstacles_{nullptr, GeomDeleter{}};
   PreparedPtr obstacles_prepared_;
   std::vector<ONode> nodes_;

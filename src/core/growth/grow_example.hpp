@@ -64,6 +64,7 @@ struct GrowParams {
   double coherence = 1.0;      // probability that a node first tries the example node its edge was copied
                                // to (coherent copying, as in texture synthesis); 0: random candidates only
   bool keep_frame = true;
+  bool fill = false;           // fronts all dead before the region is covered: grow on from new seeds
   double crop_margin = -1.0;   // metres: an example dead end this close to its hull's edge is a street
                                // the crop cut and grows on; < 0: the mean example segment length      // a node matches under the θ of the match that made it (free θ only if none)
   ParametricParams shape;      // the parametric growth's parameters (with an example: derived from it)
@@ -103,6 +104,7 @@ struct GrowStats {
   std::size_t snapped = 0;         // proposals ending on an existing node or edge
   std::size_t clipped = 0;         // proposals shortened by the region or an obstacle
   std::size_t rejected = 0;
+  std::size_t reseeds = 0;         // new seeds placed where the fronts had died before covering the region
   std::size_t restarts = 0;        // growths that died within their first 20 edges and began again
   double radius = 0.0;             // the r and snap distance used
   double snap = 0.0;
