@@ -348,6 +348,22 @@ SELECT cmp_ok((SELECT score FROM realism_median WHERE coherence = 1), '<',
               (SELECT score FROM realism_median WHERE coherence = 0),
               'coherent copying is closer to the example than random candidates only');
 
+-- Every new mode keeps the obstacle: blended and guided growth (both at once) and fill around a
+-- lake in the middle of the region.
+CREATE TEMP TABLE mixed AS
+SELECT g.* FROM guide, streetgen.grow_example(
+  ARRAY[$$SELECT id, road_class, geom FROM patch WHERE name = 'tokyo'$$,
+        $$SELECT id, road_class, geom FROM patch WHERE name = 'new-york'$$],
+  'POLYGON((0 0, 1500 0, 1500 1500, 0 1500, 0 0))', 'POINT(10 750)', ST_Buffer('POINT(750 1100)'::geometry, 200),
+  '{"seed": 4, "max_edges": 2000, "blend": "gradient", "fill": true}', NULL, guide.geom) AS g;
+SELECT ok((SELECT count(*) FROM mixed) >= 1000, 'blended, guided growth with fill around a lake (at least 1000 edges)');
+SELECT is((SELECT count(*) FROM mixed WHERE ST_Intersects(geom, ST_Buffer('POINT(750 1100)'::geometry, 200))
+           OR NOT ST_CoveredBy(geom, 'POLYGON((0 0, 1500 0, 1500 1500, 0 1500, 0 0))')), 0::bigint,
+          'no edge enters the lake or leaves the region');
+SELECT is((SELECT count(*) FROM mixed a JOIN mixed b ON a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
+          0::bigint, 'and it stays planar');
+
 -- Bad input, by SQLSTATE.
 CREATE TEMP VIEW tokyo AS SELECT geom, road_class FROM patch WHERE name = 'tokyo';
 CREATE FUNCTION pg_temp.grow(example text, region text DEFAULT 'POLYGON((2300 -400, 3700 -400, 3700 1390, 2300 1390, 2300 -400))',
