@@ -68,8 +68,11 @@ SELECT set_eq(
     ('streetgen.street_surfaces(text,jsonb)', 'SETOF record', 'v', false),
     ('streetgen.surface_quality(text)', 'record', 's', false),
     ('streetgen.lane_quality(text)', 'record', 's', false),
-    ('streetgen._streetgen_grow_example(bytea[],text[],bigint[],bytea,double precision[],double precision[],bytea[],double precision,double precision,boolean,bigint,integer,boolean,double precision,double precision,integer,bytea[])', 'SETOF record', 'i', false),
-    ('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)', 'SETOF record', 'v', false),
+    ('streetgen._streetgen_grow_example(bytea[],text[],bigint[],integer[],bytea,double precision[],double precision[],bytea[],double precision,double precision,boolean,bigint,integer,boolean,double precision,double precision,integer,bytea[],boolean,boolean,boolean,double precision,double precision,boolean,double precision,double precision,double precision,integer,integer,double precision,text,bytea,double precision,text,double precision,double precision[],double precision[],double precision)', 'SETOF record', 'i', false),
+    ('streetgen._grow(text[],geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
+    ('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
+    ('streetgen.grow_example(text[],geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
+    ('streetgen.grow_parametric(geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
     ('streetgen.rasterise_network(text,double precision,integer,geometry)', 'raster', 'v', false),
     ('streetgen._streetgen_raster_to_network(bytea,double precision,integer,integer,double precision,double precision,integer,double precision)', 'SETOF record', 'i', false),
     ('streetgen.raster_to_network(raster,jsonb)', 'SETOF record', 'i', false)
@@ -97,9 +100,15 @@ SELECT is(pg_temp.argument_names('streetgen.lane_quality(text)'),
           'model,sections,sections_without_lanes,lanes,markings,invalid_geometries,max_coverage_difference,sections_over_tolerance,lane_overlap_area,outside_section_area,foreign_overlap_area',
           'lane_quality(model) -> (sections, sections_without_lanes, lanes, markings, invalid_geometries, max_coverage_difference, sections_over_tolerance, lane_overlap_area, outside_section_area, foreign_overlap_area)');
 
-SELECT is(pg_temp.argument_names('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)'),
-          'example,region,seeds,obstacles,params,existing,id,from_node,to_node,road_class,origin,geom',
-          'grow_example(example, region, seeds, obstacles, params, existing) -> (id, from_node, to_node, road_class, origin, geom)');
+SELECT is(pg_temp.argument_names('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text,geometry)'),
+          'example,region,seeds,obstacles,params,existing,guide,id,from_node,to_node,road_class,origin,geom',
+          'grow_example(example, region, seeds, obstacles, params, existing, guide) -> (id, from_node, to_node, road_class, origin, geom)');
+SELECT is(pg_temp.argument_names('streetgen.grow_example(text[],geometry,geometry,geometry,jsonb,text,geometry)'),
+          'examples,region,seeds,obstacles,params,existing,guide,id,from_node,to_node,road_class,origin,geom',
+          'grow_example(examples, region, seeds, obstacles, params, existing, guide) -> (id, from_node, to_node, road_class, origin, geom)');
+SELECT is(pg_temp.argument_names('streetgen.grow_parametric(geometry,geometry,geometry,jsonb,text,geometry)'),
+          'region,seeds,obstacles,params,existing,guide,id,from_node,to_node,road_class,origin,geom',
+          'grow_parametric(region, seeds, obstacles, params, existing, guide) -> (id, from_node, to_node, road_class, origin, geom)');
 
 SELECT is(pg_temp.argument_names('streetgen.rasterise_network(text,double precision,integer,geometry)'),
           'edges,pixel_size,road_width_px,extent', 'rasterise_network(edges, pixel_size, road_width_px, extent)');
