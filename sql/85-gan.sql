@@ -4,13 +4,14 @@
 -- why not libtorch). Road rasters follow the project's convention: one 8BUI band, 1 = road,
 -- 0 = background, the generator's pixel size (3 m for the shipped trainings).
 
--- The raster type and ST_RastFromWKB live in postgis_raster's schema: add it to the path the
--- functions below capture (00-header.sql explains the path).
+-- The raster type and ST_RastFromWKB live in postgis_raster's schema: the functions below capture
+-- it in their path too, before pg_temp (00-header.sql explains the path).
 SELECT pg_catalog.set_config('search_path',
-  pg_catalog.current_setting('search_path') || pg_catalog.format(', %I',
-    (SELECT n.nspname FROM pg_catalog.pg_extension e
-       JOIN pg_catalog.pg_namespace n ON n.oid = e.extnamespace
-      WHERE e.extname = 'postgis_raster')),
+  (SELECT pg_catalog.format('pg_catalog, streetgen, %s, pg_temp',
+                            pg_catalog.string_agg(DISTINCT pg_catalog.quote_ident(n.nspname), ', '))
+     FROM pg_catalog.pg_extension e
+     JOIN pg_catalog.pg_namespace n ON n.oid = e.extnamespace
+    WHERE e.extname IN ('postgis', 'postgis_raster')),
   true);
 
 CREATE FUNCTION streetgen._streetgen_gan_sample(generator bytea, width_px integer, height_px integer, seed bigint,

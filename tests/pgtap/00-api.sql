@@ -68,7 +68,13 @@ SELECT set_eq(
     ('streetgen.surface_quality(text)', 'record', 's', false),
     ('streetgen.lane_quality(text)', 'record', 's', false),
     ('streetgen._streetgen_grow_example(bytea[],text[],bigint[],bytea,double precision[],double precision[],bytea[],double precision,double precision,boolean,bigint,integer,boolean,double precision,double precision,integer,bytea[])', 'SETOF record', 'i', false),
-    ('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)', 'SETOF record', 'v', false)
+    ('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)', 'SETOF record', 'v', false),
+    ('streetgen._streetgen_gan_sample(bytea,integer,integer,bigint,boolean,double precision,double precision,integer)', 'bytea', 'i', false),
+    ('streetgen._streetgen_gan_generator_info(bytea)', 'record', 'i', false),
+    ('streetgen._gan_generator_check()', 'trigger', 'v', false),
+    ('streetgen.gan_load_generator(text,bytea,text,boolean)', 'streetgen.gan_generator', 'v', false),
+    ('streetgen.gan_sample(bytea,integer,integer,bigint,geometry,boolean)', 'raster', 'i', false),
+    ('streetgen.gan_sample(text,integer,integer,bigint,geometry,boolean)', 'raster', 's', false)
   $$,
   'the extension ships exactly the documented functions, with these results and volatilities');
 
@@ -96,6 +102,11 @@ SELECT is(pg_temp.argument_names('streetgen.lane_quality(text)'),
 SELECT is(pg_temp.argument_names('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)'),
           'example,region,seeds,obstacles,params,existing,id,from_node,to_node,road_class,origin,geom',
           'grow_example(example, region, seeds, obstacles, params, existing) -> (id, from_node, to_node, road_class, origin, geom)');
+
+SELECT is(pg_temp.argument_names('streetgen.gan_sample(text,integer,integer,bigint,geometry,boolean)'),
+          'generator,width_px,height_px,seed,upper_left,raw', 'gan_sample(generator, width_px, height_px, seed, upper_left, raw)');
+SELECT is(pg_temp.argument_names('streetgen.gan_load_generator(text,bytea,text,boolean)'),
+          'name,weights,source,replace', 'gan_load_generator(name, weights, source, replace)');
 
 SELECT is_empty(
   'SELECT signature FROM streetgen_functions WHERE security_definer',
