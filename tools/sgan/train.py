@@ -187,7 +187,8 @@ def main():
         tag = f"{epoch:03d}"
         torch.save({"generator": G.state_dict(), "discriminator": D.state_dict(), "opt_g": opt_g.state_dict(),
                     "opt_d": opt_d.state_dict(), "epoch": epoch, "torch_rng": torch.get_rng_state(),
-                    "numpy_rng": rng.bit_generator.state, "args": vars(args)},
+                    "numpy_rng": rng.bit_generator.state, "args": vars(args),
+                    "metres_per_pixel": metres_per_pixel},
                    os.path.join(args.out, f"checkpoint-{tag}.pt"))
         save_png(os.path.join(args.out, f"sample-{tag}.png"), sgan.sample(G, 1, args.sample_side, args.sample_side))
         size = sgan.write_generator(G, os.path.join(args.out, "generator.sgan"), metres_per_pixel)
