@@ -15,6 +15,7 @@ import os
 import struct
 import subprocess
 import sys
+import time
 
 import numpy as np
 import psycopg
@@ -126,6 +127,20 @@ def main():
             check(diff < 1e-4 and float(ref.std()) > 0.3,
                   f"parity {width}x{height} seed {seed}, large weights (output std {ref.std():.2f}): "
                   f"max abs diff {diff:.2e}")
+
+        # statement_timeout stops a long forward pass promptly (the C++ loop polls between blocks).
+        conn.execute("SET statement_timeout = 200")
+        started = time.monotonic()
+        try:
+            conn.execute("SELECT ST_Width(streetgen.gan_sample('wide', 2048, 2048, 1))")
+            state = "00000"
+        except psycopg.errors.QueryCanceled as e:
+            state = e.sqlstate
+        seconds = time.monotonic() - started
+        conn.execute("RESET statement_timeout")
+        check(state == "57014" and seconds < 3, f"statement_timeout cancels a 2048 x 2048 sample: {state} after {seconds:.2f} s")
+        check(conn.execute("SELECT ST_Width(streetgen.gan_sample('wide', 9, 9, 1))").fetchone()[0] == 9,
+              "and the session samples again")
 
         road = lambda seed: conn.execute(  # noqa: E731
             "SELECT ST_AsBinary(streetgen.gan_sample('ci', 257, 129, %s))", (seed,)).fetchone()[0]

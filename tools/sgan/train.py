@@ -95,7 +95,9 @@ def main():
                     help="spatial noise side during training; the patch side follows (5 -> 129 px)")
     ap.add_argument("--noise-channels", type=int, default=32)
     ap.add_argument("--gen-channels", default="128,64,32,16", help="hidden generator widths, coarse to fine")
-    ap.add_argument("--disc-channels", default="16,32,64,128")
+    ap.add_argument("--disc-channels", default="8,16,32,64",
+                    help="discriminator widths (narrower than the generator: a strong D starves G on CPU budgets)")
+    ap.add_argument("--real-label", type=float, default=0.9, help="one-sided label smoothing of real patches")
     ap.add_argument("--lr", type=float, default=2e-4)
     ap.add_argument("--beta1", type=float, default=0.5)
     ap.add_argument("--min-road", type=float, default=0.05, help="redraw patches with less road than this share")
@@ -169,7 +171,8 @@ def main():
             opt_d.zero_grad()
             out_real = D(real)
             out_fake = D(fake.detach())
-            d_loss = bce(out_real, torch.ones_like(out_real)) + bce(out_fake, torch.zeros_like(out_fake))
+            d_loss = (bce(out_real, torch.full_like(out_real, args.real_label))
+                      + bce(out_fake, torch.zeros_like(out_fake)))
             d_loss.backward()
             opt_d.step()
             # Generator: the non-saturating loss of Goodfellow et al. (maximise log D(G(z))).
