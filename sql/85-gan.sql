@@ -78,9 +78,11 @@ $$;
 CREATE TRIGGER gan_generator_check BEFORE INSERT OR UPDATE ON streetgen.gan_generator
   FOR EACH ROW EXECUTE FUNCTION streetgen._gan_generator_check();
 
+-- Returns the stored row's metadata, not its weights (a psql user would get megabytes of hex).
 CREATE FUNCTION streetgen.gan_load_generator(name text, weights bytea, source text DEFAULT NULL,
-                                             replace boolean DEFAULT false)
-  RETURNS streetgen.gan_generator
+    replace boolean DEFAULT false, OUT noise_channels integer, OUT layer_count integer,
+    OUT parameter_count bigint, OUT metres_per_pixel double precision, OUT bytes integer)
+  RETURNS record
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
   AS $$
@@ -109,7 +111,11 @@ BEGIN
         USING ERRCODE = 'duplicate_object', HINT = 'Pass replace => true to replace it.';
     END;
   END IF;
-  RETURN loaded;
+  noise_channels := loaded.noise_channels;
+  layer_count := loaded.layer_count;
+  parameter_count := loaded.parameter_count;
+  metres_per_pixel := loaded.metres_per_pixel;
+  bytes := length(loaded.weights);
 END
 $$;
 COMMENT ON FUNCTION streetgen.gan_load_generator(text, bytea, text, boolean) IS

@@ -72,7 +72,7 @@ SELECT set_eq(
     ('streetgen._streetgen_gan_sample(bytea,integer,integer,bigint,boolean,double precision,double precision,integer)', 'bytea', 'i', false),
     ('streetgen._streetgen_gan_generator_info(bytea)', 'record', 'i', false),
     ('streetgen._gan_generator_check()', 'trigger', 'v', false),
-    ('streetgen.gan_load_generator(text,bytea,text,boolean)', 'streetgen.gan_generator', 'v', false),
+    ('streetgen.gan_load_generator(text,bytea,text,boolean)', 'record', 'v', false),
     ('streetgen.gan_sample(bytea,integer,integer,bigint,geometry,boolean)', 'raster', 'i', false),
     ('streetgen.gan_sample(text,integer,integer,bigint,geometry,boolean)', 'raster', 's', false)
   $$,
@@ -106,7 +106,8 @@ SELECT is(pg_temp.argument_names('streetgen.grow_example(text,geometry,geometry,
 SELECT is(pg_temp.argument_names('streetgen.gan_sample(text,integer,integer,bigint,geometry,boolean)'),
           'generator,width_px,height_px,seed,upper_left,raw', 'gan_sample(generator, width_px, height_px, seed, upper_left, raw)');
 SELECT is(pg_temp.argument_names('streetgen.gan_load_generator(text,bytea,text,boolean)'),
-          'name,weights,source,replace', 'gan_load_generator(name, weights, source, replace)');
+          'name,weights,source,replace,noise_channels,layer_count,parameter_count,metres_per_pixel,bytes',
+          'gan_load_generator(name, weights, source, replace) -> (noise_channels, layer_count, parameter_count, metres_per_pixel, bytes)');
 
 SELECT is_empty(
   'SELECT signature FROM streetgen_functions WHERE security_definer',

@@ -65,17 +65,25 @@ CREATE TABLE gan_test.files AS
 SELECT gan_test.generator(2, '{3,1}') AS good,
        gan_test.generator(2, '{3,1}', version => 2) AS version2,
        gan_test.generator(2, '{3,1}', in_override => 4) AS bad_shape,
-       gan_test.generator(2, '{3,2}') AS two_channels;
+       gan_test.generator(2, '{3,2}') AS two_channels,
+       gan_test.generator(3, '{2,1}') AS other;
 
 -- ---- loading
-SELECT is((SELECT (g.noise_channels, g.layer_count, g.parameter_count, g.metres_per_pixel, g.loaded_by)::text
+SELECT is((SELECT (g.noise_channels, g.layer_count, g.parameter_count, g.metres_per_pixel, g.bytes = length(f.good))::text
              FROM gan_test.files f, streetgen.gan_load_generator('tiny', f.good, 'pgTAP fixture') AS g),
-          (2, 2, (2 * 3 + 3 * 1) * 25 + 2 * (3 + 1), 3.0::double precision, current_user)::text,
-          'gan_load_generator stores a generator and reads its metadata');
+          (2, 2, (2 * 3 + 3 * 1) * 25 + 2 * (3 + 1), 3.0::double precision, true)::text,
+          'gan_load_generator stores a generator and reports its metadata');
+SELECT is((SELECT (noise_channels, layer_count, source, loaded_by)::text FROM streetgen.gan_generator WHERE name = 'tiny'),
+          (2, 2, 'pgTAP fixture', current_user)::text, 'the row holds the metadata, the source and who loaded it');
 SELECT throws_ok($$SELECT streetgen.gan_load_generator('tiny', good) FROM gan_test.files$$, '42710',
                  'generator "tiny" already exists', 'loading a taken name fails');
-SELECT is((SELECT source FROM gan_test.files f, streetgen.gan_load_generator('tiny', f.good, 'again', replace => true)),
-          'again', 'replace => true replaces it');
+SELECT is((SELECT g.noise_channels FROM gan_test.files f,
+                   streetgen.gan_load_generator('tiny', f.other, 'again', replace => true) AS g), 3,
+          'replace => true replaces it');
+SELECT is((SELECT (noise_channels, source)::text FROM streetgen.gan_generator WHERE name = 'tiny'), '(3,again)',
+          'and the row follows');
+SELECT lives_ok($$SELECT streetgen.gan_load_generator('tiny', good, 'pgTAP fixture', true) FROM gan_test.files$$,
+                'and back');
 INSERT INTO streetgen.gan_generator (name, weights) SELECT 'from_client', good FROM gan_test.files;
 SELECT is((SELECT (noise_channels, layer_count) FROM streetgen.gan_generator WHERE name = 'from_client')::text,
           '(2,2)', 'a plain INSERT from a client is checked and gets its metadata');
