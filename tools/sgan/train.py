@@ -97,7 +97,13 @@ def main():
     ap.add_argument("--gen-channels", default="128,64,32,16", help="hidden generator widths, coarse to fine")
     ap.add_argument("--disc-channels", default="8,16,32,64",
                     help="discriminator widths (narrower than the generator: a strong D starves G on CPU budgets)")
+    ap.add_argument("--disc-norm", choices=("spectral", "batch"), default="spectral")
     ap.add_argument("--real-label", type=float, default=0.9, help="one-sided label smoothing of real patches")
+    ap.add_argument("--instance-noise", type=float, default=0.3,
+                    help="std of Gaussian noise added to every image the discriminator sees, decaying linearly "
+                         "to 0 over --noise-decay iterations: real patches are exactly -1/1, and without it the "
+                         "discriminator wins by telling binary from non-binary pixels")
+    ap.add_argument("--noise-decay", type=int, default=4000)
     ap.add_argument("--lr", type=float, default=2e-4)
     ap.add_argument("--beta1", type=float, default=0.5)
     ap.add_argument("--min-road", type=float, default=0.05, help="redraw patches with less road than this share")
@@ -129,7 +135,7 @@ def main():
     data = Patches(road, patch, rng, args.min_road, args.augment)
 
     G = sgan.Generator(args.noise_channels, gen_channels)
-    D = sgan.Discriminator(tuple(int(v) for v in args.disc_channels.split(",")))
+    D = sgan.Discriminator(tuple(int(v) for v in args.disc_channels.split(",")), args.disc_norm)
     G.apply(sgan.init_weights)
     D.apply(sgan.init_weights)
     opt_g = torch.optim.Adam(G.parameters(), lr=args.lr, betas=(args.beta1, 0.999))
@@ -168,16 +174,22 @@ def main():
             z = torch.rand(args.batch, args.noise_channels, args.noise_side, args.noise_side) * 2.0 - 1.0
             fake = G(z)
             # Discriminator: every patch logit of a real image says 1, of a fake one 0.
+            sigma = args.instance_noise * max(0.0, 1.0 - iteration / args.noise_decay)
+            if sigma > 0:
+                real = real + sigma * torch.randn_like(real)
+                seen_fake = fake + sigma * torch.randn_like(fake)
+            else:
+                seen_fake = fake
             opt_d.zero_grad()
             out_real = D(real)
-            out_fake = D(fake.detach())
+            out_fake = D(seen_fake.detach())
             d_loss = (bce(out_real, torch.full_like(out_real, args.real_label))
                       + bce(out_fake, torch.zeros_like(out_fake)))
             d_loss.backward()
             opt_d.step()
             # Generator: the non-saturating loss of Goodfellow et al. (maximise log D(G(z))).
             opt_g.zero_grad()
-            out = D(fake)
+            out = D(seen_fake)
             g_loss = bce(out, torch.ones_like(out))
             g_loss.backward()
             opt_g.step()
