@@ -3,7 +3,8 @@
 # (new-york of ../shared/data/examples, © OpenStreetMap contributors, ODbL 1.0) as the project's
 # road raster (3 m/px, roads 15 px wide), train two epochs of three iterations (tools/sgan/train.py),
 # then tests/gan/check_gan.py: outputs of the training, export, parity of the SQL sampler with
-# PyTorch (< 1e-4), and gan_sample's size and determinism.
+# PyTorch (< 1e-4), and gan_sample's size and determinism; a second training with the same seed must
+# write the same generator file.
 source "$(dirname "$0")/lib.sh"
 mark=$(log_mark)
 fresh_db streetgen_gan streetgen
@@ -18,6 +19,16 @@ started=$(date +%s)
 /usr/bin/python3 "$SRC"/tools/sgan/train.py "$work/roads.tif" "$work/train" --epochs 2 --iters-per-epoch 3 \
   --batch 4 --noise-side 3 --sample-side 65 --threads 1 --seed 3 || status=$?
 echo "gan: tiny training took $(( $(date +%s) - started )) s"
+# The same seed and thread count train the same generator, byte for byte.
+if [ $status -eq 0 ]; then
+  /usr/bin/python3 "$SRC"/tools/sgan/train.py "$work/roads.tif" "$work/again" --epochs 2 --iters-per-epoch 3 \
+    --batch 4 --noise-side 3 --sample-side 65 --threads 1 --seed 3 >/dev/null || status=$?
+  if cmp -s "$work/train/generator.sgan" "$work/again/generator.sgan"; then
+    echo "ok   a second training with the same seed gives the same generator file"
+  else
+    echo "FAIL a second training with the same seed gives another generator file"; status=1
+  fi
+fi
 [ $status -eq 0 ] && { /usr/bin/python3 "$SRC"/tests/gan/check_gan.py streetgen_gan "$work/train" "$work" || status=$?; }
 assert_no_crash_since "$mark" || status=1
 exit $status
