@@ -30,8 +30,13 @@ def main():
     ap.add_argument("checkpoint")
     ap.add_argument("output")
     ap.add_argument("--metres-per-pixel", type=float, default=None, help="default: the training's, else 3")
+    ap.add_argument("--recalibrate", type=int, default=None, metavar="NOISE_SIDE",
+                    help="recompute the batch-norm statistics first (train.py does it before saving a "
+                         "checkpoint; for checkpoints of older versions)")
     args = ap.parse_args()
     g, state = load_checkpoint_generator(args.checkpoint)
+    if args.recalibrate:
+        sgan.recalibrate_batchnorm(g, args.recalibrate)
     mpp = args.metres_per_pixel or state.get("metres_per_pixel") or 3.0
     size = sgan.write_generator(g, args.output, mpp)
     print(f"export: {args.output}: {size} bytes, {sum(p.numel() for p in g.parameters())} parameters")

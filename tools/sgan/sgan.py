@@ -100,6 +100,27 @@ def init_weights(module):
         nn.init.zeros_(module.bias)
 
 
+def recalibrate_batchnorm(generator, noise_side, batches=16, batch=8, seed=0):
+    """Sets the batch norms' running statistics to the exact mean over `batches` batches of fresh
+    noise in train mode, then leaves the generator in eval mode. The momentum average of training
+    lags behind the weights (on new-york the eval-mode road share was 0.77 where train mode gave
+    0.68); sampling (C++ and PyTorch) uses these statistics. Own RNG: training stays deterministic."""
+    rng = torch.Generator().manual_seed(seed)
+    norms = [m for m in generator.modules() if isinstance(m, nn.BatchNorm2d)]
+    saved = [m.momentum for m in norms]
+    for m in norms:
+        m.reset_running_stats()
+        m.momentum = None  # cumulative average
+    generator.train()
+    with torch.no_grad():
+        for _ in range(batches):
+            z = torch.rand(batch, generator.noise_channels, noise_side, noise_side, generator=rng) * 2.0 - 1.0
+            generator(z)
+    for m, momentum in zip(norms, saved):
+        m.momentum = momentum
+    generator.eval()
+
+
 # ---- noise of a seed: the same numbers as core::gan::noise() in C++ -------------------------------
 _M64 = np.uint64(0xFFFFFFFFFFFFFFFF)
 
