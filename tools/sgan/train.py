@@ -90,7 +90,7 @@ def main():
     ap.add_argument("out", help="output folder (created)")
     ap.add_argument("--epochs", type=int, default=20)
     ap.add_argument("--iters-per-epoch", type=int, default=100)
-    ap.add_argument("--batch", type=int, default=16)
+    ap.add_argument("--batch", type=int, default=8)
     ap.add_argument("--noise-side", type=int, default=5,
                     help="spatial noise side during training; the patch side follows (5 -> 129 px)")
     ap.add_argument("--noise-channels", type=int, default=32)
