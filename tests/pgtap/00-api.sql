@@ -75,7 +75,13 @@ SELECT set_eq(
     ('streetgen.grow_parametric(geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
     ('streetgen.rasterise_network(text,double precision,integer,geometry)', 'raster', 'v', false),
     ('streetgen._streetgen_raster_to_network(bytea,double precision,integer,integer,double precision,double precision,integer,double precision)', 'SETOF record', 'i', false),
-    ('streetgen.raster_to_network(raster,jsonb)', 'SETOF record', 'i', false)
+    ('streetgen.raster_to_network(raster,jsonb)', 'SETOF record', 'i', false),
+    ('streetgen._streetgen_gan_sample(bytea,integer,integer,bigint,boolean,double precision,double precision,integer)', 'bytea', 'i', false),
+    ('streetgen._streetgen_gan_generator_info(bytea)', 'record', 'i', false),
+    ('streetgen._gan_generator_check()', 'trigger', 'v', false),
+    ('streetgen.gan_load_generator(text,bytea,text,boolean)', 'record', 'v', false),
+    ('streetgen.gan_sample(bytea,integer,integer,bigint,geometry,boolean)', 'raster', 'i', false),
+    ('streetgen.gan_sample(text,integer,integer,bigint,geometry,boolean)', 'raster', 's', false)
   $$,
   'the extension ships exactly the documented functions, with these results and volatilities');
 
@@ -114,6 +120,12 @@ SELECT is(pg_temp.argument_names('streetgen.rasterise_network(text,double precis
           'edges,pixel_size,road_width_px,extent', 'rasterise_network(edges, pixel_size, road_width_px, extent)');
 SELECT is(pg_temp.argument_names('streetgen.raster_to_network(raster,jsonb)'), 'rast,params,id,from_node,to_node,geom',
           'raster_to_network(rast, params) -> (id, from_node, to_node, geom)');
+
+SELECT is(pg_temp.argument_names('streetgen.gan_sample(text,integer,integer,bigint,geometry,boolean)'),
+          'generator,width_px,height_px,seed,upper_left,raw', 'gan_sample(generator, width_px, height_px, seed, upper_left, raw)');
+SELECT is(pg_temp.argument_names('streetgen.gan_load_generator(text,bytea,text,boolean)'),
+          'name,weights,source,replace,noise_channels,layer_count,parameter_count,metres_per_pixel,bytes',
+          'gan_load_generator(name, weights, source, replace) -> (noise_channels, layer_count, parameter_count, metres_per_pixel, bytes)');
 
 SELECT is_empty(
   'SELECT signature FROM streetgen_functions WHERE security_definer',
