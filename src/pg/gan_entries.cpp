@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/gan/generator.hpp"
+#include "pg/array_args.hpp"
 #include "pg/boundary.hpp"
 #include "pg/owned_result.hpp"
 
@@ -17,15 +18,9 @@ using namespace streetgen;
 
 namespace {
 
-struct Blob {
-  const std::uint8_t* data;
-  std::size_t size;
-};
-
-Blob blob_arg(FunctionCallInfo fcinfo, int n, const char* parameter) {
+pg::ByteView blob_arg(FunctionCallInfo fcinfo, int n, const char* parameter) {
   if (PG_ARGISNULL(n)) pg::raise_null_argument(parameter);
-  bytea* b = PG_GETARG_BYTEA_PP(n);
-  return {reinterpret_cast<const std::uint8_t*>(VARDATA_ANY(b)), VARSIZE_ANY_EXHDR(b)};
+  return pg::byte_view(PG_GETARG_DATUM(n));
 }
 
 void require_args(FunctionCallInfo fcinfo, int expected, const char* name) {
@@ -47,7 +42,7 @@ PG_FUNCTION_INFO_V1(_streetgen_gan_sample);
 Datum _streetgen_gan_sample(PG_FUNCTION_ARGS) {
   // Phase 1: arguments, every NULL named.
   require_args(fcinfo, 8, "_streetgen_gan_sample");
-  const Blob generator = blob_arg(fcinfo, 0, "generator");
+  const pg::ByteView generator = blob_arg(fcinfo, 0, "generator");
   const char* names[] = {"generator", "width_px", "height_px", "seed", "raw", "upper_left x", "upper_left y", "srid"};
   for (int a = 1; a < 8; ++a) {
     if (PG_ARGISNULL(a)) pg::raise_null_argument(names[a]);
@@ -80,7 +75,7 @@ PG_FUNCTION_INFO_V1(_streetgen_gan_generator_info);
 //  OUT metres_per_pixel float8, OUT kernel int4, OUT stride int4, OUT padding int4) -> record
 Datum _streetgen_gan_generator_info(PG_FUNCTION_ARGS) {
   require_args(fcinfo, 1, "_streetgen_gan_generator_info");
-  const Blob generator = blob_arg(fcinfo, 0, "weights");
+  const pg::ByteView generator = blob_arg(fcinfo, 0, "weights");
   TupleDesc desc;
   if (get_call_result_type(fcinfo, nullptr, &desc) != TYPEFUNC_COMPOSITE || desc->natts != 7) {
     ereport(ERROR, (errcode(ERRCODE_FEATURE_NOT_SUPPORTED), errmsg("_streetgen_gan_generator_info: bad result type")));

@@ -25,16 +25,6 @@ using namespace streetgen;
 
 namespace {
 
-struct Blob {
-  const std::uint8_t* data;
-  std::size_t size;
-};
-
-Blob blob_of(Datum d) {
-  bytea* b = DatumGetByteaPP(d);
-  return {reinterpret_cast<const std::uint8_t*>(VARDATA_ANY(b)), VARSIZE_ANY_EXHDR(b)};
-}
-
 struct OutRow {
   std::int64_t id, from_node, to_node;
   std::string road_class, origin;
@@ -77,10 +67,10 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
     }
   }
   pg::ArrayArg existing_arg = pg::array_arg(fcinfo, kExisting, BYTEAOID, "existing");
-  auto* existing = static_cast<Blob*>(palloc0(sizeof(Blob) * (existing_arg.count > 0 ? existing_arg.count : 1)));
+  auto* existing = static_cast<pg::ByteView*>(palloc0(sizeof(pg::ByteView) * (existing_arg.count > 0 ? existing_arg.count : 1)));
   int existing_count = 0;
   for (int i = 0; i < existing_arg.count; ++i) {
-    if (!existing_arg.nulls[i]) existing[existing_count++] = blob_of(existing_arg.values[i]);
+    if (!existing_arg.nulls[i]) existing[existing_count++] = pg::byte_view(existing_arg.values[i]);
   }
   pg::ArrayArg geoms = pg::array_arg(fcinfo, kExampleGeoms, BYTEAOID, "example");
   pg::ArrayArg classes = pg::array_arg(fcinfo, kExampleClasses, TEXTOID, "example road classes");
@@ -98,7 +88,7 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   pg::require_same_length(blend_xs, "blend_points x", blend_ys, "blend_points y");
 
   struct ExampleArg {
-    Blob geom;
+    pg::ByteView geom;
     const char* road_class;
     std::int64_t id;
     int source;
@@ -109,7 +99,7 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   for (int i = 0; i < geoms.count; ++i) {
     if (geoms.nulls[i]) continue;  // like an aggregate, NULL edges are skipped
     ExampleArg& e = example[example_count++];
-    e.geom = blob_of(geoms.values[i]);
+    e.geom = pg::byte_view(geoms.values[i]);
     e.road_class = classes.count != 0 && !classes.nulls[i] ? TextDatumGetCString(classes.values[i]) : "unclassified";
     e.id = ids.count != 0 && !ids.nulls[i] ? DatumGetInt64(ids.values[i]) : i + 1;
     e.source = sources.count != 0 && !sources.nulls[i] ? DatumGetInt32(sources.values[i]) : 0;
@@ -131,14 +121,14 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
     blend_xy[2 * i + 1] = DatumGetFloat8(blend_ys.values[i]);
   }
   int blend_count = blend_xs.count;
-  auto* obstacles = static_cast<Blob*>(palloc0(sizeof(Blob) * (obstacle_arg.count > 0 ? obstacle_arg.count : 1)));
+  auto* obstacles = static_cast<pg::ByteView*>(palloc0(sizeof(pg::ByteView) * (obstacle_arg.count > 0 ? obstacle_arg.count : 1)));
   int obstacle_count = 0;
   for (int i = 0; i < obstacle_arg.count; ++i) {
-    if (!obstacle_arg.nulls[i]) obstacles[obstacle_count++] = blob_of(obstacle_arg.values[i]);
+    if (!obstacle_arg.nulls[i]) obstacles[obstacle_count++] = pg::byte_view(obstacle_arg.values[i]);
   }
-  Blob region = blob_of(PG_GETARG_DATUM(kRegion));
+  pg::ByteView region = pg::byte_view(PG_GETARG_DATUM(kRegion));
   bool has_guide = !PG_ARGISNULL(kGuide);
-  Blob guide = has_guide ? blob_of(PG_GETARG_DATUM(kGuide)) : Blob{nullptr, 0};
+  pg::ByteView guide = has_guide ? pg::byte_view(PG_GETARG_DATUM(kGuide)) : pg::ByteView{nullptr, 0};
   int seed_count = xs.count;
   core::GrowParams params;
   params.epsilon = PG_GETARG_FLOAT8(kEpsilon);

@@ -8,6 +8,7 @@
 #include "core/ewkb.hpp"
 #include "core/raster/raster_to_network.hpp"
 #include "core/raster/wkb_raster.hpp"
+#include "pg/array_args.hpp"
 #include "pg/boundary.hpp"
 #include "pg/owned_result.hpp"
 
@@ -48,9 +49,7 @@ Datum _streetgen_raster_to_network(PG_FUNCTION_ARGS) {
   for (int a = 0; a < kArgs; ++a) {
     if (PG_ARGISNULL(a)) pg::raise_null_argument(names[a]);
   }
-  bytea* wkb = PG_GETARG_BYTEA_PP(0);
-  const auto* data = reinterpret_cast<const std::uint8_t*>(VARDATA_ANY(wkb));
-  const std::size_t size = VARSIZE_ANY_EXHDR(wkb);
+  const pg::ByteView wkb = pg::byte_view(PG_GETARG_DATUM(0));
   const double threshold = PG_GETARG_FLOAT8(1);
   core::RasterNetworkParams params;
   params.erode = PG_GETARG_INT32(2);
@@ -66,7 +65,7 @@ Datum _streetgen_raster_to_network(PG_FUNCTION_ARGS) {
   pg::CallError error;
   pg::guarded_call(error, [&] {
     core::GeosContext& geos = pg::backend_geos();
-    core::RoadRaster raster = core::read_wkb_raster(data, size, threshold);
+    core::RoadRaster raster = core::read_wkb_raster(wkb.data, wkb.size, threshold);
     core::RasterNetwork net = core::raster_to_network(geos, raster, params);
     std::vector<OutRow> out;
     out.reserve(net.edges.size());
