@@ -42,7 +42,6 @@ DECLARE
     ELSE shared || ARRAY['blend', 'blend_angle', 'blend_points', 'blend_sigma', 'candidates', 'coherence',
                          'crop_margin', 'epsilon', 'fallback', 'keep_frame', 'match_levels', 'r'] END;
   p jsonb := coalesce(params, '{}'::jsonb);
-  unknown text[];
   geoms bytea[] := '{}';
   classes text[] := '{}';
   ids bigint[] := '{}';
@@ -73,15 +72,7 @@ BEGIN
   IF seeds IS NULL THEN
     RAISE EXCEPTION 'seeds must not be null' USING ERRCODE = 'null_value_not_allowed';
   END IF;
-  IF jsonb_typeof(p) <> 'object' THEN
-    RAISE EXCEPTION 'params must be a json object' USING ERRCODE = 'invalid_parameter_value',
-      DETAIL = format('It is a json %s.', jsonb_typeof(p));
-  END IF;
-  SELECT array_agg(key ORDER BY key) INTO unknown FROM jsonb_object_keys(p) AS key WHERE key <> ALL (known);
-  IF unknown IS NOT NULL THEN
-    RAISE EXCEPTION 'unknown params key: %', array_to_string(unknown, ', ') USING ERRCODE = 'invalid_parameter_value',
-      DETAIL = format('Known keys: %s.', array_to_string(ARRAY(SELECT unnest(known) ORDER BY 1), ', '));
-  END IF;
+  PERFORM streetgen._require_params(p, known);
   IF p ? 'r' AND NOT coalesce((p ->> 'r')::double precision > 0, false) THEN
     RAISE EXCEPTION 'r must be a number > 0' USING ERRCODE = 'invalid_parameter_value',
       DETAIL = format('It is %s.', p -> 'r'), HINT = 'Leave r out for 3 x the mean example segment length.';

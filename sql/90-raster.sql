@@ -111,21 +111,12 @@ DECLARE
                                  'smooth_iterations', 'threshold'];
   integers constant text[] := ARRAY['dilate', 'erode', 'smooth_iterations'];
   p jsonb := coalesce(params, '{}'::jsonb);
-  unknown text[];
   k text;
 BEGIN
   IF rast IS NULL THEN
     RAISE EXCEPTION 'rast must not be null' USING ERRCODE = 'null_value_not_allowed';
   END IF;
-  IF jsonb_typeof(p) <> 'object' THEN
-    RAISE EXCEPTION 'params must be a json object' USING ERRCODE = 'invalid_parameter_value',
-      DETAIL = format('It is a json %s.', jsonb_typeof(p));
-  END IF;
-  SELECT array_agg(o ORDER BY o) INTO unknown FROM jsonb_object_keys(p) AS o WHERE o <> ALL (known);
-  IF unknown IS NOT NULL THEN
-    RAISE EXCEPTION 'unknown params key: %', array_to_string(unknown, ', ') USING ERRCODE = 'invalid_parameter_value',
-      DETAIL = format('Known keys: %s.', array_to_string(known, ', '));
-  END IF;
+  PERFORM streetgen._require_params(p, known);
   FOR k IN SELECT o FROM jsonb_object_keys(p) AS o ORDER BY o LOOP
     IF jsonb_typeof(p -> k) <> 'number' OR (k = ANY (integers) AND (p ->> k)::numeric % 1 <> 0) THEN
       RAISE EXCEPTION 'params.% must be %', k, CASE WHEN k = ANY (integers) THEN 'an integer' ELSE 'a number' END

@@ -23,6 +23,7 @@ SELECT set_eq(
     ('streetgen._streetgen_version()', 'record', 'i', true),
     ('streetgen.version()', 'record', 's', false),
     ('streetgen._require_model_name(text)', 'void', 'i', false),
+    ('streetgen._require_params(jsonb,text[])', 'void', 'i', false),
     ('streetgen._require_metric_srid(integer,text)', 'void', 's', false),
     ('streetgen._lock_model_name(text)', 'void', 'v', false),
     ('streetgen.create_model(text,integer)', 'void', 'v', false),
