@@ -7,10 +7,12 @@ packages=(
   build-essential cmake pkg-config git ca-certificates
   postgresql-15 postgresql-server-dev-15 postgresql-15-postgis-3 postgresql-15-pgtap libtap-parser-sourcehandler-pgtap-perl
   libgeos-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  libeigen3-dev zlib1g-dev
   libgtest-dev valgrind
   osm2pgsql osmium-tool gdal-bin
   python3 python3-psycopg python3-qgis
-  python3-osmnx python3-scipy
+  python3-osmnx python3-scipy python3-skimage
+  python3-torch python3-gdal
 )
 
 missing=()

@@ -21,6 +21,27 @@ BEGIN
 END
 $$;
 
+-- A params jsonb: an object whose keys are all KNOWN (a misspelt key is an error, not a default).
+CREATE FUNCTION streetgen._require_params(params jsonb, known text[])
+  RETURNS void
+  LANGUAGE plpgsql IMMUTABLE PARALLEL SAFE
+  SET search_path FROM CURRENT
+  AS $$
+DECLARE
+  unknown text[];
+BEGIN
+  IF jsonb_typeof(params) <> 'object' THEN
+    RAISE EXCEPTION 'params must be a json object' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It is a json %s.', jsonb_typeof(params));
+  END IF;
+  SELECT array_agg(k ORDER BY k) INTO unknown FROM jsonb_object_keys(params) AS k WHERE k <> ALL (known);
+  IF unknown IS NOT NULL THEN
+    RAISE EXCEPTION 'unknown params key: %', array_to_string(unknown, ', ') USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('Known keys: %s.', array_to_string(ARRAY(SELECT unnest(known) ORDER BY 1), ', '));
+  END IF;
+END
+$$;
+
 -- Widths, radii and speeds are in metres: a model's CRS must be projected in metres. SRID 0
 -- means local coordinates and is taken to be in metres (the growth examples use it).
 CREATE FUNCTION streetgen._require_metric_srid(srid integer, parameter text)

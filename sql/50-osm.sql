@@ -110,6 +110,14 @@ CREATE FUNCTION streetgen.osm_is_driveable(tags jsonb)
   $$;
 COMMENT ON FUNCTION streetgen.osm_is_driveable(jsonb) IS 'True for OSM ways that are driveable roads (see streetgen.highway_class)';
 
+-- The roadway street parking takes on the left and the right (m), from "key=value" lines of
+-- parking:* tags, by the engine's own rule (src/core/streets/lanes.cpp): an estimated roadway
+-- width adds it to the traffic lanes.
+CREATE FUNCTION streetgen._street_parking_widths(parking_tags text)
+  RETURNS double precision[]
+  LANGUAGE c IMMUTABLE PARALLEL SAFE
+  AS 'MODULE_PATHNAME', '_streetgen_street_parking';
+
 -- The mapping itself: axis attributes from the tags of a driveable way (no row for other
 -- ways). reverse_geometry: oneway=-1 ways are stored in their direction of travel with oneway
 -- = true. estimated lists what came from streetgen.highway_class rather than from tags.
@@ -119,7 +127,7 @@ CREATE FUNCTION streetgen._osm_axis_attributes(tags jsonb)
                  sidewalk_width double precision, estimated text[])
   LANGUAGE sql STABLE PARALLEL SAFE
   AS $$
-    SELECT coalesce(w.tagged, l.lanes * h.lane_width),
+    SELECT coalesce(w.tagged, l.lanes * h.lane_width + pk.widths[1] + pk.widths[2]),
            l.lanes,
            coalesce(sp.tagged, h.speed_kmh),
            h.highway,
@@ -163,6 +171,9 @@ CREATE FUNCTION streetgen._osm_axis_attributes(tags jsonb)
                                                                    streetgen.osm_parse_length(tags->>'est:width')])
                                                    WITH ORDINALITY AS u(x, i)
                              WHERE x BETWEEN 2 AND 60 ORDER BY i LIMIT 1) AS tagged) AS w,
+           LATERAL (SELECT streetgen._street_parking_widths(
+                             (SELECT pg_catalog.string_agg(t.key || '=' || t.value, E'\n')
+                                FROM pg_catalog.jsonb_each_text(tags) AS t WHERE t.key LIKE 'parking:%')) AS widths) AS pk,
            LATERAL (SELECT coalesce(streetgen.osm_parse_speed(tags->>'maxspeed'),
                              least(streetgen.osm_parse_speed(tags->>'maxspeed:forward'),
                                               streetgen.osm_parse_speed(tags->>'maxspeed:backward'))) AS tagged) AS sp,

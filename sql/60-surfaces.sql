@@ -17,8 +17,9 @@ CREATE FUNCTION streetgen._streetgen_street_surfaces(
   COST 100000 ROWS 10000
   AS 'MODULE_PATHNAME', '_streetgen_street_surfaces';
 
--- The OSM tags that shape a street's lanes, as "key=value" lines for the engine (sorted: equal
--- tags give equal text, so the update trigger can compare them).
+-- The OSM tags that shape a street's lanes (and, by its street parking and placement, where its
+-- roadway lies), as "key=value" lines for the engine (sorted: equal tags give equal text, so the
+-- update trigger can compare them).
 CREATE FUNCTION streetgen._lane_tags(tags jsonb)
   RETURNS text
   LANGUAGE sql IMMUTABLE PARALLEL SAFE
@@ -26,7 +27,7 @@ CREATE FUNCTION streetgen._lane_tags(tags jsonb)
   AS $$
     SELECT string_agg(t.key || '=' || replace(t.value, E'\n', ' '), E'\n' ORDER BY t.key)
       FROM jsonb_each_text(CASE WHEN jsonb_typeof(tags) = 'object' THEN tags ELSE '{}' END) AS t
-     WHERE t.key ~ '^(lanes|turn:lanes|cycleway|busway)(:|$)'
+     WHERE t.key ~ '^(lanes|turn:lanes|cycleway|busway|parking|placement)(:|$)'
   $$;
 
 -- Sidewalk widths (left, right looking along the axis) of one axis, the rule behind sidewalks:

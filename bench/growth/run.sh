@@ -5,6 +5,7 @@
 #   bash bench/growth/run.sh                  the streetgen installed for the pg_config on PATH
 #   OUT=/tmp/pics bash bench/growth/run.sh    where the PNGs go (default: build/bench-growth)
 #   PARAMS='{"rotation": false}' SEEDS='1 2 3 4 5' bash bench/growth/run.sh   params and seeds of part 1
+#   SPEED=0 bash bench/growth/run.sh          part 1 only
 #
 # 1. Realism: for tokyo, canberra_south_large, barcelona_east, new-york and strasbourg, grow the
 #    example's convex hull from one seed point at its centre (default params; seeds 1, 2, 3), then
@@ -74,8 +75,10 @@ CREATE TABLE headline AS
 SELECT * FROM cmp WHERE metric IN ('street_density', 'intersection_density', 'mean_degree', 'dead_end_share',
                                    'degree4_share', 'connected_node_ratio', 'orientation_order', 'block_area_median');
 \pset footer off
-\echo speed of each growth (one SQL call, one core)
-SELECT g.name, g.seed, count(*) AS edges, round((sum(ST_Length(g.geom)) / 1000)::numeric, 1) AS km,
+\echo speed of each growth (one SQL call, one core); fallback_pct: share of edges grown by the parametric fallback
+SELECT g.name, g.seed, count(*) AS edges,
+       round(100.0 * count(*) FILTER (WHERE g.origin = 'grow_parametric') / count(*), 1) AS fallback_pct,
+       round((sum(ST_Length(g.geom)) / 1000)::numeric, 1) AS km,
        round(t.seconds::numeric, 2) AS seconds, round((sum(ST_Length(g.geom)) / 1000 / t.seconds)::numeric, 0) AS km_per_s
   FROM grown g JOIN timing t USING (name, seed) GROUP BY g.name, g.seed, t.seconds ORDER BY g.name, g.seed;
 \echo headline metrics: example value, grown value (median over seeds), relative difference in % (median over seeds)
@@ -99,6 +102,10 @@ SELECT (SELECT count(*) FROM grown) AS edges_checked,
        (SELECT count(*) FROM grown g JOIN region r USING (name) WHERE NOT ST_CoveredBy(g.geom, r.geom)) AS outside_region;
 SQL
 
+if [ "${SPEED:-1}" = 0 ]; then
+  echo "Road data: © OpenStreetMap contributors, ODbL 1.0 (example patches of Nishida et al. 2016)"
+  exit 0
+fi
 echo "== speed: squares grown from tokyo (rotation off), one SQL call each"
 psql -X -q -v ON_ERROR_STOP=1 <<'SQL'
 CREATE FUNCTION square(side double precision) RETURNS text LANGUAGE plpgsql AS $$

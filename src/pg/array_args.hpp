@@ -22,4 +22,14 @@ ArrayArg array_arg(FunctionCallInfo fcinfo, int argno, Oid element_type, const c
 // Raises 22023 naming the parameters when the two arrays differ in length.
 void require_same_length(const ArrayArg& a, const char* a_name, const ArrayArg& b, const char* b_name);
 
+// A bytea value read in place (detoasted into the current memory context when it must be).
+struct ByteView {
+  const std::uint8_t* data = nullptr;
+  std::size_t size = 0;
+};
+inline ByteView byte_view(Datum d) {
+  bytea* b = DatumGetByteaPP(d);
+  return {reinterpret_cast<const std::uint8_t*>(VARDATA_ANY(b)), VARSIZE_ANY_EXHDR(b)};
+}
+
 }  // namespace streetgen::pg

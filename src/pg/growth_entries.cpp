@@ -2,6 +2,7 @@
 // obstacles as EWKB, seeds as coordinates, parameters as plain values (sql/80-growth.sql reads and
 // checks the jsonb); grown edges out as rows ready for a model's axis table.
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -24,16 +25,6 @@ using namespace streetgen;
 
 namespace {
 
-struct Blob {
-  const std::uint8_t* data;
-  std::size_t size;
-};
-
-Blob blob_of(Datum d) {
-  bytea* b = DatumGetByteaPP(d);
-  return {reinterpret_cast<const std::uint8_t*>(VARDATA_ANY(b)), VARSIZE_ANY_EXHDR(b)};
-}
-
 struct OutRow {
   std::int64_t id, from_node, to_node;
   std::string road_class, origin;
@@ -41,7 +32,13 @@ struct OutRow {
 };
 
 
-constexpr int kArgs = 16;
+// The C function's arguments, in order (sql/80-growth.sql).
+enum Arg {
+  kExampleGeoms, kExampleClasses, kExampleIds, kExampleSources, kRegion, kSeedsX, kSeedsY, kObstacles, kEpsilon,
+  kRadius, kRotation, kSeed, kMaxEdges, kMatchLevels, kSnap, kMinAngle, kCandidates, kExisting, kParametric,
+  kFallback, kKeepFrame, kCoherence, kCropMargin, kFill, kLength, kLengthDeviation, kMinLength, kMinDegree, kMaxDegree, kAngleDeviation, kRoadClass, kGuide,
+  kGuideReach, kBlendMode, kBlendAngle, kBlendX, kBlendY, kBlendSigma, kArgs
+};
 constexpr int kColumns = 6;
 
 }  // namespace
@@ -49,52 +46,67 @@ constexpr int kColumns = 6;
 extern "C" {
 
 PG_FUNCTION_INFO_V1(_streetgen_grow_example);
-// (example_geoms bytea[], example_classes text[], example_ids int8[], region bytea,
-//  seeds_x float8[], seeds_y float8[], obstacles bytea[], epsilon float8, r float8,
-//  rotation bool, seed int8, max_edges int4, match_levels bool, snap float8, min_angle float8,
-//  candidates int4, existing bytea[]) -> SETOF (id, from_node, to_node, road_class, origin, geom bytea)
+// See enum Arg; -> SETOF (id, from_node, to_node, road_class, origin, geom bytea).
 Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   // Phase 1.
-  if (PG_NARGS() != kArgs + 1) {
+  if (PG_NARGS() != kArgs) {
     ereport(ERROR, (errcode(ERRCODE_OBJECT_NOT_IN_PREREQUISITE_STATE),
-                    errmsg("_streetgen_grow_example expects %d arguments, got %d", kArgs + 1, PG_NARGS()),
+                    errmsg("_streetgen_grow_example expects %d arguments, got %d", kArgs, PG_NARGS()),
                     errhint("Run ALTER EXTENSION streetgen UPDATE, or re-create the extension.")));
   }
-  static const char* const names[] = {"example", "example road classes", "example ids", "region", "seeds x",
-                                      "seeds y", "obstacles", "epsilon", "r", "rotation", "seed", "max_edges",
-                                      "match_levels", "snap", "min_angle", "candidates", "existing"};
-  for (int a = 3; a < kArgs; ++a) {
-    if (a != 6 && PG_ARGISNULL(a)) pg::raise_null_argument(names[a]);
+  static const char* const names[kArgs] = {
+      "example", "example road classes", "example ids", "example sources", "region", "seeds x", "seeds y",
+      "obstacles", "epsilon", "r", "rotation", "seed", "max_edges", "match_levels", "snap", "min_angle",
+      "candidates", "existing", "parametric", "fallback", "keep_frame", "coherence", "crop_margin", "fill", "length", "length_deviation", "min_length",
+      "min_degree", "max_degree", "angle_deviation", "road_class", "guide", "guide_reach", "blend",
+      "blend_angle", "blend_points x", "blend_points y", "blend_sigma"};
+  for (int a = kRegion; a < kArgs; ++a) {
+    if (a != kSeedsX && a != kSeedsY && a != kObstacles && a != kExisting && a != kGuide && a != kBlendX &&
+        a != kBlendY && PG_ARGISNULL(a)) {
+      pg::raise_null_argument(names[a]);
+    }
   }
-  pg::ArrayArg existing_arg = pg::array_arg(fcinfo, 16, BYTEAOID, "existing");
-  auto* existing = static_cast<Blob*>(palloc0(sizeof(Blob) * (existing_arg.count > 0 ? existing_arg.count : 1)));
+  pg::ArrayArg existing_arg = pg::array_arg(fcinfo, kExisting, BYTEAOID, "existing");
+  auto* existing = static_cast<pg::ByteView*>(palloc0(sizeof(pg::ByteView) * (existing_arg.count > 0 ? existing_arg.count : 1)));
   int existing_count = 0;
   for (int i = 0; i < existing_arg.count; ++i) {
-    if (!existing_arg.nulls[i]) existing[existing_count++] = blob_of(existing_arg.values[i]);
+    if (!existing_arg.nulls[i]) existing[existing_count++] = pg::byte_view(existing_arg.values[i]);
   }
-  pg::ArrayArg geoms = pg::array_arg(fcinfo, 0, BYTEAOID, "example");
-  pg::ArrayArg classes = pg::array_arg(fcinfo, 1, TEXTOID, "example road classes");
-  pg::ArrayArg ids = pg::array_arg(fcinfo, 2, INT8OID, "example ids");
-  pg::ArrayArg xs = pg::array_arg(fcinfo, 4, FLOAT8OID, "seeds x");
-  pg::ArrayArg ys = pg::array_arg(fcinfo, 5, FLOAT8OID, "seeds y");
-  pg::ArrayArg obstacle_arg = pg::array_arg(fcinfo, 6, BYTEAOID, "obstacles");
+  pg::ArrayArg geoms = pg::array_arg(fcinfo, kExampleGeoms, BYTEAOID, "example");
+  pg::ArrayArg classes = pg::array_arg(fcinfo, kExampleClasses, TEXTOID, "example road classes");
+  pg::ArrayArg ids = pg::array_arg(fcinfo, kExampleIds, INT8OID, "example ids");
+  pg::ArrayArg sources = pg::array_arg(fcinfo, kExampleSources, INT4OID, "example sources");
+  pg::ArrayArg xs = pg::array_arg(fcinfo, kSeedsX, FLOAT8OID, "seeds x");
+  pg::ArrayArg ys = pg::array_arg(fcinfo, kSeedsY, FLOAT8OID, "seeds y");
+  pg::ArrayArg obstacle_arg = pg::array_arg(fcinfo, kObstacles, BYTEAOID, "obstacles");
+  pg::ArrayArg blend_xs = pg::array_arg(fcinfo, kBlendX, FLOAT8OID, "blend_points x");
+  pg::ArrayArg blend_ys = pg::array_arg(fcinfo, kBlendY, FLOAT8OID, "blend_points y");
   if (classes.count != 0) pg::require_same_length(geoms, "example", classes, "example road classes");
   if (ids.count != 0) pg::require_same_length(geoms, "example", ids, "example ids");
+  if (sources.count != 0) pg::require_same_length(geoms, "example", sources, "example sources");
   pg::require_same_length(xs, "seeds x", ys, "seeds y");
+  pg::require_same_length(blend_xs, "blend_points x", blend_ys, "blend_points y");
 
   struct ExampleArg {
-    Blob geom;
+    pg::ByteView geom;
     const char* road_class;
     std::int64_t id;
+    int source;
   };
   auto* example = static_cast<ExampleArg*>(palloc0(sizeof(ExampleArg) * (geoms.count > 0 ? geoms.count : 1)));
   int example_count = 0;
+  int example_sets = 1;
   for (int i = 0; i < geoms.count; ++i) {
     if (geoms.nulls[i]) continue;  // like an aggregate, NULL edges are skipped
     ExampleArg& e = example[example_count++];
-    e.geom = blob_of(geoms.values[i]);
+    e.geom = pg::byte_view(geoms.values[i]);
     e.road_class = classes.count != 0 && !classes.nulls[i] ? TextDatumGetCString(classes.values[i]) : "unclassified";
     e.id = ids.count != 0 && !ids.nulls[i] ? DatumGetInt64(ids.values[i]) : i + 1;
+    e.source = sources.count != 0 && !sources.nulls[i] ? DatumGetInt32(sources.values[i]) : 0;
+    if (e.source < 0) {
+      ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("example sources must be >= 0")));
+    }
+    if (e.source + 1 > example_sets) example_sets = e.source + 1;
   }
   auto* seed_xy = static_cast<double*>(palloc0(sizeof(double) * 2 * (xs.count > 0 ? xs.count : 1)));
   for (int i = 0; i < xs.count; ++i) {
@@ -102,23 +114,59 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
     seed_xy[2 * i] = DatumGetFloat8(xs.values[i]);
     seed_xy[2 * i + 1] = DatumGetFloat8(ys.values[i]);
   }
-  auto* obstacles = static_cast<Blob*>(palloc0(sizeof(Blob) * (obstacle_arg.count > 0 ? obstacle_arg.count : 1)));
+  auto* blend_xy = static_cast<double*>(palloc0(sizeof(double) * 2 * (blend_xs.count > 0 ? blend_xs.count : 1)));
+  for (int i = 0; i < blend_xs.count; ++i) {
+    if (blend_xs.nulls[i] || blend_ys.nulls[i]) pg::raise_null_argument("a blend point coordinate");
+    blend_xy[2 * i] = DatumGetFloat8(blend_xs.values[i]);
+    blend_xy[2 * i + 1] = DatumGetFloat8(blend_ys.values[i]);
+  }
+  int blend_count = blend_xs.count;
+  auto* obstacles = static_cast<pg::ByteView*>(palloc0(sizeof(pg::ByteView) * (obstacle_arg.count > 0 ? obstacle_arg.count : 1)));
   int obstacle_count = 0;
   for (int i = 0; i < obstacle_arg.count; ++i) {
-    if (!obstacle_arg.nulls[i]) obstacles[obstacle_count++] = blob_of(obstacle_arg.values[i]);
+    if (!obstacle_arg.nulls[i]) obstacles[obstacle_count++] = pg::byte_view(obstacle_arg.values[i]);
   }
-  Blob region = blob_of(PG_GETARG_DATUM(3));
+  pg::ByteView region = pg::byte_view(PG_GETARG_DATUM(kRegion));
+  bool has_guide = !PG_ARGISNULL(kGuide);
+  pg::ByteView guide = has_guide ? pg::byte_view(PG_GETARG_DATUM(kGuide)) : pg::ByteView{nullptr, 0};
   int seed_count = xs.count;
   core::GrowParams params;
-  params.epsilon = PG_GETARG_FLOAT8(7);
-  params.radius = PG_GETARG_FLOAT8(8);
-  params.rotation = PG_GETARG_BOOL(9);
-  params.seed = static_cast<std::uint64_t>(PG_GETARG_INT64(10));
-  int max_edges = PG_GETARG_INT32(11);
-  params.match_levels = PG_GETARG_BOOL(12);
-  params.snap = PG_GETARG_FLOAT8(13);
-  params.min_angle = PG_GETARG_FLOAT8(14);
-  int candidates = PG_GETARG_INT32(15);
+  params.epsilon = PG_GETARG_FLOAT8(kEpsilon);
+  params.radius = PG_GETARG_FLOAT8(kRadius);
+  params.rotation = PG_GETARG_BOOL(kRotation);
+  params.seed = static_cast<std::uint64_t>(PG_GETARG_INT64(kSeed));
+  int max_edges = PG_GETARG_INT32(kMaxEdges);
+  params.match_levels = PG_GETARG_BOOL(kMatchLevels);
+  params.snap = PG_GETARG_FLOAT8(kSnap);
+  params.min_angle = PG_GETARG_FLOAT8(kMinAngle);
+  int candidates = PG_GETARG_INT32(kCandidates);
+  params.parametric = PG_GETARG_BOOL(kParametric);
+  params.fallback = PG_GETARG_BOOL(kFallback);
+  params.keep_frame = PG_GETARG_BOOL(kKeepFrame);
+  params.coherence = PG_GETARG_FLOAT8(kCoherence);
+  params.crop_margin = PG_GETARG_FLOAT8(kCropMargin);
+  params.fill = PG_GETARG_BOOL(kFill);
+  params.shape.length = PG_GETARG_FLOAT8(kLength);
+  params.shape.length_deviation = PG_GETARG_FLOAT8(kLengthDeviation);
+  params.shape.min_length = PG_GETARG_FLOAT8(kMinLength);
+  params.shape.min_degree = PG_GETARG_INT32(kMinDegree);
+  params.shape.max_degree = PG_GETARG_INT32(kMaxDegree);
+  params.shape.angle_deviation = PG_GETARG_FLOAT8(kAngleDeviation);
+  const char* road_class = TextDatumGetCString(PG_GETARG_DATUM(kRoadClass));
+  params.guide_reach = PG_GETARG_FLOAT8(kGuideReach);
+  const char* blend_mode = TextDatumGetCString(PG_GETARG_DATUM(kBlendMode));
+  if (strcmp(blend_mode, "none") == 0) {
+    params.blend.mode = core::BlendParams::Mode::none;
+  } else if (strcmp(blend_mode, "gradient") == 0) {
+    params.blend.mode = core::BlendParams::Mode::gradient;
+  } else if (strcmp(blend_mode, "points") == 0) {
+    params.blend.mode = core::BlendParams::Mode::points;
+  } else {
+    ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("blend must be 'gradient' or 'points'"),
+                    errdetail("It is '%s'.", blend_mode)));
+  }
+  params.blend.angle = PG_GETARG_FLOAT8(kBlendAngle);
+  params.blend.sigma = PG_GETARG_FLOAT8(kBlendSigma);
   if (max_edges <= 0) {
     ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("max_edges must be > 0"),
                     errdetail("It is %d.", max_edges)));
@@ -131,6 +179,7 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   params.candidates = static_cast<std::size_t>(candidates);
   InitMaterializedSRF(fcinfo, 0);
   auto rows = pg::OwnedResult<std::vector<OutRow>>::create();
+  core::GrowStats stats;  // plain data: reported at DEBUG1 in phase 3
 
   // Phase 2.
   pg::CallError error;
@@ -146,7 +195,7 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
       std::vector<core::Polyline> lines;
       core::append_linestrings(geos, g.geom.get(), name, "example edges must be LineStrings or MultiLineStrings", "", lines);
       for (core::Polyline& line : lines) {
-        input.example.push_back({std::move(line), example[i].road_class, example[i].id});
+        input.example.push_back({std::move(line), example[i].road_class, example[i].id, example[i].source});
       }
     }
     core::SridGeometry reg = core::read_ewkb(geos, region.data, region.size, "region");
@@ -165,12 +214,26 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
       core::append_linestrings(geos, g.geom.get(), name, "example edges must be LineStrings or MultiLineStrings", "", input.existing);
     }
     for (int i = 0; i < seed_count; ++i) input.seeds.push_back({seed_xy[2 * i], seed_xy[2 * i + 1]});
+    for (int i = 0; i < blend_count; ++i) params.blend.points.push_back({blend_xy[2 * i], blend_xy[2 * i + 1]});
+    params.shape.road_class = road_class;
+    if (has_guide) {
+      core::SridGeometry g = core::read_ewkb(geos, guide.data, guide.size, "guide");
+      core::append_linestrings(geos, g.geom.get(), "guide", "guide must be a LineString or MultiLineString", "",
+                               input.guide);
+    }
     core::GrowResult result = core::grow_example(geos, input, params);
+    stats = result.stats;
     std::vector<OutRow> out;
     out.reserve(result.edges.size());
     for (const core::GrownEdge& e : result.edges) {
       double xy[4] = {e.a.x, e.a.y, e.b.x, e.b.y};
-      out.push_back({e.id, e.from_node, e.to_node, e.road_class, "grow_example:" + std::to_string(e.example_id),
+      // Which example an edge came from: grow_example:<id>, with several grow_example:<k>:<id>;
+      // parametric growth (alone or as the fallback): grow_parametric.
+      std::string origin = e.example < 0       ? std::string("grow_parametric")
+                           : example_sets > 1 ? "grow_example:" + std::to_string(e.example + 1) + ":" +
+                                                     std::to_string(e.example_id)
+                                               : "grow_example:" + std::to_string(e.example_id);
+      out.push_back({e.id, e.from_node, e.to_node, e.road_class, std::move(origin),
                      core::write_ewkb_coordinates(core::WkbType::line_string, xy, 2, reg.srid)});
     }
     rows.emplace(std::move(out));
@@ -178,6 +241,11 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   pg::raise_if_failed(error);
 
   // Phase 3.
+  ereport(DEBUG1, (errmsg("grow: %zu steps, %zu coherent, %zu unmatched, %zu parametric fallback, %zu guided, "
+                          "%zu proposals, %zu accepted, %zu snapped, %zu clipped, %zu rejected, %zu reseeds, "
+                          "%zu restarts",
+                          stats.steps, stats.coherent, stats.unmatched, stats.fallback, stats.guided, stats.proposals,
+                          stats.accepted, stats.snapped, stats.clipped, stats.rejected, stats.reseeds, stats.restarts)));
   auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
   for (const OutRow& row : *rows) {
     Datum v[kColumns];

@@ -412,4 +412,20 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
   PG_RETURN_NULL();
 }
 
+PG_FUNCTION_INFO_V1(_streetgen_street_parking);
+// (lane_tags text) -> float8[2]: the roadway street parking takes left and right, m.
+Datum _streetgen_street_parking(PG_FUNCTION_ARGS) {
+  const char* lines = PG_ARGISNULL(0) ? nullptr : TextDatumGetCString(PG_GETARG_DATUM(0));
+  std::pair<double, double> widths{0.0, 0.0};
+  pg::CallError error;
+  pg::guarded_call(error, [&] {
+    core::LaneInput in;
+    in.tags = parse_lane_tags(lines);
+    widths = core::street_parking_widths(in);
+  });
+  pg::raise_if_failed(error);
+  Datum elems[2] = {Float8GetDatum(widths.first), Float8GetDatum(widths.second)};
+  PG_RETURN_ARRAYTYPE_P(construct_array(elems, 2, FLOAT8OID, 8, FLOAT8PASSBYVAL, TYPALIGN_DOUBLE));
+}
+
 }  // extern "C"

@@ -23,6 +23,7 @@ SELECT set_eq(
     ('streetgen._streetgen_version()', 'record', 'i', true),
     ('streetgen.version()', 'record', 's', false),
     ('streetgen._require_model_name(text)', 'void', 'i', false),
+    ('streetgen._require_params(jsonb,text[])', 'void', 'i', false),
     ('streetgen._require_metric_srid(integer,text)', 'void', 's', false),
     ('streetgen._lock_model_name(text)', 'void', 'v', false),
     ('streetgen.create_model(text,integer)', 'void', 'v', false),
@@ -56,6 +57,7 @@ SELECT set_eq(
     ('streetgen._store_blocks(text,geometry)', 'void', 'v', false),
     ('streetgen._scope_extent(text)', 'geometry', 'v', false),
     ('streetgen.detail_quality(text)', 'record', 's', false),
+    ('streetgen._street_parking_widths(text)', 'double precision[]', 'i', false),
     ('streetgen._compute_model(text,bigint[])', 'void', 'v', false),
     ('streetgen._store(text,boolean)', 'void', 'v', false),
     ('streetgen._lock_outputs(text)', 'void', 'v', false),
@@ -74,8 +76,20 @@ SELECT set_eq(
     ('streetgen.street_surfaces(text,jsonb)', 'SETOF record', 'v', false),
     ('streetgen.surface_quality(text)', 'record', 's', false),
     ('streetgen.lane_quality(text)', 'record', 's', false),
-    ('streetgen._streetgen_grow_example(bytea[],text[],bigint[],bytea,double precision[],double precision[],bytea[],double precision,double precision,boolean,bigint,integer,boolean,double precision,double precision,integer,bytea[])', 'SETOF record', 'i', false),
-    ('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)', 'SETOF record', 'v', false)
+    ('streetgen._streetgen_grow_example(bytea[],text[],bigint[],integer[],bytea,double precision[],double precision[],bytea[],double precision,double precision,boolean,bigint,integer,boolean,double precision,double precision,integer,bytea[],boolean,boolean,boolean,double precision,double precision,boolean,double precision,double precision,double precision,integer,integer,double precision,text,bytea,double precision,text,double precision,double precision[],double precision[],double precision)', 'SETOF record', 'i', false),
+    ('streetgen._grow(text[],geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
+    ('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
+    ('streetgen.grow_example(text[],geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
+    ('streetgen.grow_parametric(geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
+    ('streetgen.rasterise_network(text,double precision,integer,geometry)', 'raster', 'v', false),
+    ('streetgen._streetgen_raster_to_network(bytea,double precision,integer,integer,double precision,double precision,integer,double precision)', 'SETOF record', 'i', false),
+    ('streetgen.raster_to_network(raster,jsonb)', 'SETOF record', 'i', false),
+    ('streetgen._streetgen_gan_sample(bytea,integer,integer,bigint,boolean,double precision,double precision,integer)', 'bytea', 'i', false),
+    ('streetgen._streetgen_gan_generator_info(bytea)', 'record', 'i', false),
+    ('streetgen._gan_generator_check()', 'trigger', 'v', false),
+    ('streetgen.gan_load_generator(text,bytea,text,boolean)', 'record', 'v', false),
+    ('streetgen.gan_sample(bytea,integer,integer,bigint,geometry,boolean)', 'raster', 'i', false),
+    ('streetgen.gan_sample(text,integer,integer,bigint,geometry,boolean)', 'raster', 's', false)
   $$,
   'the extension ships exactly the documented functions, with these results and volatilities');
 
@@ -103,9 +117,26 @@ SELECT is(pg_temp.argument_names('streetgen.lane_quality(text)'),
 SELECT is(pg_temp.argument_names('streetgen.detail_quality(text)'),
           'model,sidewalks,crossings,blocks,invalid_geometries,sidewalk_area,sidewalk_roadway_overlap_area,sidewalk_overlap_area,crossing_outside_area,face_area,overlap_area,roadway_overlap_area,gap_area',
           'detail_quality(model) -> (sidewalks, crossings, blocks, invalid_geometries, sidewalk_area, sidewalk_roadway_overlap_area, sidewalk_overlap_area, crossing_outside_area, face_area, overlap_area, roadway_overlap_area, gap_area)');
-SELECT is(pg_temp.argument_names('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text)'),
-          'example,region,seeds,obstacles,params,existing,id,from_node,to_node,road_class,origin,geom',
-          'grow_example(example, region, seeds, obstacles, params, existing) -> (id, from_node, to_node, road_class, origin, geom)');
+SELECT is(pg_temp.argument_names('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text,geometry)'),
+          'example,region,seeds,obstacles,params,existing,guide,id,from_node,to_node,road_class,origin,geom',
+          'grow_example(example, region, seeds, obstacles, params, existing, guide) -> (id, from_node, to_node, road_class, origin, geom)');
+SELECT is(pg_temp.argument_names('streetgen.grow_example(text[],geometry,geometry,geometry,jsonb,text,geometry)'),
+          'examples,region,seeds,obstacles,params,existing,guide,id,from_node,to_node,road_class,origin,geom',
+          'grow_example(examples, region, seeds, obstacles, params, existing, guide) -> (id, from_node, to_node, road_class, origin, geom)');
+SELECT is(pg_temp.argument_names('streetgen.grow_parametric(geometry,geometry,geometry,jsonb,text,geometry)'),
+          'region,seeds,obstacles,params,existing,guide,id,from_node,to_node,road_class,origin,geom',
+          'grow_parametric(region, seeds, obstacles, params, existing, guide) -> (id, from_node, to_node, road_class, origin, geom)');
+
+SELECT is(pg_temp.argument_names('streetgen.rasterise_network(text,double precision,integer,geometry)'),
+          'edges,pixel_size,road_width_px,extent', 'rasterise_network(edges, pixel_size, road_width_px, extent)');
+SELECT is(pg_temp.argument_names('streetgen.raster_to_network(raster,jsonb)'), 'rast,params,id,from_node,to_node,geom',
+          'raster_to_network(rast, params) -> (id, from_node, to_node, geom)');
+
+SELECT is(pg_temp.argument_names('streetgen.gan_sample(text,integer,integer,bigint,geometry,boolean)'),
+          'generator,width_px,height_px,seed,upper_left,raw', 'gan_sample(generator, width_px, height_px, seed, upper_left, raw)');
+SELECT is(pg_temp.argument_names('streetgen.gan_load_generator(text,bytea,text,boolean)'),
+          'name,weights,source,replace,noise_channels,layer_count,parameter_count,metres_per_pixel,bytes',
+          'gan_load_generator(name, weights, source, replace) -> (noise_channels, layer_count, parameter_count, metres_per_pixel, bytes)');
 
 SELECT is_empty(
   'SELECT signature FROM streetgen_functions WHERE security_definer',

@@ -42,6 +42,17 @@ SELECT results_eq(
   $$SELECT roadway_width, lanes, estimated FROM streetgen.osm_axis_attributes('{"highway": "secondary", "lanes": "3"}')$$,
   $$VALUES (3 * 3.25::float8, 3::smallint, ARRAY['roadway_width', 'speed_kmh'])$$,
   'width from tagged lanes x lane width');
+-- Street parking in the roadway adds to an estimated width (by the engine's rule: parallel 2 m,
+-- perpendicular 5 m, half on the kerb half of it); a tagged width already holds it.
+SELECT results_eq(
+  $$SELECT roadway_width FROM streetgen.osm_axis_attributes('{"highway": "secondary", "lanes": "2", "parking:left": "lane",
+                                                               "parking:right": "half_on_kerb", "parking:right:orientation": "perpendicular"}')$$,
+  $$VALUES (2 * 3.25::float8 + 2.0 + 2.5)$$,
+  'street parking widens an estimated roadway');
+SELECT results_eq(
+  $$SELECT roadway_width FROM streetgen.osm_axis_attributes('{"highway": "residential", "width": "11", "parking:both": "lane"}')$$,
+  $$VALUES (11::float8)$$,
+  'a tagged width already holds the parking');
 SELECT results_eq(
   $$SELECT roadway_width, estimated FROM streetgen.osm_axis_attributes('{"highway": "tertiary", "width": "1"}')$$,
   $$VALUES (2 * 3.0::float8, ARRAY['lanes', 'roadway_width', 'speed_kmh'])$$,

@@ -90,6 +90,15 @@ SELECT is((SELECT refreshes FROM ln.refresh_state), :refreshes_before::bigint, '
 UPDATE ln.axis SET tags = tags || '{"cycleway:right": "lane"}' WHERE id = :b;
 SELECT cmp_ok((SELECT refreshes FROM ln.refresh_state), '>', :refreshes_before::bigint, 'an edit of a lane tag recomputes');
 SELECT is((SELECT type FROM ln.lane WHERE axis_id = :b ORDER BY lane_index DESC LIMIT 1), 'cycle', 'and adds its cycle lane');
+-- Street parking: a parking lane at the curb, the roadway widened on its side only (the traffic
+-- lanes stay on the axis); a parking tag edit moves the section and its junction.
+UPDATE ln.axis SET tags = tags || '{"parking:left": "lane"}' WHERE id = :a;
+SELECT is(pg_temp.layout(:a), 'parking/forward driving/forward driving/forward',
+          'parking:left=lane on the one-way: a parking lane at the left curb');
+SELECT ok((SELECT ST_Covers(geom, 'SRID=32631;POINT(-70 5.9)') AND NOT ST_Intersects(geom, 'SRID=32631;POINT(-70 -4.1)')
+             FROM ln.section WHERE axis_id = :a),
+          'the section reaches 6 m left of its axis and 4 m right (width 10, 2 m of parking on the left)');
+SELECT * FROM pg_temp.sound('after a parking edit');
 -- A geometry edit narrows a neighbour's section: its lanes follow (scoped refresh).
 SELECT pg_temp.axis('LINESTRING(10 -3, 60 -3)', 8, 2, false) AS d \gset
 SELECT * FROM pg_temp.sound('after a close parallel axis');

@@ -132,6 +132,7 @@ TEST(GrowExample, DeadEndsOfTheExampleStayDeadEnds) {
   p.seed = 3;
   p.rotation = false;  // a straight comb: the spine runs to the region's border both ways
   p.max_edges = 300;
+  p.crop_margin = 0.0;  // the teeth end on the comb's hull: real dead ends, not a crop's cuts
   GrowResult r = grow_example(f.geos, in, p);
   ASSERT_GT(r.edges.size(), 20u);
   std::map<std::int64_t, int> degree;
@@ -233,4 +234,127 @@ TEST(GrowExample, ExtendsAnExistingNetworkWithoutCrossingIt) {
     }
   }
   EXPECT_GT(touching_border, 5u);  // the growth is attached to the network around the hole
+}
+
+TEST(GrowParametric, GrowsAPlanarNetworkWithinTheParameters) {
+  Fixture f;
+  GrowInput in;
+  in.region = f.region.get();
+  in.obstacles = {f.lake.get()};
+  in.seeds = {{500.0, 500.0}};
+  GrowParams p;
+  p.parametric = true;
+  p.seed = 5;
+  p.snap = 20.0;
+  p.min_angle = 70.0;
+  GrowResult r = grow_example(f.geos, in, p);
+  ASSERT_GT(r.edges.size(), 200u);
+  std::map<std::int64_t, int> degree;
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < r.edges.size(); ++i) {
+    const GrownEdge& e = r.edges[i];
+    EXPECT_EQ(e.example, -1);
+    EXPECT_EQ(e.road_class, "main");
+    EXPECT_GE(distance(e.a, e.b), p.shape.min_length - 1e-9);
+    ++degree[e.from_node];
+    ++degree[e.to_node];
+    for (std::size_t j = i + 1; j < r.edges.size(); ++j) bad += crosses_without_node(e, r.edges[j]);
+  }
+  EXPECT_EQ(bad, 0u);
+  int max_degree = 0;
+  for (auto& [node, d] : degree) max_degree = std::max(max_degree, d);
+  EXPECT_EQ(max_degree, p.shape.max_degree);
+  GrowParams bad_shape = p;
+  bad_shape.shape.min_degree = 5;
+  EXPECT_THROW(grow_example(f.geos, in, bad_shape), Error);
+}
+
+TEST(GrowExample, BlendingFollowsTheGradient) {
+  // A fine grid (example 0) and a coarse one (example 1): the west half grows mostly from the
+  // first, the east half mostly from the second.
+  Fixture f;
+  GrowInput in = f.input();
+  in.example = grid(8, 50.0);
+  for (ExampleEdge e : grid(4, 140.0)) {
+    e.example = 1;
+    in.example.push_back(e);
+  }
+  in.seeds = {{250.0, 500.0}, {750.0, 500.0}};
+  GrowParams p;
+  p.seed = 6;
+  p.rotation = false;
+  p.max_edges = 600;
+  p.blend.mode = BlendParams::Mode::gradient;
+  GrowResult r = grow_example(f.geos, in, p);
+  ASSERT_GT(r.edges.size(), 200u);
+  double first[2] = {0, 0}, all[2] = {0, 0};
+  for (const GrownEdge& e : r.edges) {
+    if (e.example < 0) continue;
+    int half = 0.5 * (e.a.x + e.b.x) < 500.0 ? 0 : 1;
+    all[half] += 1;
+    first[half] += e.example == 0;
+  }
+  // By edges, not steps: the fine grid makes more edges per step, so its share runs above its weight.
+  EXPECT_GT(first[0] / all[0], 0.6);
+  EXPECT_LT(first[1] / all[1], 0.5);
+  EXPECT_GT(first[0] / all[0] - first[1] / all[1], 0.25);
+  GrowParams none = p;
+  none.blend.mode = BlendParams::Mode::none;
+  EXPECT_THROW(grow_example(f.geos, in, none), Error);
+}
+
+TEST(GrowExample, DeadEndsOnTheCropEdgeGrowOn) {
+  // The comb again: its teeth end on its convex hull, as streets cut by a crop do. With the
+  // default crop_margin they grow on; with 0 they stay dead ends.
+  Fixture f;
+  GrowInput in = f.input();
+  in.example.clear();
+  for (int i = 0; i < 10; ++i) {
+    in.example.push_back({{{i * 50.0, 0.0}, {(i + 1) * 50.0, 0.0}}, "street", i + 1});
+    in.example.push_back({{{i * 50.0, 0.0}, {i * 50.0, 40.0}}, "street", 100 + i});
+  }
+  auto dead_share = [&](double margin) {
+    GrowParams p;
+    p.seed = 3;
+    p.rotation = false;
+    p.max_edges = 300;
+    p.crop_margin = margin;
+    GrowResult r = grow_example(f.geos, in, p);
+    std::map<std::int64_t, int> degree;
+    for (const GrownEdge& e : r.edges) {
+      ++degree[e.from_node];
+      ++degree[e.to_node];
+    }
+    double dead = 0;
+    for (auto& [node, d] : degree) dead += d == 1;
+    return dead / static_cast<double>(degree.size());
+  };
+  EXPECT_LT(dead_share(-1.0), 0.5 * dead_share(0.0));
+}
+
+TEST(GrowExample, FillReseedsWhereTheFrontsDied) {
+  // The comb with real dead ends grows one spine and stops; with fill it starts again from new
+  // seeds until no legal point is farther than r from every edge, and stays planar.
+  Fixture f;
+  GrowInput in = f.input();
+  in.example.clear();
+  for (int i = 0; i < 10; ++i) {
+    in.example.push_back({{{i * 50.0, 0.0}, {(i + 1) * 50.0, 0.0}}, "street", i + 1});
+    in.example.push_back({{{i * 50.0, 0.0}, {i * 50.0, 40.0}}, "street", 100 + i});
+  }
+  GrowParams p;
+  p.seed = 3;
+  p.rotation = false;
+  p.crop_margin = 0.0;
+  GrowResult once = grow_example(f.geos, in, p);
+  p.fill = true;
+  GrowResult filled = grow_example(f.geos, in, p);
+  EXPECT_EQ(once.stats.reseeds, 0u);
+  EXPECT_GT(filled.stats.reseeds, 3u);
+  EXPECT_GT(filled.edges.size(), 2 * once.edges.size());
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < filled.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < filled.edges.size(); ++j) bad += crosses_without_node(filled.edges[i], filled.edges[j]);
+  }
+  EXPECT_EQ(bad, 0u);
 }

@@ -253,3 +253,147 @@ TEST(SectionLanes, CentreBoundaryFromInexactWidths) {
     EXPECT_EQ(std::count_if(markings.begin(), markings.end(), [](const MarkingResult& m) { return m.kind == "centre_line"; }), 1);
   }
 }
+
+// Street parking (Berlin's tagging): the traffic lanes stay on the axis, parking widens the
+// roadway on its side; widths by orientation, the tagged width, the old scheme, fallbacks.
+TEST(PlanLanes, StreetParkingAtTheCurbs) {
+  // Rübelandstraße, Neukölln: width 6, parking on the right only. The real curbs lie 2 m left
+  // and 4 m right of the OSM way.
+  LanePlan p = plan_lanes(input(2, false, {{"parking:left", "no"}, {"parking:right", "lane"},
+                                           {"parking:right:orientation", "parallel"}}), 6.0);
+  EXPECT_EQ(layout(p), "driving/backward driving/forward parking/forward");
+  EXPECT_DOUBLE_EQ(p.lanes[2].width, 2.0);
+  EXPECT_DOUBLE_EQ(p.lanes[0].width, 2.0);
+  EXPECT_NEAR(total_width(p), 6.0, 1e-12);
+  EXPECT_DOUBLE_EQ(p.centre_offset, -1.0);
+  EXPECT_TRUE(p.notes.empty());
+
+  // Jonasstraße: width 11, parallel on the left, perpendicular on the right: curbs 4 m and 7 m.
+  p = plan_lanes(input(2, false, {{"parking:both", "lane"}, {"parking:left:orientation", "parallel"},
+                                  {"parking:right:orientation", "perpendicular"}}), 11.0);
+  EXPECT_EQ(layout(p), "parking/backward driving/backward driving/forward parking/forward");
+  EXPECT_DOUBLE_EQ(p.centre_offset, -1.5);
+  // the left curb: the backward traffic lane and the parking lane, from the axis
+  EXPECT_DOUBLE_EQ(p.lanes[0].width + p.lanes[1].width, 4.0);
+
+  // A tagged width and half on the kerb; the old scheme; a one-way's left parking runs forward.
+  p = plan_lanes(input(1, true, {{"parking:left", "half_on_kerb"}, {"parking:left:width", "2.4"}}), 5.0);
+  EXPECT_EQ(layout(p), "parking/forward driving/forward");
+  EXPECT_DOUBLE_EQ(p.lanes[0].width, 1.2);
+  EXPECT_DOUBLE_EQ(p.centre_offset, 0.6);
+  p = plan_lanes(input(2, false, {{"parking:lane:both", "diagonal"}}), 15.0);
+  EXPECT_EQ(layout(p), "parking/backward driving/backward driving/forward parking/forward");
+  EXPECT_DOUBLE_EQ(p.lanes[0].width, 4.5);
+  EXPECT_DOUBLE_EQ(p.centre_offset, 0.0);
+  p = plan_lanes(input(2, false, {{"parking:lane:right", "parallel"}, {"parking:lane:right:parallel", "on_kerb"}}), 7.0);
+  EXPECT_EQ(layout(p), "driving/backward driving/forward");  // on the kerb: not in the roadway
+
+  // Lay-bys, separate parking and "no" take no roadway; unknown values and bad widths are noted.
+  EXPECT_EQ(plan_lanes(input(2, false, {{"parking:both", "street_side"}}), 7.0).lanes.size(), 2u);
+  p = plan_lanes(input(2, false, {{"parking:right", "sometimes"}}), 7.0);
+  EXPECT_EQ(p.lanes.size(), 2u);
+  EXPECT_TRUE(noted(p, "lane_tag_ignored"));
+  p = plan_lanes(input(2, false, {{"parking:right", "lane"}, {"parking:right:width", "wide"}}), 7.0);
+  EXPECT_DOUBLE_EQ(p.lanes.back().width, 2.0);
+  EXPECT_TRUE(noted(p, "lane_tag_ignored"));
+  // Parking that leaves no driving lane goes, and says so: the roadway is centred again.
+  p = plan_lanes(input(2, false, {{"parking:both", "lane"}, {"parking:both:orientation", "perpendicular"}}), 11.0);
+  EXPECT_EQ(layout(p), "driving/backward driving/forward");
+  EXPECT_DOUBLE_EQ(p.centre_offset, 0.0);
+  EXPECT_TRUE(noted(p, "lanes_do_not_fit"));
+}
+
+// A street with parking on one side: its section reaches 2 m left and 4 m right of the axis, the
+// junction's curb arcs start from those borders, lanes tile the shifted section, and nothing
+// overlaps.
+TEST(SectionLanes, ParkingShiftsTheRoadwayAndItsCorners) {
+  GeosContext ctx;
+  std::vector<SurfaceAxis> axes(3);
+  axes[0].id = 1;
+  axes[0].line = {{0, 0}, {50, 0}, {100, 10}};
+  axes[0].roadway_width = 6;
+  axes[0].speed_kmh = 30;
+  axes[0].lane_input = input(2, false, {{"parking:right", "lane"}});
+  axes[1].id = 2;
+  axes[1].line = {{100, 10}, {100, 70}};
+  axes[1].roadway_width = 7;
+  axes[1].speed_kmh = 30;
+  axes[2].id = 3;
+  axes[2].line = {{100, 10}, {100, -50}};
+  axes[2].roadway_width = 7;
+  axes[2].speed_kmh = 30;
+  SurfaceResult r = street_surfaces(ctx, axes, {}, SurfaceSettings{});
+  const SectionResult* sec = nullptr;
+  for (const SectionResult& s : r.sections) {
+    if (s.axis_id == 1) sec = &s;
+  }
+  ASSERT_TRUE(sec && sec->surface);
+  // Probe across the straight first segment at x = 20: inside from y = -4 to y = 2.
+  auto inside = [&](Point p) {
+    GeomPtr pt = own(ctx, GEOSGeom_createPointFromXY_r(ctx.handle(), p.x, p.y), "point");
+    return GEOSContains_r(ctx.handle(), sec->surface.get(), pt.get()) == 1;
+  };
+  EXPECT_TRUE(inside({20, 1.9}));
+  EXPECT_FALSE(inside({20, 2.1}));
+  EXPECT_TRUE(inside({20, -3.9}));
+  EXPECT_FALSE(inside({20, -4.1}));
+  // The lanes: driving 2 + 2, parking 2 on the right, tiling the section.
+  std::vector<const LaneResult*> lanes;
+  double sum = 0.0;
+  for (const LaneResult& l : r.lanes) {
+    if (l.axis_id != 1) continue;
+    lanes.push_back(&l);
+    sum += area(ctx, l.surface.get());
+  }
+  ASSERT_EQ(lanes.size(), 3u);
+  EXPECT_EQ(lanes[2]->spec.type, "parking");
+  EXPECT_NEAR(sum, area(ctx, sec->surface.get()), 1e-6 * area(ctx, sec->surface.get()));
+  // The T junction: valid, built from its arcs (not the fallback), overlapping no section.
+  ASSERT_EQ(r.intersections.size(), 1u);
+  const IntersectionResult& ir = r.intersections[0];
+  EXPECT_EQ(GEOSisValid_r(ctx.handle(), ir.surface.get()), 1);
+  EXPECT_EQ(ir.status, "ok");
+  for (const SectionResult& s : r.sections) {
+    if (!s.surface) continue;
+    GeomPtr o = own(ctx, GEOSIntersection_r(ctx.handle(), ir.surface.get(), s.surface.get()), "overlap");
+    EXPECT_LT(area(ctx, o.get()), 1e-6) << "section of axis " << s.axis_id;
+  }
+  // The two corners beside axis 1 keep its sides: the arc on its right (south, towards axis 3)
+  // starts 4 m from the axis, the one on its left 2 m.
+  int checked = 0;
+  for (const CornerResult& c : r.corners) {
+    if (c.radius <= 0.0) continue;
+    for (int k = 0; k < 2; ++k) {
+      const EdgeEnd& e = k == 0 ? c.a : c.b;
+      if (e.axis_id != 1) continue;
+      Point touch = k == 0 ? c.arc.front() : c.arc.back();
+      double off = signed_offset(axes[0].line, touch);
+      EXPECT_NEAR(std::abs(off), off > 0 ? 2.0 : 4.0, 0.05) << "corner " << c.a.axis_id << "-" << c.b.axis_id;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 2);
+}
+
+// OSM `placement`: where the way runs across its lanes (counted as `lanes` counts them).
+TEST(PlanLanes, PlacementSaysWhereTheWayRuns) {
+  // A one-way of three 3 m lanes drawn along the right edge of its first lane (Fremantle).
+  LanePlan p = plan_lanes(input(3, true, {{"placement", "right_of:1"}}), 9.0);
+  EXPECT_DOUBLE_EQ(p.centre_offset, 3.0 - 4.5);  // 3 m of roadway on its left, 6 m on its right
+  EXPECT_TRUE(p.notes.empty());
+  p = plan_lanes(input(3, true, {{"placement", "left_of:1"}}), 9.0);
+  EXPECT_DOUBLE_EQ(p.centre_offset, -4.5);
+  p = plan_lanes(input(3, true, {{"placement", "middle_of:2"}}), 9.0);
+  EXPECT_DOUBLE_EQ(p.centre_offset, 0.0);
+  // A cycle lane at the left curb is not counted, but its width lies left of lane 1.
+  p = plan_lanes(input(2, true, {{"placement", "left_of:1"}, {"cycleway:left", "lane"}}), 7.5);
+  EXPECT_EQ(layout(p), "cycle/forward driving/forward driving/forward");
+  EXPECT_DOUBLE_EQ(p.centre_offset, 1.5 - 3.75);
+  // transition: the default; a lane that does not exist or junk: noted and the default.
+  EXPECT_DOUBLE_EQ(plan_lanes(input(3, true, {{"placement", "transition"}}), 9.0).centre_offset, 0.0);
+  p = plan_lanes(input(2, true, {{"placement", "right_of:4"}}), 6.0);
+  EXPECT_DOUBLE_EQ(p.centre_offset, 0.0);
+  EXPECT_TRUE(noted(p, "lane_tag_ignored"));
+  p = plan_lanes(input(2, true, {{"placement", "centre"}}), 6.0);
+  EXPECT_TRUE(noted(p, "lane_tag_ignored"));
+}

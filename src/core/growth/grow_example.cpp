@@ -102,6 +102,37 @@ struct ExNode {
   std::vector<ExHalf> halves;
 };
 
+// One example network, read as a planar graph of straight segments.
+struct Example {
+  std::vector<ExNode> nodes;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> segments;
+  std::vector<std::vector<std::uint32_t>> pools;  // pools[d]: nodes with more than d edges
+  std::vector<double> more;  // more[d]: P(degree > d | degree >= d)
+  std::size_t max_degree = 0;
+  BoxTree tree;
+  double total_length = 0.0;
+  double orientation = 0.0;  // radians in [0, pi): the length-weighted dominant street direction
+  std::vector<double> inside;  // per node: distance to the example's convex hull boundary (the crop's edge)
+};
+
+// Convex hull (Andrew's monotone chain), counter-clockwise, without repeating the first point.
+std::vector<Point> convex_hull(std::vector<Point> pts) {
+  std::sort(pts.begin(), pts.end(), [](Point a, Point b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  if (pts.size() < 3) return pts;
+  std::vector<Point> h(2 * pts.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    while (k >= 2 && cross(h[k - 1] - h[k - 2], pts[i] - h[k - 2]) <= 0) --k;
+    h[k++] = pts[i];
+  }
+  for (std::size_t i = pts.size() - 1, t = k + 1; i > 0; --i) {
+    while (k >= t && cross(h[k - 1] - h[k - 2], pts[i - 1] - h[k - 2]) <= 0) --k;
+    h[k++] = pts[i - 1];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
 struct Match {
   std::uint32_t node;
   double theta;
@@ -116,6 +147,7 @@ struct OEdge {
   std::uint32_t a, b;
   int level;  // -1: an edge of the existing network (matches any level, never emitted)
   std::int64_t example_id;
+  int source;  // the example it was copied from; -1: grown parametrically
 };
 
 class GeosLine {  // a reusable two-point GEOS LineString for the region/obstacle predicates
@@ -158,11 +190,21 @@ class Grower {
   Grower(GeosContext& geos, const GrowInput& input, const GrowParams& params)
       : geos_(geos), params_(params), rng_(params.seed), line_(geos) {
     check_params();
-    build_example(input.example);
+    if (params.parametric) {
+      shape_ = params.shape;
+      mean_length_ = shape_.length;
+      level_of(shape_.road_class);
+      max_degree_ = static_cast<std::size_t>(shape_.max_degree);
+    } else {
+      build_examples(input.example);
+    }
     prepare_legal_area(input);
+    prepare_guide(input.guide);
     radius_ = params.radius > 0.0 ? params.radius : 3.0 * mean_length_;
     snap_ = params.snap > 0.0 ? params.snap : 0.45 * mean_length_;
-    min_length_ = 0.15 * mean_length_;
+    min_length_ = params.parametric ? shape_.min_length : 0.15 * mean_length_;
+    if (!params.parametric) derive_shape();
+    crop_margin_ = params.crop_margin >= 0.0 ? params.crop_margin : mean_length_;
     epsilon_ = params.epsilon * kPi / 180.0;
     min_angle_ = params.min_angle * kPi / 180.0;
     existing_ = &input.existing;
@@ -176,6 +218,13 @@ class Grower {
     // segments crowds itself out) starts again from the seeds with the next random draws.
     for (int restart = 0;; ++restart) {
       grow();
+      // A growth whose fronts all died before the region was covered starts again from a random
+      // legal point farther than r from every edge (as a new seed), until none is found.
+      for (int reseeds = 0; params_.fill && new_edges_ >= kMinGrowth && new_edges_ < params_.max_edges &&
+                            reseeds < kMaxReseeds && reseed();
+           ++reseeds) {
+        grow();
+      }
       if (new_edges_ >= std::min<std::size_t>(kMinGrowth, params_.max_edges) || restart == kRestarts) break;
       ++stats_.restarts;
       nodes_.clear();
@@ -184,6 +233,9 @@ class Grower {
       unfinished_.clear();
       edge_tree_.clear();
       node_tree_.clear();
+      target_degree_.clear();
+      frames_.clear();
+      copied_from_.clear();
       new_edges_ = 0;
       load_existing();
       place_seeds();
@@ -194,6 +246,28 @@ class Grower {
  private:
   static constexpr std::size_t kMinGrowth = 20;
   static constexpr int kRestarts = 5;
+  static constexpr int kMaxReseeds = 200;
+
+  bool reseed() {
+    GEOSContextHandle_t h = geos_.handle();
+    for (int t = 0; t < 64; ++t) {
+      Point q{env_min_.x + uniform01() * (env_max_.x - env_min_.x), env_min_.y + uniform01() * (env_max_.y - env_min_.y)};
+      if (crowded(q, radius_, UINT32_MAX)) continue;
+      GeomPtr g = own(geos_, GEOSGeom_createPointFromXY_r(h, q.x, q.y), "reseed point");
+      char inside = GEOSPreparedContains_r(h, region_.get(), g.get());
+      if (inside == 2) geos_.fail("reseed in region");
+      if (inside == 0) continue;
+      if (obstacles_prepared_) {
+        char hit = GEOSPreparedIntersects_r(h, obstacles_prepared_.get(), g.get());
+        if (hit == 2) geos_.fail("reseed in obstacle");
+        if (hit == 1) continue;
+      }
+      ++stats_.reseeds;
+      unfinished_.push_back(add_node(q));
+      return true;
+    }
+    return false;
+  }
 
   void grow() {
     while (!unfinished_.empty() && new_edges_ < params_.max_edges) {
@@ -203,7 +277,9 @@ class Grower {
       unfinished_[pick] = unfinished_.back();
       unfinished_.pop_back();
       std::size_t before = stats_.accepted;
+      done_ = false;
       step(v);
+      if (done_) continue;
       // A front whose random candidates all failed gets a few more draws before it is left as a
       // dead end (a growth that stops after its first edges is the common failure otherwise).
       if (stats_.accepted == before) {
@@ -232,6 +308,7 @@ class Grower {
       g.to_node = e.b + 1;
       g.road_class = level_names_[e.level];
       g.example_id = e.example_id;
+      g.example = e.source;
       g.a = nodes_[e.a].p;
       g.b = nodes_[e.b].p;
       out.edges.push_back(std::move(g));
@@ -260,63 +337,198 @@ class Grower {
     }
     if (params_.max_edges == 0) throw_invalid_argument("max_edges must be > 0");
     if (params_.candidates == 0) throw_invalid_argument("candidates must be > 0");
+    if (!(params_.coherence >= 0.0 && params_.coherence <= 1.0)) {
+      throw_invalid_argument("coherence must be in [0, 1]", "It is " + std::to_string(params_.coherence) + ".");
+    }
+    if (std::isnan(params_.crop_margin) || params_.crop_margin == INFINITY) {
+      throw_invalid_argument("crop_margin must be a finite number >= 0");
+    }
+    if (!std::isfinite(params_.guide_reach) || params_.guide_reach < 0.0) {
+      throw_invalid_argument("guide_reach must be a finite number > 0",
+                             "It is " + std::to_string(params_.guide_reach) + " m.");
+    }
+    if (params_.parametric) check_shape(params_.shape);
+    const BlendParams& b = params_.blend;
+    if (!std::isfinite(b.angle)) throw_invalid_argument("blend_angle must be a finite number of degrees");
+    if (!std::isfinite(b.sigma) || b.sigma < 0.0) {
+      throw_invalid_argument("blend_sigma must be a finite number > 0", "It is " + std::to_string(b.sigma) + " m.");
+    }
+    for (Point q : b.points) {
+      if (!std::isfinite(q.x) || !std::isfinite(q.y)) throw_invalid_argument("blend_points hold a non-finite coordinate");
+    }
   }
 
-  void build_example(const std::vector<ExampleEdge>& example) {
+  static void check_shape(const ParametricParams& s) {
+    auto finite = [](double v) { return std::isfinite(v); };
+    if (!finite(s.length) || s.length <= 0.0) {
+      throw_invalid_argument("length must be a finite number > 0", "It is " + std::to_string(s.length) + " m.");
+    }
+    if (!finite(s.length_deviation) || s.length_deviation < 0.0 || s.length_deviation >= s.length) {
+      throw_invalid_argument("length_deviation must be in [0, length)",
+                             "It is " + std::to_string(s.length_deviation) + " m; length is " +
+                                 std::to_string(s.length) + " m.");
+    }
+    if (!finite(s.min_length) || s.min_length <= 0.0 || s.min_length > s.length) {
+      throw_invalid_argument("min_length must be in (0, length]",
+                             "It is " + std::to_string(s.min_length) + " m; length is " + std::to_string(s.length) +
+                                 " m.");
+    }
+    if (s.min_degree < 1 || s.max_degree < s.min_degree || s.max_degree > 8) {
+      throw_invalid_argument("degree range must satisfy 1 <= min_degree <= max_degree <= 8",
+                             "It is [" + std::to_string(s.min_degree) + ", " + std::to_string(s.max_degree) + "].");
+    }
+    if (!finite(s.angle_deviation) || s.angle_deviation < 0.0 || s.angle_deviation >= 90.0) {
+      throw_invalid_argument("angle_deviation must be in [0, 90) degrees",
+                             "It is " + std::to_string(s.angle_deviation) + ".");
+    }
+  }
+
+  void build_examples(const std::vector<ExampleEdge>& example) {
     if (example.empty()) {
       throw_invalid_argument("example has no edges", "The example query returned no LineString.",
                              "Pass a query (or model) whose rows hold the example's road edges.");
     }
+    int count = 0;
+    for (const ExampleEdge& edge : example) {
+      if (edge.example < 0) throw_invalid_argument("example index must be >= 0");
+      count = std::max(count, edge.example + 1);
+    }
+    examples_.clear();
+    examples_.resize(static_cast<std::size_t>(count));
+    if (count > 1 && params_.blend.mode == BlendParams::Mode::none) {
+      throw_invalid_argument("several examples need a blend", "There are " + std::to_string(count) + " examples.",
+                             "Set params blend to 'gradient' or 'points'.");
+    }
+    if (params_.blend.mode == BlendParams::Mode::points && params_.blend.points.size() != examples_.size()) {
+      throw_invalid_argument("blend_points must hold one point per example",
+                             "There are " + std::to_string(params_.blend.points.size()) + " points and " +
+                                 std::to_string(count) + " examples.");
+    }
     // Shape points and junctions closer than a millimetre are one node.
-    std::unordered_map<MillimetreKey, std::uint32_t, MillimetreKeyHash> index;
-    auto node_of = [&](Point p) {
-      std::pair<std::int64_t, std::int64_t> key{std::llround(p.x * 1000.0), std::llround(p.y * 1000.0)};
-      auto [it, added] = index.emplace(key, static_cast<std::uint32_t>(ex_nodes_.size()));
-      if (added) ex_nodes_.push_back({p, {}});
-      return it->second;
-    };
-    std::unordered_set<std::uint64_t> seen;
-    std::vector<BoxValue> boxes;
-    double total = 0.0;
+    std::vector<std::unordered_map<MillimetreKey, std::uint32_t, MillimetreKeyHash>> index(examples_.size());
+    std::vector<std::unordered_set<std::uint64_t>> seen(examples_.size());
+    std::vector<std::vector<BoxValue>> boxes(examples_.size());
     InterruptPoller poller(1024);
     for (const ExampleEdge& edge : example) {
       poller.tick();
+      Example& ex = examples_[static_cast<std::size_t>(edge.example)];
+      auto node_of = [&](Point p) {
+        std::pair<std::int64_t, std::int64_t> key{std::llround(p.x * 1000.0), std::llround(p.y * 1000.0)};
+        auto [it, added] = index[edge.example].emplace(key, static_cast<std::uint32_t>(ex.nodes.size()));
+        if (added) ex.nodes.push_back({p, {}});
+        return it->second;
+      };
       int level = level_of(edge.road_class);
       for (std::size_t i = 0; i + 1 < edge.line.size(); ++i) {
         std::uint32_t a = node_of(edge.line[i]), b = node_of(edge.line[i + 1]);
         if (a == b) continue;
         std::uint64_t key = (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
-        if (!seen.insert(key).second) continue;  // a two-way street mapped twice
-        Point pa = ex_nodes_[a].p, pb = ex_nodes_[b].p;
+        if (!seen[edge.example].insert(key).second) continue;  // a two-way street mapped twice
+        Point pa = ex.nodes[a].p, pb = ex.nodes[b].p;
         double len = distance(pa, pb);
-        ex_nodes_[a].halves.push_back({std::atan2(pb.y - pa.y, pb.x - pa.x), len, b, level, edge.id});
-        ex_nodes_[b].halves.push_back({std::atan2(pa.y - pb.y, pa.x - pb.x), len, a, level, edge.id});
-        boxes.emplace_back(box_of(pa, pb), static_cast<std::uint32_t>(ex_segments_.size()));
-        ex_segments_.push_back({a, b});
-        total += len;
+        ex.nodes[a].halves.push_back({std::atan2(pb.y - pa.y, pb.x - pa.x), len, b, level, edge.id});
+        ex.nodes[b].halves.push_back({std::atan2(pa.y - pb.y, pa.x - pb.x), len, a, level, edge.id});
+        boxes[edge.example].emplace_back(box_of(pa, pb), static_cast<std::uint32_t>(ex.segments.size()));
+        ex.segments.push_back({a, b});
+        ex.total_length += len;
       }
     }
-    if (ex_segments_.empty()) {
-      throw_invalid_argument("example has fewer than two distinct nodes",
-                             "Every example edge starts and ends at the same point (within 1 mm).");
+    double total = 0.0;
+    std::size_t segments = 0;
+    max_degree_ = 3;
+    for (std::size_t k = 0; k < examples_.size(); ++k) {
+      Example& ex = examples_[k];
+      std::string which = examples_.size() > 1 ? "example " + std::to_string(k + 1) : "example";
+      if (ex.segments.empty() && ex.nodes.empty()) throw_invalid_argument(which + " has no edges");
+      if (ex.segments.empty()) {
+        throw_invalid_argument(which + " has fewer than two distinct nodes",
+                               "Every example edge starts and ends at the same point (within 1 mm).");
+      }
+      total += ex.total_length;
+      segments += ex.segments.size();
+      ex.tree = BoxTree(boxes[k].begin(), boxes[k].end());  // bulk-loaded once
+      // Pools of example nodes by degree: a node of degree d is matched against nodes of degree > d.
+      std::size_t max_degree = 0;
+      for (const ExNode& n : ex.nodes) max_degree = std::max(max_degree, n.halves.size());
+      ex.max_degree = max_degree;
+      // P(degree > d | degree >= d) in the example: how often a node that has d edges gets one more.
+      std::vector<double> at_least(max_degree + 2, 0.0);
+      for (const ExNode& n : ex.nodes) {
+        for (std::size_t d = 0; d <= n.halves.size(); ++d) at_least[d] += 1.0;
+      }
+      ex.more.assign(max_degree + 2, 0.0);
+      for (std::size_t d = 0; d + 1 < at_least.size(); ++d) ex.more[d] = at_least[d] > 0 ? at_least[d + 1] / at_least[d] : 0.0;
+      max_degree_ = std::max(max_degree_, max_degree);  // snapping never makes a node busier than the examples'
+      ex.pools.assign(max_degree + 2, {});
+      for (std::uint32_t i = 0; i < ex.nodes.size(); ++i) {
+        for (std::size_t d = 0; d < ex.nodes[i].halves.size(); ++d) ex.pools[d].push_back(i);
+      }
+      ex.orientation = dominant_orientation(ex);
     }
-    mean_length_ = total / static_cast<double>(ex_segments_.size());
-    ex_tree_ = BoxTree(boxes.begin(), boxes.end());  // bulk-loaded once
-    // Pools of example nodes by degree: a node of degree d is matched against nodes of degree > d.
-    std::size_t max_degree = 0;
-    for (const ExNode& n : ex_nodes_) max_degree = std::max(max_degree, n.halves.size());
-    // P(degree > d | degree >= d) in the example: how often a node that has d edges gets one more.
-    std::vector<double> at_least(max_degree + 2, 0.0);
-    for (const ExNode& n : ex_nodes_) {
-      for (std::size_t d = 0; d <= n.halves.size(); ++d) at_least[d] += 1.0;
+    // One scale for snapping and clipping: the examples' pooled mean segment length.
+    mean_length_ = total / static_cast<double>(segments);
+    // The example is a crop: its nodes near the crop's edge have lost streets. A coherent copy
+    // (copied_from_) only continues from nodes farther than 3 mean segments inside the hull, and
+    // a dead end within crop_margin of it is taken for a street the crop cut.
+    for (Example& ex : examples_) {
+      std::vector<Point> pts;
+      pts.reserve(ex.nodes.size());
+      for (const ExNode& n : ex.nodes) pts.push_back(n.p);
+      std::vector<Point> hull = convex_hull(std::move(pts));
+      ex.inside.assign(ex.nodes.size(), 0.0);
+      if (hull.size() < 3) continue;
+      for (std::size_t i = 0; i < ex.nodes.size(); ++i) {
+        double d = INFINITY;
+        for (std::size_t j = 0; j < hull.size(); ++j) {
+          d = std::min(d, point_segment_distance(ex.nodes[i].p, hull[j], hull[(j + 1) % hull.size()]));
+        }
+        ex.inside[i] = d;
+      }
     }
-    more_.assign(max_degree + 2, 0.0);
-    for (std::size_t d = 0; d + 1 < at_least.size(); ++d) more_[d] = at_least[d] > 0 ? at_least[d + 1] / at_least[d] : 0.0;
-    max_degree_ = std::max<std::size_t>(max_degree, 3);  // snapping never makes a node busier than the example's
-    pools_.assign(max_degree + 2, {});
-    for (std::uint32_t i = 0; i < ex_nodes_.size(); ++i) {
-      for (std::size_t d = 0; d < ex_nodes_[i].halves.size(); ++d) pools_[d].push_back(i);
+  }
+
+  // The length-weighted mode of the segment directions (undirected, 1° bins smoothed over ±5°):
+  // the example direction a guide's tangent is aligned with.
+  static double dominant_orientation(const Example& ex) {
+    constexpr int kBins = 180;
+    std::vector<double> hist(kBins, 0.0);
+    for (const auto& [a, b] : ex.segments) {
+      Point d = ex.nodes[b].p - ex.nodes[a].p;
+      double angle = std::atan2(d.y, d.x);
+      if (angle < 0) angle += kPi;
+      int bin = std::min(kBins - 1, static_cast<int>(angle / kPi * kBins));
+      hist[bin] += norm(d);
     }
+    int best = 0;
+    double best_weight = -1.0;
+    for (int i = 0; i < kBins; ++i) {
+      double w = 0.0;
+      for (int j = -5; j <= 5; ++j) w += hist[(i + j + kBins) % kBins];
+      if (w > best_weight) {
+        best_weight = w;
+        best = i;
+      }
+    }
+    return (best + 0.5) * kPi / kBins;
+  }
+
+  // The fallback's parameters, from the example: its segment lengths and its busiest node.
+  void derive_shape() {
+    double sum2 = 0.0;
+    std::size_t n = 0;
+    for (const Example& ex : examples_) {
+      for (const auto& [a, b] : ex.segments) {
+        double d = distance(ex.nodes[a].p, ex.nodes[b].p) - mean_length_;
+        sum2 += d * d;
+        ++n;
+      }
+    }
+    shape_.length = mean_length_;
+    shape_.length_deviation = std::min(0.5 * mean_length_, std::sqrt(sum2 / static_cast<double>(std::max<std::size_t>(n, 1))));
+    shape_.min_length = min_length_;
+    shape_.min_degree = 2;
+    shape_.max_degree = static_cast<int>(std::min<std::size_t>(max_degree_, 8));
+    shape_.angle_deviation = 10.0;
   }
 
   int level_of(const std::string& name) {
@@ -348,6 +560,14 @@ class Grower {
     double area = 0.0;
     if (GEOSArea_r(h, input.region, &area) == 0) geos_.fail("area");
     if (!(area > 0.0)) throw_invalid_argument("region has zero area");
+    region_geom_ = input.region;
+    {
+      GeomPtr env = own(geos_, GEOSEnvelope_r(h, input.region), "region envelope");
+      if (GEOSGeom_getXMin_r(h, env.get(), &env_min_.x) == 0 || GEOSGeom_getYMin_r(h, env.get(), &env_min_.y) == 0 ||
+          GEOSGeom_getXMax_r(h, env.get(), &env_max_.x) == 0 || GEOSGeom_getYMax_r(h, env.get(), &env_max_.y) == 0) {
+        geos_.fail("region extent");
+      }
+    }
     region_ = PreparedPtr(GEOSPrepare_r(h, input.region), PreparedDeleter{h});
     if (!region_) geos_.fail("prepare region");
     if (!input.obstacles.empty()) {
@@ -397,7 +617,7 @@ class Grower {
       poller.tick();
       for (std::size_t i = 0; i + 1 < line.size(); ++i) {
         std::uint32_t a = node_of(line[i]), b = node_of(line[i + 1]);
-        if (a != b && !has_edge(a, b)) add_edge(a, b, -1, 0);
+        if (a != b && !has_edge(a, b)) add_edge(a, b, -1, 0, -1);
       }
     }
   }
@@ -461,13 +681,15 @@ class Grower {
     auto id = static_cast<std::uint32_t>(nodes_.size());
     nodes_.push_back({p, {}});
     attempts_.push_back(0);
+    frames_.push_back(NAN);
+    copied_from_.push_back({-1, 0});
     node_tree_.insert(PointValue(BPoint(p.x, p.y), id));
     return id;
   }
-  void add_edge(std::uint32_t a, std::uint32_t b, int level, std::int64_t example_id) {
+  void add_edge(std::uint32_t a, std::uint32_t b, int level, std::int64_t example_id, int source) {
     auto id = static_cast<std::uint32_t>(edges_.size());
     if (level >= 0) ++new_edges_;
-    edges_.push_back({a, b, level, example_id});
+    edges_.push_back({a, b, level, example_id, source});
     nodes_[a].edges.push_back(id);
     nodes_[b].edges.push_back(id);
     edge_tree_.insert(BoxValue(box_of(nodes_[a].p, nodes_[b].p), id));
@@ -482,7 +704,7 @@ class Grower {
     edges_[e].b = m;
     nodes_[m].edges.push_back(e);
     edge_tree_.insert(BoxValue(box_of(nodes_[old.a].p, x), e));
-    add_edge(m, old.b, old.level, old.example_id);
+    add_edge(m, old.b, old.level, old.example_id, old.source);
     return m;
   }
   Point other_end(std::uint32_t e, std::uint32_t v) const {
@@ -573,47 +795,268 @@ class Grower {
     }
     // A seed that an edge has come to pass closely would start a T without a node: leave it.
     if (incident.empty() && crowded(p, min_length_, v)) return;
-    std::vector<Match> candidates = node_matches(incident);
-    if (candidates.empty()) {
-      ++stats_.unmatched;
+    const double guide = guide_angle(p);
+    if (params_.parametric) {
+      parametric_step(v, 0, guide);
       return;
     }
-    const Match& best = candidates[best_match(v, candidates)];
-    const ExNode& s = ex_nodes_[best.node];
+    choose_example(p);
+    // A node keeps the frame (θ) of the match that made it, so a growth keeps one orientation the
+    // way its example does; only where that frame finds no match is θ free again.
+    const double frame = params_.keep_frame ? node_frame(v) : NAN;
+    std::vector<Match> candidates;
+    Match coherent;
+    coherent_found_ = std::isnan(guide) && !incident.empty() && params_.coherence > 0.0 &&
+                      (params_.coherence >= 1.0 || uniform01() < params_.coherence) &&
+                      coherent_match(v, incident, coherent);
+    if (coherent_found_) {
+      candidates.push_back(std::move(coherent));
+    } else {
+      candidates = node_matches(incident, guide, frame);
+    }
+    if (candidates.empty() && !std::isnan(frame)) candidates = node_matches(incident, guide, NAN);
+
+    if (candidates.empty()) {
+      ++stats_.unmatched;
+      if (params_.fallback) {
+        ++stats_.fallback;
+        int level = 0;
+        for (const auto& [angle, l] : incident) {
+          if (l >= 0) {
+            level = l;
+            break;
+          }
+        }
+        parametric_step(v, level, guide);
+      }
+      return;
+    }
+    const Match& best = candidates[coherent_found_ ? 0 : best_match(v, candidates)];
+    step_frame_ = best.theta;
+    const ExNode& s = ex().nodes[best.node];
     for (std::size_t k = 0; k < s.halves.size(); ++k) {
       if (best.used[k]) continue;
       if (new_edges_ >= params_.max_edges) return;
       const ExHalf& half = s.halves[k];
-      bool dead_end = ex_nodes_[half.to].halves.size() == 1;
-      propose(v, wrap(half.angle + best.theta), half.length, dead_end, half.level, half.example_id);
+      // A dead end near the crop's edge is most likely a street the crop cut: it grows on.
+      bool dead_end = ex().nodes[half.to].halves.size() == 1 && (crop_margin_ <= 0.0 || ex().inside[half.to] > crop_margin_);
+      step_copy_ = {static_cast<int>(cur_), half.to};
+      propose(v, wrap(half.angle + best.theta), half.length, dead_end, half.level, half.example_id,
+              static_cast<int>(cur_));
+    }
+  }
+
+  // Teng & Bidarra's parametric growth at v: see ParametricParams. A node that already has its
+  // target degree is finished on purpose (not a failed front).
+  void parametric_step(std::uint32_t v, int level, double guide) {
+    const ParametricParams& sh = shape_;
+    if (target_degree_.size() < nodes_.size()) target_degree_.resize(nodes_.size(), 0);
+    if (target_degree_[v] == 0) {
+      target_degree_[v] = static_cast<std::uint8_t>(sh.min_degree + static_cast<int>(uniform(sh.max_degree - sh.min_degree + 1)));
+    }
+    step_frame_ = frames_[v];
+    step_copy_ = {-1, 0};
+    const std::size_t d = nodes_[v].edges.size();
+    if (d >= target_degree_[v]) {
+      done_ = true;
+      return;
+    }
+    const Point p = nodes_[v].p;
+    std::vector<double> incident;
+    for (std::uint32_t e : nodes_[v].edges) {
+      Point q = other_end(e, v);
+      incident.push_back(std::atan2(q.y - p.y, q.x - p.x));
+    }
+    // The lattice follows the guide; with rotation off, the axes (the example's frame for the
+    // fallback, whose turns are then not perturbed either, so a grid stays a grid); else v's first
+    // street, or a random direction at a seed.
+    double base;
+    double dev = sh.angle_deviation * kPi / 180.0;
+    if (!std::isnan(guide)) {
+      base = guide;
+    } else if (!params_.rotation) {
+      base = 0.0;
+      if (!params_.parametric) dev = 0.0;
+    } else if (!incident.empty()) {
+      base = incident[0];
+    } else {
+      base = uniform01() * 2.0 * kPi;
+    }
+    const int k = std::max(4, static_cast<int>(target_degree_[v]));
+    const double spacing = 2.0 * kPi / k;
+    // Straight on (opposite a street of v) first, then the other lattice directions in random order.
+    std::vector<std::pair<double, double>> dirs;  // priority, angle
+    for (int j = 0; j < k; ++j) {
+      double a = wrap(base + j * spacing);
+      double priority = 1.0 + uniform01();
+      for (double b : incident) {
+        if (std::abs(wrap(a - b - kPi)) < 0.5 * spacing) priority = 0.0;
+      }
+      dirs.emplace_back(priority, a);
+    }
+    std::sort(dirs.begin(), dirs.end());
+    std::size_t made = 0;
+    for (const auto& [priority, a] : dirs) {
+      if (d + made >= target_degree_[v] || new_edges_ >= params_.max_edges) break;
+      double angle = wrap(a + (uniform01() * 2.0 - 1.0) * dev);
+      double length = std::max(sh.min_length, sh.length + (uniform01() * 2.0 - 1.0) * sh.length_deviation);
+      std::size_t before = stats_.accepted;
+      propose(v, angle, length, false, level, 0, -1);
+      made += stats_.accepted > before;
+    }
+  }
+
+  // Blending: the example of this step, drawn with the selection function's weights at p.
+  void choose_example(Point p) {
+    cur_ = 0;
+    const std::size_t n = examples_.size();
+    if (n < 2) return;
+    std::vector<double> w(n, 0.0);
+    const BlendParams& b = params_.blend;
+    if (b.mode == BlendParams::Mode::gradient) {
+      const double a = b.angle * kPi / 180.0;
+      double u = (p.x * std::cos(a) + p.y * std::sin(a) - blend_min_) / std::max(blend_max_ - blend_min_, 1e-9);
+      double t = std::clamp(u, 0.0, 1.0) * static_cast<double>(n - 1);
+      for (std::size_t i = 0; i < n; ++i) w[i] = std::max(0.0, 1.0 - std::abs(t - static_cast<double>(i)));
+    } else {
+      std::size_t nearest = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        double dist = distance(p, b.points[i]);
+        w[i] = std::exp(-dist * dist / (2.0 * blend_sigma_ * blend_sigma_));
+        if (dist < distance(p, b.points[nearest])) nearest = i;
+      }
+      double sum = 0.0;
+      for (double x : w) sum += x;
+      if (!(sum > 0.0)) w[nearest] = 1.0;  // far from every point: the nearest one's example
+    }
+    double sum = 0.0;
+    for (double x : w) sum += x;
+    double r = uniform01() * sum;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (w[i] <= 0.0) continue;
+      cur_ = i;
+      if (r < w[i]) return;
+      r -= w[i];
     }
   }
 
   // Node matching: example nodes whose incident edges cover v's under a rotation within epsilon.
   // Up to `candidates` matches, drawn at random from the example (bounded work per step).
-  std::vector<Match> node_matches(const std::vector<std::pair<double, int>>& incident) {
+  // With a guide at v, or rotation off, θ is fixed (the guide's tangent minus the example's
+  // dominant direction, either way round; 0) instead of taken from the match.
+  // Example node sid under the fixed rotation theta covers v's edges (each within epsilon, one to
+  // one, same level): the match, else an empty `used`.
+  Match fixed_match(const std::vector<std::pair<double, int>>& incident, std::uint32_t sid, double theta) const {
+    const std::vector<ExHalf>& hs = examples_[cur_].nodes[sid].halves;
+    Match m{sid, theta, std::vector<char>(hs.size(), 0)};
+    for (const auto& [angle, level] : incident) {
+      std::size_t best = SIZE_MAX;
+      double best_gamma = 0.0;
+      for (std::size_t k = 0; k < hs.size(); ++k) {
+        if (m.used[k] || (params_.match_levels && level >= 0 && hs[k].level != level)) continue;
+        double gamma = wrap(hs[k].angle + theta - angle);
+        if (best == SIZE_MAX || std::abs(gamma) < std::abs(best_gamma)) {
+          best = k;
+          best_gamma = gamma;
+        }
+      }
+      if (best == SIZE_MAX || std::abs(best_gamma) > epsilon_) return {sid, theta, {}};
+      m.used[best] = 1;
+    }
+    return m;
+  }
+
+  // Coherent candidates (k-coherence, as in texture synthesis): the example node v was copied to,
+  // then where each nearby node's copy puts v in the example (its example node plus v's offset,
+  // rotated back by its θ), nearest first. The first that matches under its θ is taken; only
+  // example nodes more than 3 mean segments inside the example's hull, so the crop's edge is not
+  // continued.
+  bool coherent_match(std::uint32_t v, const std::vector<std::pair<double, int>>& incident, Match& out) {
+    const Example& ex = examples_[cur_];
+    const std::size_t dv = incident.size();
+    auto usable = [&](std::uint32_t sid) {
+      return ex.inside[sid] > 3.0 * mean_length_ && ex.nodes[sid].halves.size() > dv;
+    };
+    auto attempt = [&](std::uint32_t sid, double theta) {
+      if (!usable(sid)) return false;
+      Match m = fixed_match(incident, sid, theta);
+      if (m.used.empty()) return false;
+      out = std::move(m);
+      ++stats_.coherent;
+      return true;
+    };
+    if (copied_from_[v].first == static_cast<int>(cur_) && !std::isnan(frames_[v]) &&
+        attempt(copied_from_[v].second, frames_[v])) {
+      return true;
+    }
+    if (neighbours_ == 0) return false;
+    const Point p = nodes_[v].p;
+    point_hits_.clear();
+    node_tree_.query(bgi::nearest(BPoint(p.x, p.y), neighbours_ + 1), std::back_inserter(point_hits_));
+    std::sort(point_hits_.begin(), point_hits_.end(), [&](const PointValue& a, const PointValue& b) {
+      double da = distance(nodes_[a.second].p, p), db = distance(nodes_[b.second].p, p);
+      return da < db || (da == db && a.second < b.second);
+    });
+    std::vector<PointValue> near = point_hits_;
+    for (const PointValue& pv : near) {
+      const std::uint32_t w = pv.second;
+      if (w == v || copied_from_[w].first != static_cast<int>(cur_) || std::isnan(frames_[w])) continue;
+      if (distance(nodes_[w].p, p) > radius_) break;
+      const double theta = frames_[w];
+      const Point d = p - nodes_[w].p;
+      const double cs = std::cos(-theta), sn = std::sin(-theta);
+      const Point t = ex.nodes[copied_from_[w].second].p;
+      const Point q{t.x + cs * d.x - sn * d.y, t.y + sn * d.x + cs * d.y};
+      found_.clear();
+      ex.tree.query(bgi::nearest(BPoint(q.x, q.y), 1), std::back_inserter(found_));
+      if (found_.empty()) continue;
+      const auto& seg = ex.segments[found_[0].second];
+      std::uint32_t sid = distance(ex.nodes[seg.first].p, q) <= distance(ex.nodes[seg.second].p, q) ? seg.first : seg.second;
+      if (distance(ex.nodes[sid].p, q) > snap_) continue;
+      if (attempt(sid, theta)) return true;
+    }
+    return false;
+  }
+  std::vector<BoxValue> found_;
+  std::size_t neighbours_ = 8;
+
+  std::vector<Match> node_matches(const std::vector<std::pair<double, int>>& incident, double guide, double frame) {
     std::vector<Match> out;
     const std::size_t dv = incident.size();
-    if (dv >= pools_.size()) return out;
+    const auto& pools = ex().pools;
+    if (dv >= pools.size()) return out;
+    std::vector<double> fixed;
+    if (!std::isnan(guide)) {
+      ++stats_.guided;
+      fixed = {wrap(guide - ex().orientation), wrap(guide - ex().orientation + kPi)};
+    } else if (!params_.rotation) {
+      fixed = {0.0};
+    } else if (!std::isnan(frame)) {
+      fixed = {frame};
+    }
     // A seed starts at a junction of the example when it has one: a start on a dead end or a
     // shape point often grows one edge and stops.
-    const std::vector<std::uint32_t>& pool = dv == 0 && pools_.size() > 3 && !pools_[2].empty() ? pools_[2] : pools_[dv];
+    const std::vector<std::uint32_t>& pool = dv == 0 && pools.size() > 3 && !pools[2].empty() ? pools[2] : pools[dv];
     if (pool.empty()) return out;
     const std::size_t want = params_.candidates;
     const std::size_t tries = std::min<std::size_t>(64 * want, 4 * pool.size());
     for (std::size_t attempt = 0; attempt < tries && out.size() < want; ++attempt) {
       std::uint32_t sid = pool[uniform(pool.size())];
-      const std::vector<ExHalf>& hs = ex_nodes_[sid].halves;
+      const std::vector<ExHalf>& hs = ex().nodes[sid].halves;
       if (dv == 0) {
-        out.push_back({sid, params_.rotation ? (uniform01() * 2.0 - 1.0) * kPi : 0.0, std::vector<char>(hs.size(), 0)});
+        double theta = fixed.empty()       ? (uniform01() * 2.0 - 1.0) * kPi
+                       : fixed.size() == 1 ? fixed[0]
+                                           : fixed[uniform(fixed.size())];
+        out.push_back({sid, theta, std::vector<char>(hs.size(), 0)});
         continue;
       }
-      const std::size_t alignments = params_.rotation ? hs.size() : 1;
+      const bool free = fixed.empty();
+      const std::size_t alignments = free ? hs.size() : fixed.size();
       for (std::size_t j = 0; j < alignments && out.size() < want; ++j) {
-        if (params_.rotation && params_.match_levels && incident[0].second >= 0 && hs[j].level != incident[0].second) {
+        if (free && params_.match_levels && incident[0].second >= 0 && hs[j].level != incident[0].second) {
           continue;
         }
-        double theta0 = params_.rotation ? wrap(incident[0].first - hs[j].angle) : 0.0;
+        double theta0 = free ? wrap(incident[0].first - hs[j].angle) : fixed[j];
         std::vector<char> used(hs.size(), 0);
         double sum = 0.0;
         bool ok = true;
@@ -639,7 +1082,7 @@ class Grower {
         }
         if (!ok) continue;
         // The paper's refinement: spread the residual angles evenly (delta = -mean gamma).
-        double theta = params_.rotation ? wrap(theta0 - sum / static_cast<double>(dv)) : 0.0;
+        double theta = free ? wrap(theta0 - sum / static_cast<double>(dv)) : theta0;
         out.push_back({sid, theta, std::move(used)});
       }
     }
@@ -675,7 +1118,7 @@ class Grower {
     std::vector<BoxValue> found;
     for (std::size_t c = 0; c < candidates.size(); ++c) {
       const Match& m = candidates[c];
-      const Point s = ex_nodes_[m.node].p;
+      const Point s = ex().nodes[m.node].p;
       const double cs = std::cos(-m.theta), sn = std::sin(-m.theta);
       auto to_example = [&](Point q) {
         Point d = q - p;
@@ -686,11 +1129,11 @@ class Grower {
         const OEdge& e = edges_[n.edge];
         Point a = to_example(nodes_[e.a].p), b = to_example(nodes_[e.b].p);
         found.clear();
-        ex_tree_.query(bgi::nearest(box_of(a, b), 4), std::back_inserter(found));
+        ex().tree.query(bgi::nearest(box_of(a, b), 4), std::back_inserter(found));
         double dmin = INFINITY;
         for (const BoxValue& fv : found) {
-          const auto& seg = ex_segments_[fv.second];
-          dmin = std::min(dmin, segment_hausdorff(a, b, ex_nodes_[seg.first].p, ex_nodes_[seg.second].p));
+          const auto& seg = ex().segments[fv.second];
+          dmin = std::min(dmin, segment_hausdorff(a, b, ex().nodes[seg.first].p, ex().nodes[seg.second].p));
         }
         cost += dmin / std::max(n.dist, floor);
         if (cost >= best_cost) break;  // the weight sum is the same for every candidate
@@ -705,7 +1148,7 @@ class Grower {
 
   // Local constraints on one proposed edge from v: legal area, no crossing (connect or clip),
   // snapping of free ends, dead ends kept.
-  void propose(std::uint32_t v, double angle, double length, bool dead_end, int level, std::int64_t example_id) {
+  void propose(std::uint32_t v, double angle, double length, bool dead_end, int level, std::int64_t example_id, int source) {
     ++stats_.proposals;
     const Point p = nodes_[v].p;
     if (!angle_free(v, angle) || length < min_length_) {
@@ -747,14 +1190,14 @@ class Grower {
           ++stats_.rejected;
           return;
         }
-        finish_free_end(v, p + l * u, true, level, example_id);
+        finish_free_end(v, p + l * u, true, level, example_id, source);
         return;
       }
-      connect_at_contact(v, p + at * u, c.edge, level, example_id);
+      connect_at_contact(v, p + at * u, c.edge, level, example_id, source);
       return;
     }
     if (dead_end || outside) {
-      finish_free_end(v, e, true, level, example_id);
+      finish_free_end(v, e, true, level, example_id, source);
       return;
     }
     // A free end near the network snaps to it: the nearest node, else the nearest edge.
@@ -770,7 +1213,7 @@ class Grower {
       }
     }
     if (w != UINT32_MAX) {
-      if (try_connect_node(v, w, level, example_id)) return;
+      if (try_connect_node(v, w, level, example_id, source)) return;
       ++stats_.rejected;
       return;
     }
@@ -795,85 +1238,108 @@ class Grower {
       Point x = a + t * ab;
       if (distance(x, p) >= min_length_ && first_contact(p, x, v, UINT32_MAX, target).found == false &&
           legal(p, x)) {
-        connect_at_contact(v, x, target, level, example_id);
+        connect_at_contact(v, x, target, level, example_id, source);
         return;
       }
       ++stats_.rejected;
       return;
     }
-    finish_free_end(v, e, outside || dead_end, level, example_id);
+    finish_free_end(v, e, outside || dead_end, level, example_id, source);
   }
 
   // A street end that found nothing to copy goes straight on to the edge ahead if one is within
   // 1.5 mean segment lengths, rather than stopping in a dead end the example did not ask for.
   void close_front(std::uint32_t v) {
-    if (nodes_[v].edges.size() != 1 || new_edges_ + 1 > params_.max_edges) return;
+    if (nodes_[v].edges.size() != 1 || new_edges_ + 2 > params_.max_edges) return;  // a join may split an edge
     const std::uint32_t e = nodes_[v].edges[0];
+    const int level = std::max(0, edges_[e].level);
     const Point p = nodes_[v].p;
     const Point u = unit(p - other_end(e, v));
     const double reach = 1.5 * mean_length_;
     Point end = p + reach * u;
-    if (!legal(p, end)) return;
-    Contact c = first_contact(p, end, v);
-    if (!c.found || c.t * reach < min_length_) return;
-    const OEdge& hit = edges_[c.edge];
-    Point x = p + (c.t * reach) * u;
-    std::uint32_t near = distance(nodes_[hit.a].p, x) <= distance(nodes_[hit.b].p, x) ? hit.a : hit.b;
-    if (distance(nodes_[near].p, x) <= snap_) {
-      try_connect_node(v, near, std::max(0, edges_[e].level), edges_[e].example_id);
-      return;
+    if (legal(p, end)) {
+      Contact c = first_contact(p, end, v);
+      if (c.found && c.t * reach >= min_length_) {
+        const OEdge& hit = edges_[c.edge];
+        Point x = p + (c.t * reach) * u;
+        std::uint32_t near = distance(nodes_[hit.a].p, x) <= distance(nodes_[hit.b].p, x) ? hit.a : hit.b;
+        if (distance(nodes_[near].p, x) <= snap_) {
+          if (try_connect_node(v, near, level, edges_[e].example_id, edges_[e].source)) return;
+        } else {
+          std::uint32_t m = split_edge(c.edge, x);
+          add_edge(v, m, level, edges_[e].example_id, edges_[e].source);
+          ++stats_.accepted;
+          ++stats_.snapped;
+          return;
+        }
+      }
     }
-    std::uint32_t m = split_edge(c.edge, x);
-    add_edge(v, m, std::max(0, edges_[e].level), edges_[e].example_id);
-    ++stats_.accepted;
-    ++stats_.snapped;
+    // Nothing straight ahead: the nearest node within reach that v may join (the usual angle,
+    // crossing, region and degree rules), so a street the example did not end does not end here.
+    point_hits_.clear();
+    node_tree_.query(bgi::nearest(BPoint(p.x, p.y), 8), std::back_inserter(point_hits_));
+    std::sort(point_hits_.begin(), point_hits_.end(), [&](const PointValue& a, const PointValue& b) {
+      double da = distance(nodes_[a.second].p, p), db = distance(nodes_[b.second].p, p);
+      return da < db || (da == db && a.second < b.second);
+    });
+    for (const PointValue& pv : point_hits_) {
+      std::uint32_t w = pv.second;
+      if (w == v || distance(nodes_[w].p, p) > reach) continue;
+      if (try_connect_node(v, w, level, edges_[e].example_id, edges_[e].source)) return;
+    }
   }
 
   // A new end node at q; it stays unfinished unless `finished`.
-  void finish_free_end(std::uint32_t v, Point q, bool finished, int level, std::int64_t example_id) {
+  void finish_free_end(std::uint32_t v, Point q, bool finished, int level, std::int64_t example_id, int source) {
     if (crowded(q, min_length_, v)) {  // a free end must not graze the network
       ++stats_.rejected;
       return;
     }
     std::uint32_t n = add_node(q);
-    add_edge(v, n, level, example_id);
+    frames_[n] = step_frame_;
+    copied_from_[n] = step_copy_;
+    add_edge(v, n, level, example_id, source);
     ++stats_.accepted;
     if (!finished) unfinished_.push_back(n);
   }
 
-  bool try_connect_node(std::uint32_t v, std::uint32_t w, int level, std::int64_t example_id) {
+  bool try_connect_node(std::uint32_t v, std::uint32_t w, int level, std::int64_t example_id, int source) {
     Point p = nodes_[v].p, q = nodes_[w].p;
     if (has_edge(v, w) || distance(p, q) < min_length_ || nodes_[w].edges.size() >= max_degree_) return false;
     if (nodes_[w].edges.size() >= 2 && !example_allows_one_more(nodes_[w].edges.size())) return false;
     double angle = std::atan2(q.y - p.y, q.x - p.x);
     if (!angle_free(v, angle) || !angle_free(w, wrap(angle + kPi))) return false;
     if (first_contact(p, q, v, w).found || !legal(p, q)) return false;
-    add_edge(v, w, level, example_id);
+    add_edge(v, w, level, example_id, source);
     ++stats_.accepted;
     ++stats_.snapped;
     return true;
   }
 
   // The proposal from v meets edge `edge` at x: end on one of its nodes if near, else split it.
-  void connect_at_contact(std::uint32_t v, Point x, std::uint32_t edge, int level, std::int64_t example_id) {
+  void connect_at_contact(std::uint32_t v, Point x, std::uint32_t edge, int level, std::int64_t example_id, int source) {
     const OEdge& e = edges_[edge];
     std::uint32_t near = distance(nodes_[e.a].p, x) <= distance(nodes_[e.b].p, x) ? e.a : e.b;
     if (distance(nodes_[near].p, x) <= snap_) {
-      if (!try_connect_node(v, near, level, example_id)) ++stats_.rejected;
+      if (!try_connect_node(v, near, level, example_id, source)) ++stats_.rejected;
       return;
     }
     Point p = nodes_[v].p;
+    if (distance(p, x) < min_length_) {  // a street continued into a crossing just ahead
+      ++stats_.rejected;
+      return;
+    }
     double angle = std::atan2(x.y - p.y, x.x - p.x);
     Point a = nodes_[e.a].p;
     double along = std::atan2(a.y - x.y, a.x - x.x);
     double back = wrap(angle + kPi);
     if (std::abs(wrap(back - along)) < min_angle_ || std::abs(wrap(back - along - kPi)) < min_angle_ ||
-        new_edges_ + 1 > params_.max_edges || !example_allows_one_more(2)) {
+        new_edges_ + 1 + (e.level >= 0) > params_.max_edges || !example_allows_one_more(2)) {
       ++stats_.rejected;
       return;
     }
     std::uint32_t m = split_edge(edge, x);
-    add_edge(v, m, level, example_id);
+    add_edge(v, m, level, example_id, source);
     ++stats_.accepted;
     ++stats_.snapped;
     // The split node stays finished, unlike the paper's new nodes: letting streets go on across
@@ -886,19 +1352,103 @@ class Grower {
   GeosLine line_;
   double mean_length_ = 0.0, radius_ = 0.0, snap_ = 0.0, min_length_ = 0.0, epsilon_ = 0.0, min_angle_ = 0.0;
   std::vector<std::string> level_names_;
-  std::vector<ExNode> ex_nodes_;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> ex_segments_;
-  std::vector<std::vector<std::uint32_t>> pools_;
+  std::vector<Example> examples_;
+  std::size_t cur_ = 0;  // the example of the current step
+  Example& ex() { return examples_[cur_]; }
   std::size_t max_degree_ = 4;
-  std::vector<double> more_;
+  ParametricParams shape_;
+  std::vector<std::uint8_t> target_degree_;  // parametric: the degree a node grows to (0: not drawn yet)
+  bool done_ = false;  // the step finished its node on purpose
+  std::vector<double> frames_;  // per node: θ of the match that made it; NaN: none (seeds, existing, splits)
+  double step_frame_ = NAN;
+  double crop_margin_ = 0.0;     // θ of the current step, inherited by the nodes it makes
+  double node_frame(std::uint32_t v) const { return frames_[v]; }
+  // Per node: the example node (example, node) it was copied to, {-1, 0} if none. Trying it first
+  // copies the example coherently (as texture synthesis does) where the output still agrees.
+  std::vector<std::pair<int, std::uint32_t>> copied_from_;
+  std::pair<int, std::uint32_t> step_copy_{-1, 0};
+  bool coherent_found_ = false;
+  double blend_min_ = 0.0, blend_max_ = 0.0, blend_sigma_ = 1.0;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> guide_segments_;
+  std::vector<Point> guide_points_;
+  BoxTree guide_tree_;
   // Joining a node (or splitting an edge, d = 2) adds an edge there: done as often as the
   // example's nodes of that degree have one more, so the junction mix follows the example.
+  // Parametric growth only bounds the degree.
   bool example_allows_one_more(std::size_t d) {
-    double p = d < more_.size() ? more_[d] : 0.0;
+    if (params_.parametric) return d < max_degree_;
+    const std::vector<double>& more = ex().more;
+    double p = d < more.size() ? more[d] : 0.0;
     return uniform01() < p;
   }
-  BoxTree ex_tree_;
+
+  // ---- direction control --------------------------------------------------------------------
+  void prepare_guide(const std::vector<Polyline>& guide) {
+    std::vector<BoxValue> boxes;
+    for (const Polyline& line : guide) {
+      for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+        Point a = line[i], b = line[i + 1];
+        if (!std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y)) {
+          throw_invalid_argument("guide has a non-finite coordinate");
+        }
+        if (distance(a, b) <= kContact) continue;
+        auto ia = static_cast<std::uint32_t>(guide_points_.size());
+        guide_points_.push_back(a);
+        guide_points_.push_back(b);
+        boxes.emplace_back(box_of(a, b), static_cast<std::uint32_t>(guide_segments_.size()));
+        guide_segments_.push_back({ia, ia + 1});
+      }
+    }
+    if (!guide.empty() && guide_segments_.empty()) {
+      throw_invalid_argument("guide has no segment", "Every guide line is a single point (within 1 micrometre).");
+    }
+    guide_tree_ = BoxTree(boxes.begin(), boxes.end());
+    // Blending's selection function over the region.
+    GEOSContextHandle_t h = geos_.handle();
+    const BlendParams& b = params_.blend;
+    if (b.mode != BlendParams::Mode::none) {
+      GeomPtr hull = own(geos_, GEOSEnvelope_r(h, region_geom_), "region envelope");
+      double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+      if (GEOSGeom_getXMin_r(h, hull.get(), &x0) == 0 || GEOSGeom_getYMin_r(h, hull.get(), &y0) == 0 ||
+          GEOSGeom_getXMax_r(h, hull.get(), &x1) == 0 || GEOSGeom_getYMax_r(h, hull.get(), &y1) == 0) {
+        geos_.fail("region extent");
+      }
+      const double a = b.angle * kPi / 180.0;
+      blend_min_ = INFINITY;
+      blend_max_ = -INFINITY;
+      for (Point c : {Point{x0, y0}, Point{x1, y0}, Point{x0, y1}, Point{x1, y1}}) {
+        double u = c.x * std::cos(a) + c.y * std::sin(a);
+        blend_min_ = std::min(blend_min_, u);
+        blend_max_ = std::max(blend_max_, u);
+      }
+      blend_sigma_ = b.sigma > 0.0 ? b.sigma : 0.25 * distance({x0, y0}, {x1, y1});
+    }
+  }
+
+  // The guide's direction (radians, undirected) at p: the tangent of its nearest point; NaN
+  // without a guide or farther than guide_reach from it.
+  double guide_angle(Point p) {
+    if (guide_segments_.empty()) return NAN;
+    guide_hits_.clear();
+    guide_tree_.query(bgi::nearest(BPoint(p.x, p.y), 8), std::back_inserter(guide_hits_));
+    double best = INFINITY;
+    double angle = NAN;
+    for (const BoxValue& hv : guide_hits_) {
+      const auto& seg = guide_segments_[hv.second];
+      Point a = guide_points_[seg.first], b = guide_points_[seg.second];
+      double d = point_segment_distance(p, a, b);
+      if (d < best) {
+        best = d;
+        angle = std::atan2(b.y - a.y, b.x - a.x);
+      }
+    }
+    if (params_.guide_reach > 0.0 && best > params_.guide_reach) return NAN;
+    return angle;
+  }
+  std::vector<BoxValue> guide_hits_;
   PreparedPtr region_;
+  const GEOSGeometry* region_geom_ = nullptr;
+  Point env_min_, env_max_;
   GeomPtr obstacles_{nullptr, GeomDeleter{}};
   PreparedPtr obstacles_prepared_;
   std::vector<ONode> nodes_;

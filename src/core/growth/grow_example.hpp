@@ -25,8 +25,30 @@ struct ExampleEdge {
   Polyline line;
   std::string road_class;  // levels: with match_levels, only edges of one class match each other
   std::int64_t id = 0;     // the example row it came from (traceability: GrownEdge::example_id)
+  int example = 0;         // which example (0-based) when several are blended
 };
 
+// Teng & Bidarra's parametric growth: at an unfinished node of target degree k (drawn from
+// [min_degree, max_degree]), new streets leave along a lattice of directions 360°/max(4, k) apart
+// (aligned with the node's first street, or with the guide), straight on first, each turned by up
+// to angle_deviation, with a length drawn from length ± length_deviation (never below min_length).
+struct ParametricParams {
+  double length = 50.0;            // metres
+  double length_deviation = 10.0;  // metres
+  double min_length = 20.0;        // metres
+  int min_degree = 2;
+  int max_degree = 4;
+  double angle_deviation = 10.0;   // degrees
+  std::string road_class = "main";
+};
+
+// How the example of a step is chosen when several are given (Yu & Steed's blending).
+struct BlendParams {
+  enum class Mode { none, gradient, points } mode = Mode::none;
+  double angle = 0.0;         // gradient: degrees; 0 runs from the region's west (first example) to its east (last)
+  std::vector<Point> points;  // points: one per example; weight exp(-d^2 / (2 sigma^2))
+  double sigma = 0.0;         // metres; 0: a quarter of the region's extent diagonal
+};
 struct GrowParams {
   double epsilon = 30.0;       // degrees: largest angle between a matched pair of incident edges
   double radius = 0.0;         // metres: neighbourhood radius r; 0: 3 x mean example segment length
@@ -37,6 +59,17 @@ struct GrowParams {
   double snap = 0.0;           // metres: snap distance for free ends; 0: 0.45 x mean example segment length
   double min_angle = 20.0;     // degrees: smallest angle between two edges at a node
   std::size_t candidates = 16; // node matches compared by neighbourhood matching per step
+  bool parametric = false;     // grow by parameters only (no example): grow_parametric
+  bool fallback = true;        // example growth: a step no example node matches grows parametrically
+  double coherence = 1.0;      // probability that a node first tries the example node its edge was copied
+                               // to (coherent copying, as in texture synthesis); 0: random candidates only
+  bool keep_frame = true;
+  bool fill = false;           // fronts all dead before the region is covered: grow on from new seeds
+  double crop_margin = -1.0;   // metres: an example dead end this close to its hull's edge is a street
+                               // the crop cut and grows on; < 0: the mean example segment length      // a node matches under the θ of the match that made it (free θ only if none)
+  ParametricParams shape;      // the parametric growth's parameters (with an example: derived from it)
+  double guide_reach = 0.0;    // metres: the guide sets θ within this distance of it; 0: everywhere
+  BlendParams blend;
 };
 
 struct GrowInput {
@@ -46,6 +79,8 @@ struct GrowInput {
   std::vector<Point> seeds;              // start nodes; inside the region, outside obstacles, or on
                                          // a node of `existing` (then the region may just touch it)
   std::vector<Polyline> existing;        // a network to extend: respected and joined, never emitted
+  std::vector<Polyline> guide;           // direction control: θ follows the tangent of the nearest guide
+                                         // point (undirected) instead of node matching; may be empty
 };
 
 struct GrownEdge {
@@ -55,16 +90,21 @@ struct GrownEdge {
   std::string road_class;
   std::int64_t example_id = 0;
   Point a, b;
+  int example = 0;  // which example it was copied from (0-based); -1: grown parametrically
 };
 
 struct GrowStats {
   std::size_t steps = 0;           // unfinished nodes processed
   std::size_t unmatched = 0;       // steps where no example node matched
+  std::size_t fallback = 0;        // of those, steps grown parametrically instead
+  std::size_t guided = 0;          // steps whose θ the guide set
+  std::size_t coherent = 0;        // steps that copied the example node their edge was copied to
   std::size_t proposals = 0;
   std::size_t accepted = 0;
   std::size_t snapped = 0;         // proposals ending on an existing node or edge
   std::size_t clipped = 0;         // proposals shortened by the region or an obstacle
   std::size_t rejected = 0;
+  std::size_t reseeds = 0;         // new seeds placed where the fronts had died before covering the region
   std::size_t restarts = 0;        // growths that died within their first 20 edges and began again
   double radius = 0.0;             // the r and snap distance used
   double snap = 0.0;
@@ -75,9 +115,10 @@ struct GrowResult {
   GrowStats stats;
 };
 
-// Throws invalid_argument for an example without two distinct nodes, a region that is empty,
+// Throws invalid_argument for an example (unless params.parametric) without two distinct nodes, a region that is empty,
 // invalid or not polygonal, obstacles that are not polygonal, no seed, a seed outside the region
 // or inside an obstacle, and parameters out of range. Polls interrupts once per step.
+// Several examples (ExampleEdge::example) need params.blend; a guide needs at least one segment.
 GrowResult grow_example(GeosContext& geos, const GrowInput& input, const GrowParams& params);
 
 }  // namespace streetgen::core

@@ -121,12 +121,103 @@ SideExtras side_extras(const LaneInput& in, const std::string& base, std::vector
   return out;
 }
 
+// Street parking on one side of the roadway (OSM street parking scheme, `parking:<side>=lane`,
+// and the older `parking:lane:<side>=parallel|diagonal|perpendicular`): the width it takes in
+// the roadway, 0 when none. `half_on_kerb` puts half of it in the roadway; lay-bys
+// (`street_side`), kerbs and separately mapped parking take nothing. Widths from
+// `parking:<side>:width` when tagged, else by orientation (LaneRules). OSM draws a way along
+// the middle of its traffic lanes (the `placement` default), so parking widens the roadway on
+// its side only.
+double parking_width(const LaneInput& in, const std::string& side, const LaneRules& rules, std::vector<LaneNote>& notes) {
+  auto first = [&](std::initializer_list<std::string> keys) -> const std::string* {
+    for (const std::string& k : keys) {
+      if (const std::string* v = tag(in, k)) return v;
+    }
+    return nullptr;
+  };
+  auto by_orientation = [&](const std::string* o) {
+    if (o != nullptr && *o == "perpendicular") return rules.parking_perpendicular_width;
+    if (o != nullptr && *o == "diagonal") return rules.parking_diagonal_width;
+    return rules.parking_parallel_width;
+  };
+  double share = 0.0;  // of the parking's width that lies in the roadway
+  const std::string* orientation = nullptr;
+  if (const std::string* v = first({"parking:" + side, "parking:both"})) {
+    static const std::set<std::string> outside = {"no", "separate", "street_side", "on_kerb", "shoulder", "yes", "none"};
+    if (*v == "lane") share = 1.0;
+    else if (*v == "half_on_kerb") share = 0.5;
+    else if (outside.count(*v) == 0) notes.push_back({"lane_tag_ignored", "parking:" + side + "=" + *v + " is not a known value"});
+    orientation = first({"parking:" + side + ":orientation", "parking:both:orientation"});
+  } else if (const std::string* o = first({"parking:lane:" + side, "parking:lane:both"})) {
+    if (*o == "parallel" || *o == "diagonal" || *o == "perpendicular") {
+      const std::string* pos = first({"parking:lane:" + side + ":" + *o, "parking:lane:both:" + *o});
+      share = pos == nullptr || *pos == "on_street" ? 1.0 : *pos == "half_on_kerb" ? 0.5 : 0.0;
+      orientation = o;
+    }
+  }
+  if (share == 0.0) return 0.0;
+  double width = by_orientation(orientation);
+  if (const std::string* w = first({"parking:" + side + ":width", "parking:both:width"})) {
+    char* end = nullptr;
+    double v = std::strtod(w->c_str(), &end);
+    if (end != w->c_str() && std::isfinite(v) && v >= 1.0 && v <= 10.0) width = v;
+    else notes.push_back({"lane_tag_ignored", "parking:" + side + ":width=" + *w + " is not a width in metres (1..10)"});
+  }
+  return share * width;
+}
+
+// OSM `placement` (left_of:N, middle_of:N, right_of:N): where the way runs, as a distance from
+// the roadway's left edge (looking along the way). Lanes are counted from the left as OSM's
+// `lanes` counts them: driving and bus lanes, not cycle or parking lanes. `transition` and no tag:
+// nullopt (the default placement); a value it cannot use is noted and ignored.
+std::optional<double> placement_from_left(const LaneInput& in, const std::vector<LaneSpec>& lanes, std::vector<LaneNote>& notes) {
+  const std::string* v = tag(in, "placement");
+  if (v == nullptr || *v == "transition") return std::nullopt;
+  auto ignored = [&](const std::string& why) {
+    notes.push_back({"lane_tag_ignored", "placement=" + *v + ": " + why});
+    return std::nullopt;
+  };
+  std::size_t colon = v->find(':');
+  if (colon == std::string::npos) return ignored("not left_of:N, middle_of:N or right_of:N");
+  std::string where = v->substr(0, colon);
+  std::string number = v->substr(colon + 1);
+  if ((where != "left_of" && where != "middle_of" && where != "right_of") || number.empty() || number.size() > 2 ||
+      !std::all_of(number.begin(), number.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return ignored("not left_of:N, middle_of:N or right_of:N");
+  }
+  int wanted = std::stoi(number);
+  int counted = 0;
+  double edge = 0.0;  // the left edge of the lane at hand
+  for (const LaneSpec& l : lanes) {
+    if (l.type == "driving" || l.type == "bus") {
+      if (++counted == wanted) {
+        if (where == "left_of") return edge;
+        if (where == "middle_of") return edge + l.width / 2;
+        return edge + l.width;
+      }
+    }
+    edge += l.width;
+  }
+  return ignored("the road has " + std::to_string(counted) + " lanes");
+}
+
 }  // namespace
 
-LanePlan plan_lanes(const LaneInput& in, double width, const LaneRules& rules) {
+LanePlan plan_lanes(const LaneInput& in, double roadway_width, const LaneRules& rules) {
   LanePlan plan;
   std::vector<LaneNote>& notes = plan.notes;
-  if (!(std::isfinite(width) && width > 0.0)) throw_invalid_argument("roadway width must be a finite number > 0");
+  if (!(std::isfinite(roadway_width) && roadway_width > 0.0)) throw_invalid_argument("roadway width must be a finite number > 0");
+
+  // 0. Street parking in the roadway, at its edges: dropped when not even one driving lane
+  // would be left beside it. `width` is then what the traffic lanes share.
+  double park_left = parking_width(in, "left", rules, notes);
+  double park_right = parking_width(in, "right", rules, notes);
+  if (park_left + park_right > 0.0 && roadway_width - park_left - park_right < rules.min_driving_width) {
+    notes.push_back({"lanes_do_not_fit", "parking lanes dropped: " + fmt(park_left + park_right) + " m of parking leave less than " +
+                                             fmt(rules.min_driving_width) + " m of the " + fmt(roadway_width) + " m roadway"});
+    park_left = park_right = 0.0;
+  }
+  const double width = roadway_width - park_left - park_right;
 
   // 1. The motor-vehicle lane count: the axis' column, else the tags, else the width.
   std::optional<int> tagged_total = count_tag(in, "lanes", notes);
@@ -319,7 +410,21 @@ LanePlan plan_lanes(const LaneInput& in, double width, const LaneRules& rules) {
   double sum = 0.0;
   for (std::size_t i = 0; i + 1 < lanes.size(); ++i) sum += lanes[i].width;
   lanes.back().width = width - sum;
+
+  // 7. Parking at the curbs; the traffic lanes stay centred on the axis unless `placement` says
+  // where the way runs.
+  if (park_left > 0.0) lanes.insert(lanes.begin(), LaneSpec{"parking", in.oneway ? "forward" : "backward", park_left, {}});
+  if (park_right > 0.0) lanes.push_back(LaneSpec{"parking", "forward", park_right, {}});
+  plan.centre_offset = (park_left - park_right) / 2;
+  if (std::optional<double> from_left = placement_from_left(in, lanes, notes)) {
+    plan.centre_offset = *from_left - roadway_width / 2;
+  }
   return plan;
+}
+
+std::pair<double, double> street_parking_widths(const LaneInput& in, const LaneRules& rules) {
+  std::vector<LaneNote> ignored;
+  return {parking_width(in, "left", rules, ignored), parking_width(in, "right", rules, ignored)};
 }
 
 double signed_offset(const Polyline& line, Point p) {
@@ -409,9 +514,10 @@ void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, co
   for (const LaneSpec& s : specs) total += s.width;
   // Lane boundaries as offsets from the centre line (left positive): edges[k] is the left edge
   // of lane k, edges[k + 1] its right edge.
-  std::vector<double> edges{total / 2};
+  const double shift = plan.centre_offset;
+  std::vector<double> edges{shift + total / 2};
   for (const LaneSpec& s : specs) edges.push_back(edges.back() - s.width);
-  edges.back() = -total / 2;
+  edges.back() = shift - total / 2;
 
   // Lanes: the surface split along the offset curves of the inner boundaries. The centre line
   // is prolonged straight beyond the border lines so that every curve crosses the flat ends;
@@ -510,14 +616,14 @@ void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, co
   GeomPtr centre_geom = line_of(ctx, centre);
   int motor_forward = 0, motor_backward = 0;
   for (const LaneSpec& s : specs) {
-    if (s.type == "cycle") continue;
+    if (s.type == "cycle" || s.type == "parking") continue;
     if (s.direction == "forward") ++motor_forward;
     if (s.direction == "backward") ++motor_backward;
   }
   for (std::size_t k = 1; k < specs.size(); ++k) {
     const LaneSpec& l = specs[k - 1];
     const LaneSpec& r = specs[k];
-    bool motor = l.type != "cycle" && r.type != "cycle";
+    bool motor = l.type != "cycle" && r.type != "cycle" && l.type != "parking" && r.type != "parking";
     MarkingResult m;
     m.axis_id = axis_id;
     m.part = part;
@@ -544,7 +650,7 @@ void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, co
     double top = 0.0, bottom = 0.0;
     bool any = false;
     for (std::size_t k = 0; k < specs.size(); ++k) {
-      if (specs[k].direction != entering && specs[k].direction != "both") continue;
+      if (specs[k].type == "parking" || (specs[k].direction != entering && specs[k].direction != "both")) continue;
       if (!any) top = edges[k];
       bottom = edges[k + 1];
       any = true;
@@ -556,8 +662,8 @@ void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, co
     Point p = point_at(centre, s);
     Point nrm = left_normal(tangent_at(centre, s));
     // A little beyond the roadway's edges, so that the clip, not rounding, decides where it ends.
-    double extra_top = clip && top >= total / 2 - 1e-9 ? 0.5 : 0.0;
-    double extra_bottom = clip && bottom <= -total / 2 + 1e-9 ? 0.5 : 0.0;
+    double extra_top = clip && top >= edges.front() - 1e-9 ? 0.5 : 0.0;
+    double extra_bottom = clip && bottom <= edges.back() + 1e-9 ? 0.5 : 0.0;
     Polyline seg{p + (top + extra_top) * nrm, p + (bottom - extra_bottom) * nrm};
     MarkingResult m;
     m.axis_id = axis_id;

@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/geos_context.hpp"
@@ -25,7 +26,7 @@ struct LaneInput {
 };
 
 struct LaneSpec {
-  std::string type;       // driving, bus, cycle
+  std::string type;       // driving, bus, cycle, parking
   std::string direction;  // forward (along the axis), backward, both
   double width = 0.0;     // m
   std::string turn;       // from turn:lanes*, e.g. "left;through"; empty when unknown
@@ -42,6 +43,9 @@ struct LaneNote {
 struct LanePlan {
   std::vector<LaneSpec> lanes;
   std::vector<LaneNote> notes;
+  // Where the roadway's centre lies, m to the left of the axis: the traffic lanes are centred on
+  // the axis (where OSM draws a way), street parking widens the roadway on its side only.
+  double centre_offset = 0.0;
 };
 
 struct LaneRules {
@@ -49,9 +53,16 @@ struct LaneRules {
   double bus_width = 3.0;          // m
   double min_driving_width = 2.0;  // m: narrower, the lane count does not fit the roadway
   double estimate_lane_width = 2.75;  // m: lane count from width when nothing says it (not noted)
+  double parking_parallel_width = 2.0;       // m of roadway a parking lane takes, by orientation
+  double parking_diagonal_width = 4.5;
+  double parking_perpendicular_width = 5.0;
 };
 
 LanePlan plan_lanes(const LaneInput& input, double roadway_width, const LaneRules& rules = {});
+
+// The roadway that street parking takes on each side, m (left, right), as plan_lanes reads the
+// tags: what an estimated roadway width adds to its traffic lanes.
+std::pair<double, double> street_parking_widths(const LaneInput& input, const LaneRules& rules = {});
 
 struct LaneResult {
   std::int64_t axis_id = 0;

@@ -34,7 +34,10 @@ struct End {
   std::size_t edge = 0;
   bool at_end = false;
   Polyline outgoing;
-  double half_width = 0.0;
+  // The roadway's extent either side of `outgoing`: equal unless street parking on one side
+  // widens it there (LanePlan::centre_offset).
+  double left = 0.0;
+  double right = 0.0;
   double radius = 0.0;    // wanted, from its axis
   double available = 0.0; // how far along it this node's junction may reach
   double angle = 0.0;
@@ -246,6 +249,9 @@ class SurfaceBuilder {
       axis_index_[axes_[i].id] = i;
     }
     result_.issues = topo_.issues;
+    // The cross-section of every axis first: street parking shifts its roadway off the axis.
+    plans_.reserve(axes_.size());
+    for (const SurfaceAxis& a : axes_) plans_.push_back(plan_lanes(a.lane_input, a.roadway_width));
 
     ends_of_node_.assign(topo_.nodes.size(), {});
     for (std::size_t e = 0; e < topo_.edges.size(); ++e) {
@@ -301,7 +307,9 @@ class SurfaceBuilder {
     end.edge = e;
     end.at_end = at_end;
     end.outgoing = at_end ? reversed(edge.line) : edge.line;
-    end.half_width = axis.roadway_width / 2;
+    double shift = plans_[edge.axis_index].centre_offset;  // to the left of the axis
+    end.left = axis.roadway_width / 2 + (at_end ? -shift : shift);
+    end.right = axis.roadway_width - end.left;
     end.radius = axis_radius(axis);
     return end;
   }
@@ -330,8 +338,9 @@ class SurfaceBuilder {
   std::optional<Arc> arc_for(const End& a, const End& b, double radius, bool fast = false) const {
     Polyline oa = substring(a.outgoing, 0.0, a.available);
     Polyline ob = substring(b.outgoing, 0.0, b.available);
-    std::optional<Point> c = fast ? arc_centre_fast(oa, a.half_width + radius, ob, b.half_width + radius)
-                                  : arc_centre(oa, a.half_width + radius, ob, b.half_width + radius);
+    // The arc lies in the sector swept counter-clockwise from a to b: left of a, right of b.
+    std::optional<Point> c = fast ? arc_centre_fast(oa, a.left + radius, ob, b.right + radius)
+                                  : arc_centre(oa, a.left + radius, ob, b.right + radius);
     if (!c) return std::nullopt;
     Projection pa = project(oa, *c);
     Projection pb = project(ob, *c);
@@ -389,7 +398,7 @@ class SurfaceBuilder {
     }
     if (arc) {
       double reach = distance(arc->centre, node.position) - radius;
-      double limit = s_.misplaced_factor * (std::max(a.half_width, b.half_width) + radius);
+      double limit = s_.misplaced_factor * (std::max(a.left, b.right) + radius);
       if (reach > limit && radius > s_.min_radius) {
         std::optional<Arc> small = arc_for(a, b, s_.min_radius);
         if (small) {
@@ -433,7 +442,7 @@ class SurfaceBuilder {
     Point tb = tangent_at(b.outgoing, 0.0);
     double det = cross(ta, tb);
     if (std::abs(det) > 1e-9) {
-      Point offset = (-b.half_width) * left_normal(tb) - a.half_width * left_normal(ta);
+      Point offset = (-b.right) * left_normal(tb) - a.left * left_normal(ta);
       double along_a = cross(offset, tb) / det;
       double along_b = cross(offset, ta) / det;
       if (along_a >= 0.0 && along_b >= 0.0) {
@@ -453,7 +462,8 @@ class SurfaceBuilder {
 
   bool is_width_transition(const std::vector<End>& ends) const {
     if (ends.size() != 2) return false;
-    if (std::abs(ends[0].half_width - ends[1].half_width) < 0.005) return false;
+    // (end 0's left side runs on as end 1's right side, and the other way round)
+    if (std::abs(ends[0].left - ends[1].right) < 0.005 && std::abs(ends[0].right - ends[1].left) < 0.005) return false;
     double deflection = kPi - std::min(ccw_angle(tangent_at(ends[0].outgoing, 0.0), tangent_at(ends[1].outgoing, 0.0)),
                                        ccw_angle(tangent_at(ends[1].outgoing, 0.0), tangent_at(ends[0].outgoing, 0.0)));
     return deflection <= s_.max_transition_deflection_deg * kPi / 180.0;
@@ -477,7 +487,7 @@ class SurfaceBuilder {
       std::size_t other = e.at_end ? edge.from_node : edge.to_node;
       bool other_is_dead_end = other != n && degree_of(other) == 1;
       e.available = other_is_dead_end ? len : len / 2;
-      double probe = std::min(e.available, std::max(2.0, e.half_width));
+      double probe = std::min(e.available, std::max({2.0, e.left, e.right}));
       e.angle = angle_of(point_at(e.outgoing, probe) - node.position);
       e.border = ends.size() >= 2 ? std::min(s_.min_border_distance, e.available) : 0.0;
     }
@@ -516,7 +526,7 @@ class SurfaceBuilder {
   // with the change (the paper's variable buffer), instead of curb arcs.
   void build_transition_borders(std::size_t n, std::vector<End>& ends) {
     const TopologyNode& node = topo_.nodes[n];
-    double change = std::abs(ends[0].half_width - ends[1].half_width) * 2;
+    double change = std::abs(ends[0].left - ends[1].right) + std::abs(ends[0].right - ends[1].left);
     double half_length = 0.5 * std::max(s_.min_transition_length, s_.transition_length_per_metre * change);
     for (End& e : ends) {
       e.border = std::min(half_length, e.available);
@@ -547,12 +557,14 @@ class SurfaceBuilder {
     for (std::size_t i = 0; i < path.size(); ++i) {
       if (i > 0) walked += distance(path[i - 1], path[i]);
       double t = total > 0.0 ? walked / total : 0.0;
-      double h = ends[0].half_width + t * (ends[1].half_width - ends[0].half_width);
+      // The path runs the way end 1 leaves the node: its left is end 0's right.
+      double h_left = ends[0].right + t * (ends[1].left - ends[0].right);
+      double h_right = ends[0].left + t * (ends[1].right - ends[0].left);
       Point before = i > 0 ? unit(path[i] - path[i - 1]) : unit(path[1] - path[0]);
       Point after = i + 1 < path.size() ? unit(path[i + 1] - path[i]) : before;
       Point n = mitre_normal(before, after);
-      left.push_back(path[i] + h * n);
-      right.push_back(path[i] - h * n);
+      left.push_back(path[i] + h_left * n);
+      right.push_back(path[i] - h_right * n);
     }
     Polyline ring = left;
     ring.insert(ring.end(), right.rbegin(), right.rend());
@@ -577,13 +589,13 @@ class SurfaceBuilder {
       const End& a = ends[i];
       const End& b = ends[(i + 1) % ends.size()];
       const CornerResult& c = corners[i];
-      append({border_point(a.outgoing, a.border, a.half_width, -1), border_point(a.outgoing, a.border, a.half_width, +1)});
+      append({border_point(a.outgoing, a.border, a.right, -1), border_point(a.outgoing, a.border, a.left, +1)});
       if (c.status == "convex") {
         // Around the outside of the node: a's left border in, round the node, b's right border out.
-        append(border_path(a.outgoing, a.border, 0.0, a.half_width, +1));
-        Point from = border_point(a.outgoing, 0.0, a.half_width, +1);
-        Point to = border_point(b.outgoing, 0.0, b.half_width, -1);
-        double h = 0.5 * (a.half_width + b.half_width);
+        append(border_path(a.outgoing, a.border, 0.0, a.left, +1));
+        Point from = border_point(a.outgoing, 0.0, a.left, +1);
+        Point to = border_point(b.outgoing, 0.0, b.right, -1);
+        double h = 0.5 * (a.left + b.right);
         double a0 = angle_of(from - node.position);
         double sweep = ccw_angle(from - node.position, to - node.position);
         if (sweep > 2 * kPi - 1e-9) sweep = 0.0;  // straight on: the borders continue each other
@@ -592,7 +604,7 @@ class SurfaceBuilder {
           double ang = a0 + sweep * k / steps;
           ring.push_back(node.position + h * Point{std::cos(ang), std::sin(ang)});
         }
-        append(border_path(b.outgoing, 0.0, b.border, b.half_width, -1));
+        append(border_path(b.outgoing, 0.0, b.border, b.right, -1));
       } else if (c.status == "clamped" || c.status == "no_corner") {
         // Straight across to the next border line.
       } else {
@@ -600,9 +612,9 @@ class SurfaceBuilder {
         // bend of the axis the arc touches the rounded offset, not the normal of a segment.
         double foot_a = project(a.outgoing, c.arc_points.front()).abscissa;
         double foot_b = project(b.outgoing, c.arc_points.back()).abscissa;
-        Polyline in = border_path(a.outgoing, a.border, std::min(foot_a, a.border), a.half_width, +1);
+        Polyline in = border_path(a.outgoing, a.border, std::min(foot_a, a.border), a.left, +1);
         in.pop_back();
-        Polyline out = border_path(b.outgoing, std::min(foot_b, b.border), b.border, b.half_width, -1);
+        Polyline out = border_path(b.outgoing, std::min(foot_b, b.border), b.border, b.right, -1);
         out.erase(out.begin());
         append(in);
         append(c.arc_points);
@@ -671,13 +683,9 @@ class SurfaceBuilder {
     std::vector<GeomPtr> parts;
     double h_max = 0.0;
     for (const End& e : ends) {
-      h_max = std::max(h_max, e.half_width);
+      h_max = std::max({h_max, e.left, e.right});
       if (e.border <= 1e-9) continue;
-      GeomPtr stub = make_line(ctx_, substring(e.outgoing, 0.0, e.border));
-      parts.push_back(own(ctx_,
-                          GEOSBufferWithStyle_r(ctx_.handle(), stub.get(), e.half_width, kQuadrantSegments,
-                                                GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_ROUND, 5.0),
-                          "stub buffer"));
+      parts.push_back(roadway_polygon(substring(e.outgoing, 0.0, e.border), e.left, e.right, "stub buffer"));
     }
     GeomPtr centre = make_point(ctx_, node.position);
     parts.push_back(own(ctx_, GEOSBuffer_r(ctx_.handle(), centre.get(), std::max(h_max, 0.25), kQuadrantSegments), "node buffer"));
@@ -746,8 +754,7 @@ class SurfaceBuilder {
       Polyline axis_a = substring(a.centre_line, a.start_border, a.end_border);
       Polyline axis_b = substring(b.centre_line, b.start_border, b.end_border);
       // Sections are within half their width of their axes: farther apart, they cannot overlap.
-      double half_widths = 0.5 * (axes_[axis_index_.at(a.axis_id)].roadway_width + axes_[axis_index_.at(b.axis_id)].roadway_width);
-      if (polyline_distance(axis_a, axis_b) >= half_widths) continue;
+      if (polyline_distance(axis_a, axis_b) >= reach_of(a.axis_id) + reach_of(b.axis_id)) continue;
       // GEOS overlay (OverlayNG) is robust where its predicates can throw on nearly coincident
       // edges, so no GEOSIntersects here; and one pair that GEOS cannot split is reported, not
       // allowed to fail the whole model.
@@ -843,16 +850,13 @@ class SurfaceBuilder {
   // more streets (a degree-2 node is a street running on).
   void build_lanes(InterruptPoller& poller) {
     if (result_.sections.size() != topo_.edges.size()) throw Error(ErrorKind::internal, "sections out of step with edges");
-    std::map<std::size_t, LanePlan> plans;
     for (std::size_t e = 0; e < topo_.edges.size(); ++e) {
       const SectionResult& sec = result_.sections[e];
       if (!sec.surface) continue;
       poller.tick();
       const TopologyEdge& edge = topo_.edges[e];
+      const LanePlan& plan = plans_[edge.axis_index];
       const SurfaceAxis& axis = axes_[edge.axis_index];
-      auto it = plans.find(edge.axis_index);
-      if (it == plans.end()) it = plans.emplace(edge.axis_index, plan_lanes(axis.lane_input, axis.roadway_width)).first;
-      const LanePlan& plan = it->second;
       for (const LaneNote& note : plan.notes) result_.issues.push_back({sec.axis_id, note.kind, note.detail, sec.part});
       // One section GEOS cannot split is reported, not allowed to fail the whole model: it
       // keeps its surface without lanes.
@@ -864,7 +868,7 @@ class SurfaceBuilder {
       for (int at_end = 0; at_end <= 1; ++at_end) {
         if (!crossing_at(edge, axis, sec, at_end == 1)) continue;
         try {
-          if (add_crossing(sec, edge, axis, centre, at_end == 1)) setback[at_end] = s_.crossing_width + kStopBehindCrossing;
+          if (add_crossing(sec, edge, centre, at_end == 1)) setback[at_end] = s_.crossing_width + kStopBehindCrossing;
         } catch (const Error& e) {
           if (e.kind() != ErrorKind::geometry_engine) throw;
           result_.issues.push_back({sec.axis_id, "crossing_failed", e.what() + std::string(": ") + e.detail(), sec.part});
@@ -897,13 +901,13 @@ class SurfaceBuilder {
   }
 
   // The zebra area: the roadway between the border line and crossing_width into the section.
-  bool add_crossing(const SectionResult& sec, const TopologyEdge& edge, const SurfaceAxis& axis, const Polyline& centre,
+  bool add_crossing(const SectionResult& sec, const TopologyEdge& edge, const Polyline& centre,
                     bool at_end) {
     double len = length(centre);
     Polyline piece = at_end ? substring(centre, len - s_.crossing_width, len) : substring(centre, 0.0, s_.crossing_width);
     GeomPtr line = make_line(ctx_, piece);
     GeomPtr band = own(ctx_,
-                       GEOSBufferWithStyle_r(ctx_.handle(), line.get(), axis.roadway_width / 2, kQuadrantSegments,
+                       GEOSBufferWithStyle_r(ctx_.handle(), line.get(), reach_of(sec.axis_id), kQuadrantSegments,
                                              GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_ROUND, 5.0),
                        "crossing buffer");
     GeomPtr inside = own(ctx_, GEOSIntersection_r(ctx_.handle(), band.get(), sec.surface.get()), "crossing clip");
@@ -966,7 +970,9 @@ class SurfaceBuilder {
         if (!(w > 0.0)) continue;
         try {
           GeomPtr line = make_line(ctx_, substring(sec.centre_line, sec.start_border, sec.end_border));
-          double d = axis.roadway_width / 2 + w;
+          // The roadway's side extent (street parking shifts it off the axis), then the sidewalk.
+          double shift = plans_[topo_.edges[e].axis_index].centre_offset;
+          double d = axis.roadway_width / 2 + (side == 0 ? shift : -shift) + w;
           Item it;
           it.owned = single_sided_buffer(ctx_, line.get(), side == 0 ? d : -d);
           if (GEOSisValid_r(ctx_.handle(), it.owned.get()) != 1) {
@@ -1073,6 +1079,33 @@ class SurfaceBuilder {
     }
   }
 
+  // How far from its axis an axis' roadway reaches, on its wider side.
+  double reach_of(std::int64_t axis_id) const {
+    std::size_t i = axis_index_.at(axis_id);
+    return axes_[i].roadway_width / 2 + std::abs(plans_[i].centre_offset);
+  }
+
+  // The roadway along `centre`, `left` and `right` of it, with flat ends on the normals at its
+  // ends: a buffer, of the centre line shifted by the offset where the sides differ (GEOS offset
+  // curves keep polylines' bends; a plain translation would not).
+  GeomPtr roadway_polygon(const Polyline& centre, double left, double right, const char* what) {
+    GeomPtr line = make_line(ctx_, centre);
+    double shift = (left - right) / 2;
+    if (std::abs(shift) > 1e-9) {
+      GEOSGeometry* shifted = GEOSOffsetCurve_r(ctx_.handle(), line.get(), shift, kQuadrantSegments, GEOSBUF_JOIN_ROUND, 5.0);
+      if (shifted != nullptr && GEOSGeomTypeId_r(ctx_.handle(), shifted) == GEOS_LINESTRING && GEOSisEmpty_r(ctx_.handle(), shifted) == 0) {
+        line.reset(shifted);
+      } else {
+        // (GEOS may give up on the offset of a short, sharply bent piece: the roadway then stays
+        // centred on the axis, as wide, rather than spill beyond its narrower side)
+        if (shifted != nullptr) GEOSGeom_destroy_r(ctx_.handle(), shifted);
+        ctx_.clear_error();
+      }
+    }
+    return own(ctx_, GEOSBufferWithStyle_r(ctx_.handle(), line.get(), (left + right) / 2, kQuadrantSegments,
+                                           GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_ROUND, 5.0), what);
+  }
+
   void build_section(std::size_t e) {
     const TopologyEdge& edge = topo_.edges[e];
     const SurfaceAxis& axis = axes_[edge.axis_index];
@@ -1092,11 +1125,8 @@ class SurfaceBuilder {
     } else {
       sr.status = "ok";
       Polyline centre = substring(edge.line, sr.start_border, sr.end_border);
-      GeomPtr line = make_line(ctx_, centre);
-      GeomPtr buffer = own(ctx_,
-                           GEOSBufferWithStyle_r(ctx_.handle(), line.get(), axis.roadway_width / 2, kQuadrantSegments,
-                                                 GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_ROUND, 5.0),
-                           "section buffer");
+      double left = axis.roadway_width / 2 + plans_[edge.axis_index].centre_offset;
+      GeomPtr buffer = roadway_polygon(centre, left, axis.roadway_width - left, "section buffer");
       // GEOS can leave slivers beside a flat-capped buffer of a short piece with a bend: the
       // section is the part on its axis.
       if (GEOSGeomTypeId_r(ctx_.handle(), buffer.get()) != GEOS_POLYGON) {
@@ -1119,6 +1149,7 @@ class SurfaceBuilder {
   std::map<std::pair<std::int64_t, std::int64_t>, const GEOSGeometry*> section_surface_;
   std::map<std::int64_t, int> axis_layer_;
   std::map<std::int64_t, std::size_t> axis_index_;
+  std::vector<LanePlan> plans_;  // per axis, as axes_
   SurfaceResult result_;
 };
 
