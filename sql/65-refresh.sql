@@ -166,6 +166,8 @@ DECLARE
   axis_count bigint;
   round integer;
   grown bigint;
+  widened bigint := 0;
+  converged boolean := false;
 BEGIN
   PERFORM streetgen._lock_outputs(model);
   IF coalesce(cardinality(changed), 0) = 0 THEN
@@ -261,41 +263,47 @@ BEGIN
          LATERAL (SELECT p.* FROM section p WHERE p.from_node = j.node_id
                   UNION ALL SELECT p.* FROM section p WHERE p.to_node = j.node_id) AS p
   UNION SELECT axis_id, part, from_node, to_node, envelope FROM pg_temp._sg_s1;
-  -- The junction of a node in scope is cut from the sections at that node, and a narrowed one
-  -- among them was split with a section it overlapped: so that section joins Q as well (a soak
-  -- found a junction recomputed without an axis that overlapped one of its sections but did not
-  -- share its node). The sections at the node are in the context already (one section beyond).
-  INSERT INTO pg_temp._sg_q
-  WITH ends (id) AS (SELECT from_node FROM pg_temp._sg_s2 UNION SELECT to_node FROM pg_temp._sg_s2),
-  narrowed_at_ends AS (
-    SELECT s.geom
-      FROM ends e,
-           LATERAL (SELECT s.geom FROM section s WHERE s.from_node = e.id AND s.status = 'narrowed'
-                    UNION ALL SELECT s.geom FROM section s WHERE s.to_node = e.id AND s.status = 'narrowed') AS s)
-  SELECT p.axis_id, p.part, p.from_node, p.to_node FROM pg_temp._sg_s2 k,
-         LATERAL (SELECT p.* FROM section p WHERE p.geom && k.envelope) AS p
-  -- (stored sections overlap no more: the pieces of a split touch along the split line; a
-  -- distance, not ST_Intersects, which can fail on such touching rings)
-  UNION SELECT p.axis_id, p.part, p.from_node, p.to_node FROM narrowed_at_ends k,
-         LATERAL (SELECT p.* FROM section p
-                   WHERE p.geom && ST_Expand(k.geom, 1e-3) AND ST_DWithin(p.geom, k.geom, 1e-3)) AS p
-  -- The junction sidewalk of an end of S2 is rewritten, and gives way to the roadways and
-  -- sidewalk claims within its reach: the sections there join Q, so that they are computed, with
-  -- their context. (A soak found one written too large: a section whose sidewalk claim cut it
-  -- had not been given at all, and nothing in the output could call for it.)
-  UNION SELECT p.axis_id, p.part, p.from_node, p.to_node FROM ends e,
-         LATERAL (SELECT i.geom FROM intersection i WHERE reach > 0 AND i.node_id = e.id) AS j,
-         LATERAL (SELECT p.* FROM section p WHERE p.geom && ST_Expand(j.geom, reach)) AS p
-  UNION SELECT axis_id, part, from_node, to_node FROM pg_temp._sg_s2;
   -- The engine cannot be trusted beyond its context: an axis whose nodes were not all given is
   -- cut too long there. Such a section may overlap a section in scope where the true one does
   -- not; so when the output shows an unvetted section near the scope, its old sections join Q
   -- (those near the scope, and those under it: cut too long, it may reach the scope from a
   -- stretch whose old sections stopped short of it) and the context grows (rarely needed more
   -- than once).
-  FOR round IN 1..4 LOOP
+  FOR round IN 1..6 LOOP
     PERFORM set_config('enable_seqscan', 'off', true), set_config('enable_hashjoin', 'off', true),
             set_config('enable_mergejoin', 'off', true);
+    -- The junction of a node in scope is cut from the sections at that node, and a narrowed one
+    -- among them was split with a section it overlapped: so that section joins Q as well (a soak
+    -- found a junction recomputed without an axis that overlapped one of its sections but did not
+    -- share its node). The sections at the node are in the context already (one section beyond).
+    -- (again after the scope widened: the sections it took in, with their own reach)
+    IF round = 1 OR widened > 0 THEN
+      INSERT INTO pg_temp._sg_q
+      SELECT x.* FROM (
+        WITH ends (id) AS (SELECT from_node FROM pg_temp._sg_s2 UNION SELECT to_node FROM pg_temp._sg_s2),
+        narrowed_at_ends AS (
+          SELECT s.geom
+            FROM ends e,
+                 LATERAL (SELECT s.geom FROM section s WHERE s.from_node = e.id AND s.status = 'narrowed'
+                          UNION ALL SELECT s.geom FROM section s WHERE s.to_node = e.id AND s.status = 'narrowed') AS s)
+        SELECT p.axis_id, p.part, p.from_node, p.to_node FROM pg_temp._sg_s2 k,
+               LATERAL (SELECT p.* FROM section p WHERE p.geom && k.envelope) AS p
+        -- (stored sections overlap no more: the pieces of a split touch along the split line; a
+        -- distance, not ST_Intersects, which can fail on such touching rings)
+        UNION SELECT p.axis_id, p.part, p.from_node, p.to_node FROM narrowed_at_ends k,
+               LATERAL (SELECT p.* FROM section p
+                         WHERE p.geom && ST_Expand(k.geom, 1e-3) AND ST_DWithin(p.geom, k.geom, 1e-3)) AS p
+        -- The junction sidewalk of an end of S2 is rewritten, and gives way to the roadways and
+        -- sidewalk claims within its reach: the sections there join Q, so that they are computed, with
+        -- their context. (A soak found one written too large: a section whose sidewalk claim cut it
+        -- had not been given at all, and nothing in the output could call for it.)
+        UNION SELECT p.axis_id, p.part, p.from_node, p.to_node FROM ends e,
+               LATERAL (SELECT i.geom FROM intersection i WHERE reach > 0 AND i.node_id = e.id) AS j,
+               LATERAL (SELECT p.* FROM section p WHERE p.geom && ST_Expand(j.geom, reach)) AS p
+        UNION SELECT axis_id, part, from_node, to_node FROM pg_temp._sg_s2
+      ) AS x
+       WHERE NOT EXISTS (SELECT 1 FROM pg_temp._sg_q q WHERE q.axis_id = x.axis_id AND q.part = x.part);
+    END IF;
     DELETE FROM pg_temp._sg_context_nodes;
     INSERT INTO pg_temp._sg_context_nodes
     WITH base (node) AS (
@@ -373,8 +381,60 @@ BEGIN
                     UNION ALL SELECT p.* FROM section p WHERE p.to_node = j.node_id) AS p
      WHERE NOT EXISTS (SELECT 1 FROM pg_temp._sg_q q WHERE q.axis_id = p.axis_id AND q.part = p.part);
     GET DIAGNOSTICS grown = ROW_COUNT;
-    EXIT WHEN grown = 0;
+    -- Sidewalks follow the roadways within their reach, and a rewritten roadway can change where
+    -- no edit did: a section of S2 split anew with one of S1, the junction at its end cut from
+    -- it. Every section with a sidewalk within reach of a roadway that this run changes (new
+    -- against stored, either way) joins the scope, and the sections at junctions within reach
+    -- (their junction sidewalks); the run is repeated with their context. (A soak found sidewalks
+    -- of two narrowed sections left over a junction surface that a neighbour's edit had moved.)
+    IF reach > 0 THEN
+      INSERT INTO pg_temp._sg_s2
+      WITH ends (id) AS (SELECT from_node FROM pg_temp._sg_s2 UNION SELECT to_node FROM pg_temp._sg_s2
+                         UNION SELECT id FROM pg_temp._sg_k_nodes),
+      out_roadway AS MATERIALIZED (
+        SELECT o.axis_id, o.part, NULL::bigint AS node_id, ST_GeomFromEWKB(o.geom) AS geom FROM pg_temp._streetgen_out o
+         WHERE o.kind = 'section' AND o.geom IS NOT NULL
+           AND (o.axis_id = ANY (changed)
+                OR EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE k.axis_id = o.axis_id AND k.part = o.part))
+        UNION ALL
+        SELECT NULL, NULL, o.node_id, ST_GeomFromEWKB(o.geom) FROM pg_temp._streetgen_out o
+         WHERE o.kind = 'intersection' AND o.geom IS NOT NULL AND o.node_id IN (SELECT id FROM ends)),
+      moved (geom) AS (
+        SELECT r.geom FROM out_roadway r
+         WHERE r.node_id IS NULL
+           AND NOT EXISTS (SELECT 1 FROM section s WHERE s.axis_id = r.axis_id AND s.part = r.part AND ST_OrderingEquals(s.geom, r.geom))
+        UNION ALL SELECT r.geom FROM out_roadway r
+         WHERE r.node_id IS NOT NULL
+           AND NOT EXISTS (SELECT 1 FROM intersection i WHERE i.node_id = r.node_id AND ST_OrderingEquals(i.geom, r.geom))
+        UNION ALL SELECT s.geom FROM pg_temp._sg_s2 k, LATERAL (SELECT s.geom FROM section s
+                                                              WHERE s.axis_id = k.axis_id AND s.part = k.part) AS s
+         WHERE s.geom IS NOT NULL
+           AND NOT EXISTS (SELECT 1 FROM out_roadway r WHERE r.axis_id = k.axis_id AND r.part = k.part AND ST_OrderingEquals(s.geom, r.geom))
+        UNION ALL SELECT i.geom FROM ends e, LATERAL (SELECT i.geom FROM intersection i WHERE i.node_id = e.id) AS i
+         WHERE NOT EXISTS (SELECT 1 FROM out_roadway r WHERE r.node_id = e.id AND ST_OrderingEquals(i.geom, r.geom))),
+      reached AS (
+        SELECT p.axis_id, p.part, p.from_node, p.to_node, p.geom FROM moved m,
+               LATERAL (SELECT p.* FROM section p WHERE p.geom && ST_Expand(m.geom, reach) AND ST_DWithin(p.geom, m.geom, reach)) AS p
+        UNION
+        SELECT p.axis_id, p.part, p.from_node, p.to_node, p.geom FROM moved m,
+               LATERAL (SELECT i.node_id FROM intersection i
+                         WHERE i.geom && ST_Expand(m.geom, reach) AND ST_DWithin(i.geom, m.geom, reach)) AS j,
+               LATERAL (SELECT p.* FROM section p WHERE p.from_node = j.node_id
+                        UNION ALL SELECT p.* FROM section p WHERE p.to_node = j.node_id) AS p)
+      SELECT r.axis_id, r.part, r.from_node, r.to_node, ST_Expand(ST_Envelope(r.geom), reach) FROM reached r
+       WHERE NOT EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE k.axis_id = r.axis_id AND k.part = r.part);
+      GET DIAGNOSTICS widened = ROW_COUNT;
+    END IF;
+    converged := grown = 0 AND widened = 0;
+    EXIT WHEN converged;
   END LOOP;
+  -- (a scope still growing after six runs: one full run instead, which is always right)
+  IF NOT converged THEN
+    PERFORM streetgen._compute_model(model);
+    PERFORM streetgen._store(model, false);
+    PERFORM pg_notify('qgis', model);
+    RETURN;
+  END IF;
 
   -- The scope: what was there (old) and what is there now (new) within reach of the change.
   -- New sections come from the changed axes, or lie between nodes of K and new nodes on the

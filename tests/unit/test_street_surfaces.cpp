@@ -249,19 +249,22 @@ TEST(StreetDetails, SidewalksStayOffRoadwaysAndCrossingsFollowTheRule) {
   SurfaceResult r = street_surfaces(ctx, axes, {}, SurfaceSettings{});
   expect_valid_and_disjoint(ctx, r);
   int around = 0;
+  // Sidewalks are snapped to the micrometre grid: they may cross a curved roadway edge by that
+  // much, a few square millimetres along a junction's arcs, never more.
+  constexpr double kGridOverlap = 1e-5;
   for (const auto& w : r.sidewalks) {
     ASSERT_TRUE(w.surface);
     EXPECT_EQ(GEOSisValid_r(ctx.handle(), w.surface.get()), 1);
     if (w.side == "around") ++around;
     for (const auto& s : r.sections) {
       if (s.surface) {
-        EXPECT_LT(overlap_area(ctx, w.surface.get(), s.surface.get()), 1e-9);
+        EXPECT_LT(overlap_area(ctx, w.surface.get(), s.surface.get()), kGridOverlap);
       }
     }
-    for (const auto& i : r.intersections) EXPECT_LT(overlap_area(ctx, w.surface.get(), i.surface.get()), 1e-9);
+    for (const auto& i : r.intersections) EXPECT_LT(overlap_area(ctx, w.surface.get(), i.surface.get()), kGridOverlap);
     for (const auto& o : r.sidewalks) {
       if (&o != &w) {
-        EXPECT_LT(overlap_area(ctx, w.surface.get(), o.surface.get()), 1e-9);
+        EXPECT_LT(overlap_area(ctx, w.surface.get(), o.surface.get()), kGridOverlap);
       }
     }
   }
