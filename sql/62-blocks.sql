@@ -110,25 +110,6 @@ BEGIN
       PERFORM streetgen._compute_blocks(model, area);
       SELECT ST_Envelope(ST_Collect(ST_Envelope(f.face))) INTO grown
         FROM pg_temp._sg_faces f WHERE f.face && region AND NOT f.face @ area;
-      IF grown IS NULL THEN
-        -- A ring closed far from most of its lines (an inserted axis joins two open ends, a soak
-        -- found a 9.9 km2 face missing): the face is not formed from the lines that reach into
-        -- AREA, and no old face over the region calls for more. A ground-level line in the region
-        -- that borders no face found, without a dead end at either end, may border such a face:
-        -- AREA grows by its own size around those lines (a true cut edge, the only road between
-        -- two parts of the network, or a dead-end branch with side streets, runs to the full
-        -- recompute: slower, never wrong).
-        EXECUTE format($q$
-          SELECT ST_Envelope(ST_Expand(ST_Collect(s.centre_line), greatest(ST_XMax($2) - ST_XMin($2), ST_YMax($2) - ST_YMin($2))))
-            FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id
-           WHERE a.layer = 0 AND s.status <> 'duplicate' AND s.centre_line && $1
-             AND NOT EXISTS (SELECT 1 FROM pg_temp._sg_faces f
-                              WHERE f.face && s.centre_line
-                                AND ST_DWithin(ST_LineInterpolatePoint(s.centre_line, 0.5), ST_Boundary(f.face), 1e-6))
-             AND (SELECT n.degree FROM %1$I.node n WHERE n.id = s.from_node) > 1
-             AND (SELECT n.degree FROM %1$I.node n WHERE n.id = s.to_node) > 1$q$, model)
-          INTO grown USING region, area;
-      END IF;
       EXIT WHEN grown IS NULL;
       area := ST_Envelope(ST_Collect(area, grown));
       EXECUTE format('SELECT ST_Envelope(ST_Collect(ST_Envelope(b.face))) FROM %I.block b WHERE b.face && $1', model)
