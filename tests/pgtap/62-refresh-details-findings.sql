@@ -49,5 +49,23 @@ DELETE FROM paris_claim.axis WHERE id = 364;
 SELECT is_empty($$SELECT * FROM streetgen.outdated('paris_claim')$$,
                 'a junction sidewalk in scope gives way to the sidewalk claim of a section it reaches, computed as a full run does');
 
+-- An axis that closes a ring far from most of its lines (a soak on Liechtenstein inserted one
+-- between two open ends: a 9.9 km2 face, its block never written). The refresh's box around the
+-- insertion holds only the ends of the ring: the face must be found all the same.
+SELECT streetgen.create_model('ring', 32631);
+-- (a square of 1 km, in axes of 100 m: the refresh's neighbourhood reaches a few of them)
+INSERT INTO ring.axis (roadway_width, speed_kmh, geom)
+SELECT 6, 30, ST_SetSRID(ST_MakeLine(ST_MakePoint(x0, y0), ST_MakePoint(x1, y1)), 32631)
+  FROM (SELECT 100 * i, 0, 100 * (i + 1), 0 FROM generate_series(0, 9) AS i
+        UNION ALL SELECT 1000, 100 * i, 1000, 100 * (i + 1) FROM generate_series(0, 9) AS i
+        UNION ALL SELECT 1000 - 100 * i, 1000, 900 - 100 * i, 1000 FROM generate_series(0, 9) AS i
+        UNION ALL SELECT 0, 1000 - 100 * i, 0, 900 - 100 * i FROM generate_series(0, 8) AS i) AS e (x0, y0, x1, y1);
+SELECT is((SELECT count(*) FROM ring.block), 0::bigint, 'ring: no block while the ring is open');
+INSERT INTO ring.axis (roadway_width, speed_kmh, geom) VALUES (6, 30, 'SRID=32631;LINESTRING(0 100,0 0)');
+SELECT is((SELECT count(*) FROM ring.block), 1::bigint, 'ring: closing the ring far from most of it writes its block');
+SELECT is_empty($$SELECT * FROM streetgen.outdated('ring')$$, 'ring: current after closing it');
+DELETE FROM ring.axis WHERE ST_Equals(geom, 'SRID=32631;LINESTRING(0 100,0 0)');
+SELECT is_empty($$SELECT * FROM streetgen.outdated('ring')$$, 'ring: current after opening it again');
+
 SELECT * FROM finish();
 ROLLBACK;
