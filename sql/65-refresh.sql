@@ -300,6 +300,14 @@ BEGIN
         UNION SELECT p.axis_id, p.part, p.from_node, p.to_node FROM ends e,
                LATERAL (SELECT i.geom FROM intersection i WHERE reach > 0 AND i.node_id = e.id) AS j,
                LATERAL (SELECT p.* FROM section p WHERE p.geom && ST_Expand(j.geom, reach)) AS p
+        -- The junctions within its reach too, by their sections (a surface the engine is not given
+        -- does not cut it): a replay found a junction sidewalk written over a junction 3.7 m away
+        -- whose sections all began beyond its reach.
+        UNION SELECT p.axis_id, p.part, p.from_node, p.to_node FROM ends e,
+               LATERAL (SELECT i.geom FROM intersection i WHERE reach > 0 AND i.node_id = e.id) AS j,
+               LATERAL (SELECT n.node_id FROM intersection n WHERE n.geom && ST_Expand(j.geom, reach)) AS n,
+               LATERAL (SELECT p.* FROM section p WHERE p.from_node = n.node_id
+                        UNION ALL SELECT p.* FROM section p WHERE p.to_node = n.node_id) AS p
         UNION SELECT axis_id, part, from_node, to_node FROM pg_temp._sg_s2
       ) AS x
        WHERE NOT EXISTS (SELECT 1 FROM pg_temp._sg_q q WHERE q.axis_id = x.axis_id AND q.part = x.part);
