@@ -381,6 +381,9 @@ class Grower {
       if (pp.tries <= 0) throw_invalid_argument("tries must be > 0", "It is " + std::to_string(pp.tries) + ".");
       if (pp.max_uses < 0) throw_invalid_argument("max_uses must be >= 0", "It is " + std::to_string(pp.max_uses) + ".");
       if (!std::isfinite(pp.rotation)) throw_invalid_argument("rotation must be a finite number of degrees");
+      if (!std::isfinite(pp.clearance) || pp.clearance < 0.0) {
+        throw_invalid_argument("clearance must be a finite number > 0", "It is " + std::to_string(pp.clearance) + " m.");
+      }
     }
     const BlendParams& b = params_.blend;
     if (!std::isfinite(b.angle)) throw_invalid_argument("blend_angle must be a finite number of degrees");
@@ -1402,7 +1405,14 @@ class Grower {
     std::uint32_t patch, edge;
     double angle;   // direction from the inner end to the point `probe_` along it
     double length;
+    int level;
+    double reach;  // the farthest vertex from the inner end
   };
+  static double reach_of(const Polyline& line) {
+    double r = 0.0;
+    for (Point q : line) r = std::max(r, distance(q, line[0]));
+    return r;
+  }
   static constexpr int kBuckets = 72;  // connector directions in 5° bins
 
   // Polylines closer than `contact` to each other but not at a shared end point: the patch would
@@ -1479,7 +1489,7 @@ class Grower {
         Point q = point_at(line, std::min(len, probe_));
         double angle = std::atan2(q.y - line[0].y, q.x - line[0].x);
         buckets_[bucket_of(angle)].push_back(static_cast<std::uint32_t>(connectors_.size()));
-        connectors_.push_back({i, c, angle, len});
+        connectors_.push_back({i, c, angle, len, lp.edges[c].level, reach_of(line)});
       }
     }
     if (seed_patches_.empty()) {
@@ -1500,6 +1510,7 @@ class Grower {
     shape_.length_deviation = std::min(0.5 * shape_.length, street_stats_.length_sd);
     shape_.min_length = std::min(shape_.length, std::max(min_length_, 0.25 * shape_.length));
     max_distance_ = params_.patch.max_distance > 0.0 ? params_.patch.max_distance : 0.25 * street_stats_.length_mean;
+    clearance_ = params_.patch.clearance > 0.0 ? params_.patch.clearance : 0.2 * street_stats_.length_mean;
   }
 
   // Points every `step` metres along the line (its vertices included).
@@ -1592,6 +1603,7 @@ class Grower {
           return;
         }
       }
+      if (!params_.fallback) return;
       ++stats_.fallback;
       parametric_step(v, 0, NAN);
       return;
@@ -1610,9 +1622,15 @@ class Grower {
     int level = 0;
     for (std::size_t k = 0; k < nodes_[v].edges.size(); ++k) {
       std::uint32_t e = nodes_[v].edges[k];
-      if (k == 0) level = std::max(0, edges_[e].level);
+      const int street_level = edges_[e].level;
+      if (k == 0) level = std::max(0, street_level);
       Polyline street = chain(v, e, cap);
       double street_len = length(street);
+      // A street a patch made is compared whole (Nishida's Hausdorff distance between edges: the
+      // example's own neighbour fits best); one the fallback made only over the shorter length,
+      // so that patches take over again after it.
+      const bool whole = edges_[e].source >= 0;
+      const double street_reach = reach_of(street);
       Point q = point_at(street, std::min(street_len, probe_));
       double angle = std::atan2(q.y - p.y, q.x - p.x);
       int span = static_cast<int>(std::ceil(window / (2.0 * kPi / kBuckets)));
@@ -1621,15 +1639,19 @@ class Grower {
         for (std::uint32_t ci : buckets_[(centre + db + kBuckets) % kBuckets]) {
           const LibConnector& c = connectors_[ci];
           if (std::abs(wrap(c.angle - angle)) > window) continue;
+          // Levels (Nishida: arterial and local patches apart): a connector continues a street of its class.
+          if (params_.match_levels && street_level >= 0 && c.level != street_level) continue;
           const LibPatch& lp = library_[c.patch];
           if (lp.max_uses > 0 && lp.uses >= lp.max_uses) continue;
           const Polyline& line = lp.edges[c.edge].line;
-          double s = std::min(street_len, c.length);
+          double bound = best_stamp_[c.patch] == stamp_ ? std::min(best_[c.patch].d, max_distance_) : max_distance_;
+          // Both start at v: the Hausdorff distance is at least the difference of their reaches.
+          if (whole && std::abs(c.reach - street_reach) > bound) continue;
+          double s = whole ? std::max(street_len, c.length) : std::min(street_len, c.length);
           Polyline placed = substring(line, 0.0, s);
           Point t = p - line[0];
           for (Point& x : placed) x = x + t;
           Polyline cut = substring(street, 0.0, s);
-          double bound = best_stamp_[c.patch] == stamp_ ? std::min(best_[c.patch].d, max_distance_) : max_distance_;
           double d = hausdorff(placed, cut, bound);
           if (d > bound || (best_stamp_[c.patch] == stamp_ && d >= best_[c.patch].d)) continue;
           if (best_stamp_[c.patch] != stamp_) {
@@ -1661,6 +1683,12 @@ class Grower {
         done_ = true;
         return;
       }
+    }
+    // A front that two patches already reached is connected: the fallback only continues streets
+    // that would otherwise end where the example did not end them.
+    if (!params_.fallback || nodes_[v].edges.size() >= 2) {
+      done_ = true;
+      return;
     }
     ++stats_.fallback;
     parametric_step(v, level, NAN);
@@ -1713,6 +1741,7 @@ class Grower {
       std::int64_t a, b;
       int level;
       bool open_end;  // a connector whose outer end is new: a front
+      bool outer;     // a connector: its end b is the neighbouring patch's junction
     };
     std::vector<Planned> plan;
     auto pos = [&](std::int64_t id) {
@@ -1726,7 +1755,7 @@ class Grower {
       if (a >= 0 && b >= 0 && (a == b || connected_by_street(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b)))) {
         continue;
       }
-      Planned pl{{}, a, b, e.level, e.role == PatchEdgeRole::connector && b < 0};
+      Planned pl{{}, a, b, e.level, e.role == PatchEdgeRole::connector && b < 0, e.role == PatchEdgeRole::connector};
       pl.line.reserve(e.line.size());
       for (Point q : e.line) pl.line.push_back(q + t);
       pl.line.front() = pos(a);
@@ -1766,17 +1795,14 @@ class Grower {
     std::size_t segments = 0;
     for (const Planned& pl : plan) segments += pl.line.size() - 1;
     if (new_edges_ + segments > params_.max_edges) return false;
-    // New vertices must keep their distance from the network.
-    std::vector<char> fresh_used(fresh.size(), 0);
+    // New streets keep the clearance from the network that the example's streets keep from each
+    // other (away from the nodes they share with it).
     for (const Planned& pl : plan) {
-      for (std::int64_t id : {pl.a, pl.b}) {
-        if (id < 0) fresh_used[static_cast<std::size_t>(-id - 1)] = 1;
-      }
-    }
-    for (std::size_t f = 0; f < fresh.size(); ++f) {
-      if (fresh_used[f] && crowded(fresh[f], min_length_, v)) {
-        ++stats_.patch_illegal;
-        return false;
+      for (std::size_t k = 0; k + 1 < pl.line.size(); ++k) {
+        if (!clear_of_network(pl.line[k], pl.line[k + 1], clearance_, v, pl.a, pl.b)) {
+          ++stats_.patch_illegal;
+          return false;
+        }
       }
     }
     // Angles and degrees at existing nodes.
@@ -1870,10 +1896,33 @@ class Grower {
         unfinished_.push_back(prev);
       }
     }
-    for (const auto& [node, angles] : leaving) completed_[node] = 1;
+    // An existing node that became one of the patch's own junctions is finished; one that only
+    // a connector reached (the outer end, a neighbouring patch's place) stays a front.
+    for (const Planned& pl : plan) {
+      if (pl.a >= 0) completed_[static_cast<std::uint32_t>(pl.a)] = 1;
+      if (pl.b >= 0 && !pl.outer) completed_[static_cast<std::uint32_t>(pl.b)] = 1;
+    }
     completed_[v] = 1;
     ++library_[j].uses;
     ++stats_.patches_placed;
+    return true;
+  }
+
+  // Segment p-q is at least d from every edge of the network not at v, a or b (node ids; < 0: none).
+  bool clear_of_network(Point p, Point q, double d, std::uint32_t v, std::int64_t a, std::int64_t b) {
+    hits_.clear();
+    Box box = box_of(p, q);
+    bg::expand(box, box_around(p, d));
+    bg::expand(box, box_around(q, d));
+    edge_tree_.query(bgi::intersects(box), std::back_inserter(hits_));
+    auto at = [&](std::uint32_t n) {
+      return n == v || (a >= 0 && n == static_cast<std::uint32_t>(a)) || (b >= 0 && n == static_cast<std::uint32_t>(b));
+    };
+    for (const BoxValue& hv : hits_) {
+      const OEdge& edge = edges_[hv.second];
+      if (at(edge.a) || at(edge.b)) continue;
+      if (segment_distance(p, q, nodes_[edge.a].p, nodes_[edge.b].p) < d) return false;
+    }
     return true;
   }
 
@@ -1896,7 +1945,7 @@ class Grower {
   std::vector<std::vector<std::uint32_t>> buckets_;
   std::vector<std::uint32_t> seed_patches_;
   StreetStatistics street_stats_;
-  double probe_ = 0.0, max_distance_ = 0.0;
+  double probe_ = 0.0, max_distance_ = 0.0, clearance_ = 0.0;
   std::vector<char> completed_;  // patch growth: nodes a patch finished (junctions, merged ends)
   std::size_t queue_head_ = 0;
 
