@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <random>
 #include <unordered_map>
 #include <unordered_set>
@@ -894,7 +895,14 @@ class Grower {
     const ParametricParams& sh = shape_;
     if (target_degree_.size() < nodes_.size()) target_degree_.resize(nodes_.size(), 0);
     if (target_degree_[v] == 0) {
-      target_degree_[v] = static_cast<std::uint8_t>(sh.min_degree + static_cast<int>(uniform(sh.max_degree - sh.min_degree + 1)));
+      if (!degree_cdf_.empty()) {  // patch growth's fallback: the example's junction mix
+        double u = uniform01();
+        std::size_t k = 0;
+        while (k + 1 < degree_cdf_.size() && u > degree_cdf_[k]) ++k;
+        target_degree_[v] = static_cast<std::uint8_t>(std::max<std::size_t>(2, k));
+      } else {
+        target_degree_[v] = static_cast<std::uint8_t>(sh.min_degree + static_cast<int>(uniform(sh.max_degree - sh.min_degree + 1)));
+      }
     }
     step_frame_ = frames_[v];
     step_copy_ = {-1, 0};
@@ -1478,6 +1486,30 @@ class Grower {
       for (const LibEdge& e : lp.edges) streets.push_back(&e.line);
     }
     street_stats_ = street_statistics(streets);
+    // The streets' degrees at their ends (each street once: a connector is in two patches), for
+    // the fallback's target degree: P(degree = k | k >= 2).
+    {
+      std::map<MillimetreKey, std::size_t> degree;
+      std::set<std::pair<MillimetreKey, MillimetreKey>> seen;
+      auto key = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
+      for (const Polyline* l : streets) {
+        MillimetreKey a = key(l->front()), b = key(l->back());
+        if (!seen.insert({std::min(a, b), std::max(a, b)}).second) continue;
+        ++degree[a];
+        ++degree[b];
+      }
+      std::vector<double> count(9, 0.0);
+      double total = 0.0;
+      for (const auto& [k, d] : degree) {
+        if (d < 2) continue;
+        count[std::min<std::size_t>(d, 8)] += 1.0;
+        total += 1.0;
+      }
+      if (total > 0.0) {
+        double acc = 0.0;
+        for (double c : count) degree_cdf_.push_back(acc += c / total);
+      }
+    }
     probe_ = 0.5 * street_stats_.length_mean;
     buckets_.assign(kBuckets, {});
     for (std::uint32_t i = 0; i < library_.size(); ++i) {
@@ -1510,7 +1542,7 @@ class Grower {
     shape_.length_deviation = std::min(0.5 * shape_.length, street_stats_.length_sd);
     shape_.min_length = std::min(shape_.length, std::max(min_length_, 0.25 * shape_.length));
     max_distance_ = params_.patch.max_distance > 0.0 ? params_.patch.max_distance : 0.25 * street_stats_.length_mean;
-    clearance_ = params_.patch.clearance > 0.0 ? params_.patch.clearance : 0.2 * street_stats_.length_mean;
+    clearance_ = params_.patch.clearance > 0.0 ? params_.patch.clearance : 0.04 * street_stats_.length_mean;
   }
 
   // Points every `step` metres along the line (its vertices included).
@@ -1762,6 +1794,9 @@ class Grower {
       pl.line.back() = pos(b);
       plan.push_back(std::move(pl));
     }
+    // Nishida: the patch's edges that double existing streets are removed (every point of the edge
+    // within snap of the network).
+    plan.erase(std::remove_if(plan.begin(), plan.end(), [&](const Planned& pl) { return redundant(pl.line); }), plan.end());
     if (plan.empty()) return false;
     // Region and obstacles: clip open connectors to their longest legal prefix.
     for (Planned& pl : plan) {
@@ -1820,9 +1855,18 @@ class Grower {
     std::vector<std::uint32_t> merged;
     for (auto& [node, angles] : leaving) {
       merged.push_back(node);
-      if (nodes_[node].edges.size() + angles.size() > max_degree_) {
+      const std::size_t d0 = nodes_[node].edges.size(), d1 = d0 + angles.size();
+      if (d1 > max_degree_) {
         ++stats_.patch_illegal;
         return false;
+      }
+      // A junction made busier than 3 by a merge: as often as the example's junctions are (the
+      // junction mix follows the example, as in growth I).
+      for (std::size_t d = std::max<std::size_t>(d0, 3); node != v && d < d1; ++d) {
+        if (!example_allows_one_more(d)) {
+          ++stats_.patch_illegal;
+          return false;
+        }
       }
       for (std::size_t a = 0; a < angles.size(); ++a) {
         bool ok = angle_free(node, angles[a]);
@@ -1908,6 +1952,25 @@ class Grower {
     return true;
   }
 
+  // Every point of the line (sampled every few metres) is within snap of the network.
+  bool redundant(const Polyline& line) {
+    densify(line, std::max(1.0, 0.5 * snap_), dense_);
+    for (Point q : dense_) {
+      hits_.clear();
+      edge_tree_.query(bgi::intersects(box_around(q, snap_)), std::back_inserter(hits_));
+      bool near = false;
+      for (const BoxValue& hv : hits_) {
+        const OEdge& edge = edges_[hv.second];
+        if (point_segment_distance(q, nodes_[edge.a].p, nodes_[edge.b].p) <= snap_) {
+          near = true;
+          break;
+        }
+      }
+      if (!near) return false;
+    }
+    return true;
+  }
+
   // Segment p-q is at least d from every edge of the network not at v, a or b (node ids; < 0: none).
   bool clear_of_network(Point p, Point q, double d, std::uint32_t v, std::int64_t a, std::int64_t b) {
     hits_.clear();
@@ -1946,6 +2009,7 @@ class Grower {
   std::vector<std::uint32_t> seed_patches_;
   StreetStatistics street_stats_;
   double probe_ = 0.0, max_distance_ = 0.0, clearance_ = 0.0;
+  std::vector<double> degree_cdf_;  // patch growth's fallback: P(degree <= k | degree >= 2) of the patch streets
   std::vector<char> completed_;  // patch growth: nodes a patch finished (junctions, merged ends)
   std::size_t queue_head_ = 0;
 

@@ -62,7 +62,7 @@ struct PatchGrowParams {
   int max_uses = 0;           // uses per patch when the patch sets none; 0: unlimited
   double rotation = 0.0;      // degrees: every patch turned by this (Nishida: one rotation per growth)
   double clearance = 0.0;     // metres: new patch streets keep this far from streets they do not meet;
-                              // 0: a fifth of the mean street length
+                              // 0: 4 % of the mean street length
 };
 
 struct GrowParams {
