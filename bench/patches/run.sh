@@ -128,10 +128,9 @@ SELECT name, method, round((100 * min(reference_value) FILTER (WHERE metric = 'd
        round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY candidate_value - reference_value) FILTER (WHERE metric = 'dead_end_share'))::numeric, 1) AS d_dead_pp
   FROM headline GROUP BY name, method ORDER BY name, method;
 \echo per pair (method, example, seed): median of the eight headline |relative differences| (capped at 100 %)
-SELECT name, seed, round((100 * score) FILTER (WHERE method = 'patches')::numeric, 1) AS patches_pct,
-       round((100 * score) FILTER (WHERE method = 'example')::numeric, 1) AS grow_example_pct
-  FROM (SELECT name, seed, method, max(score) AS score FROM cmp WHERE metric = 'median_abs_relative_difference'
-         GROUP BY name, seed, method) s GROUP BY name, seed, method, score ORDER BY name, seed;
+SELECT name, seed, round((100 * max(score) FILTER (WHERE method = 'patches'))::numeric, 1) AS patches_pct,
+       round((100 * max(score) FILTER (WHERE method = 'example'))::numeric, 1) AS grow_example_pct
+  FROM cmp WHERE metric = 'median_abs_relative_difference' GROUP BY name, seed ORDER BY name, seed;
 SELECT method, round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY score))::numeric, 1) AS median_over_pairs_pct,
        round((100 * max(score))::numeric, 1) AS worst_pair_pct
   FROM cmp WHERE metric = 'median_abs_relative_difference' GROUP BY method;

@@ -948,6 +948,9 @@ class Grower {
     std::size_t made = 0;
     for (const auto& [priority, a] : dirs) {
       if (d + made >= target_degree_[v] || new_edges_ >= params_.max_edges) break;
+      // Patch growth's fallback continues a street of degree 2 straight on only: a turn there
+      // would be a corner without a junction, which the examples' streets rarely have.
+      if (params_.use_patches && target_degree_[v] == 2 && d == 1 && priority > 0.0) break;
       double angle = wrap(a + (uniform01() * 2.0 - 1.0) * dev);
       double length = std::max(sh.min_length, sh.length + (uniform01() * 2.0 - 1.0) * sh.length_deviation);
       std::size_t before = stats_.accepted;
@@ -1541,6 +1544,7 @@ class Grower {
     shape_.length = std::max(street_stats_.length_mean, 2.0 * min_length_);
     shape_.length_deviation = std::min(0.5 * shape_.length, street_stats_.length_sd);
     shape_.min_length = std::min(shape_.length, std::max(min_length_, 0.25 * shape_.length));
+    shape_.angle_deviation = 0.0;  // Nishida: new streets at about 90° to the front's street
     max_distance_ = params_.patch.max_distance > 0.0 ? params_.patch.max_distance : 0.25 * street_stats_.length_mean;
     clearance_ = params_.patch.clearance > 0.0 ? params_.patch.clearance : 0.04 * street_stats_.length_mean;
   }
@@ -1947,6 +1951,13 @@ class Grower {
       if (pl.b >= 0 && !pl.outer) completed_[static_cast<std::uint32_t>(pl.b)] = 1;
     }
     completed_[v] = 1;
+    // A front a connector reached is the neighbouring patch's place: it is (again) in the queue,
+    // so the patch that joins both streets is looked for there, even if it was tried before.
+    for (const Planned& pl : plan) {
+      if (pl.b >= 0 && pl.outer && !completed_[static_cast<std::uint32_t>(pl.b)]) {
+        unfinished_.push_back(static_cast<std::uint32_t>(pl.b));
+      }
+    }
     ++library_[j].uses;
     ++stats_.patches_placed;
     return true;

@@ -55,7 +55,7 @@ struct BlendParams {
 // (placed with its inner end on the front) and one of the front's streets, among the patches that
 // pass the legality checks (region, obstacles, no crossing, angles, degrees).
 struct PatchGrowParams {
-  double scale = 1.0;         // metres (Nishida's eq. 2 reads d in metres: scale 1)
+  double scale = 0.1;         // metres; Nishida's eq. 2 reads d in metres (scale 1): 0.1 measured closer (README)
   double max_distance = 0.0;  // metres: patches farther than this are not drawn; 0: 0.25 x the mean street length
   double angle_window = 30.0; // degrees: connectors compared with a street leave within this of its direction
   int tries = 24;             // legality checks per front before the statistical fallback
