@@ -150,6 +150,11 @@ SELECT method, (SELECT count(*) FROM grown g2 WHERE g2.method = m.method) AS edg
          WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))) AS crossings_without_node,
        (SELECT count(*) FROM grown g JOIN region r USING (name) WHERE g.method = m.method AND NOT ST_CoveredBy(g.geom, r.geom)) AS outside_region
   FROM (VALUES ('patches'), ('example')) AS m(method);
+\echo crossings without a shared node, if any
+SELECT a.method, a.name, a.seed, a.id, b.id, a.origin, b.origin, ST_AsText(ST_Intersection(a.geom, b.geom)) AS at
+  FROM grown a JOIN grown b ON a.method = b.method AND a.name = b.name AND a.seed = b.seed AND a.id < b.id
+   AND ST_Intersects(a.geom, b.geom)
+ WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node));
 SQL
 
 if [ "${SPEED:-1}" = 0 ]; then

@@ -1750,6 +1750,7 @@ class Grower {
     // Patch vertices (edge ends): an existing node (>= 0), or a new one (-(index into fresh) - 1).
     std::unordered_map<MillimetreKey, std::int64_t, MillimetreKeyHash> vertex;
     std::vector<Point> fresh;
+    std::unordered_set<std::uint32_t> taken;  // existing nodes a patch vertex merged into: one vertex each
     const MillimetreKey anchor_key{std::llround(anchor.x * 1000.0), std::llround(anchor.y * 1000.0)};
     auto vertex_of = [&](Point q) -> std::int64_t {
       MillimetreKey key{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)};
@@ -1759,10 +1760,13 @@ class Grower {
       Point at = q + t;
       if (key == anchor_key) {
         id = v;
+        taken.insert(v);
       } else {
+        // Two vertices of the patch never merge into one node (that would fold its junctions).
         point_hits_.clear();
         node_tree_.query(bgi::nearest(BPoint(at.x, at.y), 1), std::back_inserter(point_hits_));
-        if (!point_hits_.empty() && distance(nodes_[point_hits_[0].second].p, at) <= snap_) {
+        if (!point_hits_.empty() && distance(nodes_[point_hits_[0].second].p, at) <= snap_ &&
+            point_hits_[0].second != v && taken.insert(point_hits_[0].second).second) {
           id = point_hits_[0].second;
         } else {
           fresh.push_back(at);
@@ -1778,6 +1782,7 @@ class Grower {
       int level;
       bool open_end;  // a connector whose outer end is new: a front
       bool outer;     // a connector: its end b is the neighbouring patch's junction
+      Point from, to; // where the ends were before merging or clipping
     };
     std::vector<Planned> plan;
     auto pos = [&](std::int64_t id) {
@@ -1791,7 +1796,8 @@ class Grower {
       if (a >= 0 && b >= 0 && (a == b || connected_by_street(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b)))) {
         continue;
       }
-      Planned pl{{}, a, b, e.level, e.role == PatchEdgeRole::connector && b < 0, e.role == PatchEdgeRole::connector};
+      Planned pl{{}, a, b, e.level, e.role == PatchEdgeRole::connector && b < 0, e.role == PatchEdgeRole::connector,
+                 e.line.front() + t, e.line.back() + t};
       pl.line.reserve(e.line.size());
       for (Point q : e.line) pl.line.push_back(q + t);
       pl.line.front() = pos(a);
@@ -1901,7 +1907,8 @@ class Grower {
     for (std::size_t i = 0; i < plan.size(); ++i) {
       const Planned& pl = plan[i];
       for (std::size_t k = 0; k + 1 < pl.line.size(); ++k) {
-        bool moved = (k == 0 && pl.a >= 0 && pl.a != v) || (k + 2 == pl.line.size() && (pl.b >= 0 || !pl.open_end));
+        bool moved = (k == 0 && distance(pl.line.front(), pl.from) > kContact) ||
+                     (k + 2 == pl.line.size() && distance(pl.line.back(), pl.to) > kContact);
         if (!moved) continue;
         for (std::size_t i2 = 0; i2 < plan.size(); ++i2) {
           const Planned& other = plan[i2];
