@@ -1750,7 +1750,6 @@ class Grower {
     // Patch vertices (edge ends): an existing node (>= 0), or a new one (-(index into fresh) - 1).
     std::unordered_map<MillimetreKey, std::int64_t, MillimetreKeyHash> vertex;
     std::vector<Point> fresh;
-    std::unordered_set<std::uint32_t> taken;  // existing nodes a patch vertex merged into: one vertex each
     const MillimetreKey anchor_key{std::llround(anchor.x * 1000.0), std::llround(anchor.y * 1000.0)};
     auto vertex_of = [&](Point q) -> std::int64_t {
       MillimetreKey key{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)};
@@ -1760,13 +1759,12 @@ class Grower {
       Point at = q + t;
       if (key == anchor_key) {
         id = v;
-        taken.insert(v);
       } else {
-        // Two vertices of the patch never merge into one node (that would fold its junctions).
+        // (Several vertices of the patch may merge into one node, folding a dual carriageway's
+        // junctions into one: the planarity check below follows every moved end.)
         point_hits_.clear();
         node_tree_.query(bgi::nearest(BPoint(at.x, at.y), 1), std::back_inserter(point_hits_));
-        if (!point_hits_.empty() && distance(nodes_[point_hits_[0].second].p, at) <= snap_ &&
-            point_hits_[0].second != v && taken.insert(point_hits_[0].second).second) {
+        if (!point_hits_.empty() && distance(nodes_[point_hits_[0].second].p, at) <= snap_) {
           id = point_hits_[0].second;
         } else {
           fresh.push_back(at);
