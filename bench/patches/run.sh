@@ -188,7 +188,7 @@ BEGIN
 END
 $$;
 SQL
-for side in 1200 2400 4800; do
+for side in 1200 2600 4800; do
   psql -X -q -At -v ON_ERROR_STOP=1 -c "
     SELECT format('side %s m: grow_patches %s edges %s km in %s s (%s km/s); grow_example %s km in %s s (%s km/s); ratio of speeds patches/example %s',
                   $side, p.edges, round(p.km::numeric, 1), round(p.seconds::numeric, 2), round((p.km / p.seconds)::numeric),
