@@ -132,6 +132,7 @@ DECLARE
   obstacle_geoms bytea[];
   seed_types text[];
   k text;
+  complete boolean;
 BEGIN
   IF patches IS NULL THEN
     RAISE EXCEPTION 'patches must not be null' USING ERRCODE = 'null_value_not_allowed';
@@ -169,19 +170,31 @@ BEGIN
     FROM ST_Dump(seeds) AS d;
   SELECT array_agg(ST_AsEWKB(d.geom) ORDER BY d.path) INTO obstacle_geoms FROM ST_Dump(obstacles) AS d;
   -- The patch rows: patch_id, role and geom; optionally road_class, max_uses, edge_index (order).
-  IF EXISTS (SELECT 1 FROM streetgen._rows_with_geom(patches, 'patches') AS r
-              WHERE NOT (r.j ? 'patch_id' AND r.j ? 'role') LIMIT 1) THEN
-    RAISE EXCEPTION 'the patches query must return the columns patch_id, role and geom'
-      USING ERRCODE = 'invalid_parameter_value', HINT = 'Use the rows of streetgen.extract_patches.';
-  END IF;
-  SELECT array_agg((r.j ->> 'patch_id')::bigint ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
-         array_agg(r.j ->> 'role' ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
-         array_agg(r.j ->> 'road_class' ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
-         array_agg(ST_AsEWKB(r.geom) ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
-         array_agg((r.j ->> 'max_uses')::integer ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
-         array_agg(DISTINCT ST_SRID(r.geom)) FILTER (WHERE r.geom IS NOT NULL)
-    INTO pids, roles, classes, geoms, uses, srids
-    FROM streetgen._rows_with_geom(patches, 'patches') AS r;
+  -- Rows of extract_patches (all columns there) are read directly, others through jsonb.
+  BEGIN
+    EXECUTE format('SELECT array_agg(q.patch_id::bigint ORDER BY q.patch_id, q.edge_index),
+                           array_agg(q.role::text ORDER BY q.patch_id, q.edge_index),
+                           array_agg(q.road_class::text ORDER BY q.patch_id, q.edge_index),
+                           array_agg(ST_AsEWKB(q.geom::geometry) ORDER BY q.patch_id, q.edge_index),
+                           array_agg(q.max_uses::integer ORDER BY q.patch_id, q.edge_index),
+                           array_agg(DISTINCT ST_SRID(q.geom::geometry)) FILTER (WHERE q.geom IS NOT NULL)
+                      FROM (%s) AS q', patches)
+      INTO pids, roles, classes, geoms, uses, srids;
+  EXCEPTION WHEN undefined_column THEN
+    SELECT array_agg((r.j ->> 'patch_id')::bigint ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg(r.j ->> 'role' ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg(r.j ->> 'road_class' ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg(ST_AsEWKB(r.geom) ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg((r.j ->> 'max_uses')::integer ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg(DISTINCT ST_SRID(r.geom)) FILTER (WHERE r.geom IS NOT NULL),
+           bool_and(r.j ? 'patch_id' AND r.j ? 'role')
+      INTO pids, roles, classes, geoms, uses, srids, complete
+      FROM streetgen._rows_with_geom(patches, 'patches') AS r;
+    IF NOT complete THEN
+      RAISE EXCEPTION 'the patches query must return the columns patch_id, role and geom'
+        USING ERRCODE = 'invalid_parameter_value', HINT = 'Use the rows of streetgen.extract_patches.';
+    END IF;
+  END;
   IF pids IS NULL THEN
     RAISE EXCEPTION 'patches has no rows' USING ERRCODE = 'invalid_parameter_value',
       DETAIL = 'The patch query returned no patch edge.',

@@ -1527,6 +1527,10 @@ class Grower {
         connectors_.push_back({i, c, angle, len, lp.edges[c].level, reach_of(line)});
       }
     }
+    // Within a direction bin, connectors by reach: a whole street only meets those of about its reach.
+    for (std::vector<std::uint32_t>& b : buckets_) {
+      std::stable_sort(b.begin(), b.end(), [&](std::uint32_t x, std::uint32_t y) { return connectors_[x].reach < connectors_[y].reach; });
+    }
     if (seed_patches_.empty()) {
       for (std::uint32_t i = 0; i < library_.size(); ++i) {
         if (!library_[i].connectors.empty()) seed_patches_.push_back(i);
@@ -1672,8 +1676,16 @@ class Grower {
       int span = static_cast<int>(std::ceil(window / (2.0 * kPi / kBuckets)));
       int centre = bucket_of(angle);
       for (int db = -span; db <= span; ++db) {
-        for (std::uint32_t ci : buckets_[(centre + db + kBuckets) % kBuckets]) {
+        const std::vector<std::uint32_t>& bucket = buckets_[(centre + db + kBuckets) % kBuckets];
+        auto first = bucket.begin();
+        if (whole) {
+          first = std::lower_bound(bucket.begin(), bucket.end(), street_reach - max_distance_,
+                                   [&](std::uint32_t x, double r) { return connectors_[x].reach < r; });
+        }
+        for (auto it = first; it != bucket.end(); ++it) {
+          const std::uint32_t ci = *it;
           const LibConnector& c = connectors_[ci];
+          if (whole && c.reach > street_reach + max_distance_) break;
           if (std::abs(wrap(c.angle - angle)) > window) continue;
           // Levels (Nishida: arterial and local patches apart): a connector continues a street of its class.
           if (params_.match_levels && street_level >= 0 && c.level != street_level) continue;
