@@ -152,6 +152,24 @@ SELECT is((SELECT count(*) FROM (
                    GROUP BY patch_id) l USING (origin)
            WHERE u.n > l.segments), 0::bigint, 'max_uses 1: no patch is copied twice');
 
+-- Straight into a model's axes (surfaces follow in the same transaction), and from a model as
+-- the example.
+SELECT streetgen.create_model('patch_example', 0);
+INSERT INTO patch_example.axis (geom, roadway_width, speed_kmh, road_class)
+SELECT geom, 8, 30, road_class FROM ex WHERE name = 'tokyo';
+CREATE TEMP TABLE model_patches AS SELECT * FROM streetgen.extract_patches('patch_example');
+SELECT is((SELECT count(DISTINCT patch_id) FROM model_patches), (SELECT count(DISTINCT patch_id) FROM pt WHERE name = 'tokyo'),
+          'a model name is accepted as the example (its axes give the same patches)');
+SELECT streetgen.create_model('grown_patches', 0);
+INSERT INTO grown_patches.axis (geom, roadway_width, speed_kmh, road_class, source)
+SELECT geom, CASE road_class WHEN 'avenue' THEN 12 ELSE 6 END, CASE road_class WHEN 'avenue' THEN 50 ELSE 30 END,
+       road_class, origin
+  FROM streetgen.grow_patches('SELECT * FROM model_patches', 'POLYGON((2500 0, 3100 0, 3100 600, 2500 600, 2500 0))',
+                              'POINT(2800 300)', NULL, '{"seed": 2, "max_edges": 200}');
+SELECT ok((SELECT count(*) FROM grown_patches.axis) BETWEEN 100 AND 200, 'grown edges inserted into a model''s axis table');
+SELECT ok((SELECT count(*) FROM grown_patches.section) >= (SELECT count(*) FROM grown_patches.axis),
+          'and the model''s sections follow');
+
 -- Bad input.
 SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT geom FROM ex WHERE false')$$, '22023',
                  'example has no edges', 'extract_patches: an empty example (22023)');
