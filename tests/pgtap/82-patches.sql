@@ -122,6 +122,11 @@ SELECT is((SELECT count(*) FROM grown g WHERE g.road_class NOT IN (SELECT DISTIN
 SELECT ok((SELECT count(DISTINCT g.origin) FROM grown g JOIN pt ON pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin
             WHERE g.name = 'canberra_south_large' AND 'cul-de-sac' = ANY (pt.tags)) > 5,
           'cul-de-sac patches are used on canberra');
+SELECT ok((SELECT count(DISTINCT g.origin) FROM grown g JOIN pt ON pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin
+            WHERE g.name = 'canberra_south_large' AND 'roundabout' = ANY (pt.tags)) >= 2,
+          'roundabouts reappear: canberra''s roundabout patches are used');
+SELECT is((SELECT count(*) FROM grown g JOIN pt ON pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin
+            WHERE g.name = 'tokyo' AND 'roundabout' = ANY (pt.tags)), 0::bigint, 'and none appear from tokyo''s grid');
 -- Determinism.
 SELECT is((SELECT count(*) FROM (
              (SELECT id, from_node, to_node, road_class, origin, ST_AsEWKB(geom) FROM grown WHERE name = 'canberra_south_large'
