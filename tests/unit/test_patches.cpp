@@ -137,6 +137,25 @@ TEST(ExtractPatches, ShortEdgesJoinJunctionsIntoOnePatch) {
   EXPECT_TRUE(joined);
 }
 
+TEST(ExtractPatches, RowOrderAndDirectionDoNotMatter) {
+  GeosContext geos;
+  std::vector<PatchInputEdge> ex = grid_with_roundabout(false);
+  PatchExtraction a = extract_patches(geos, ex, PatchParams{});
+  std::reverse(ex.begin(), ex.end());
+  for (std::size_t i = 0; i < ex.size(); i += 3) std::reverse(ex[i].line.begin(), ex[i].line.end());
+  PatchExtraction b = extract_patches(geos, ex, PatchParams{});
+  ASSERT_EQ(a.patches.size(), b.patches.size());
+  for (std::size_t i = 0; i < a.patches.size(); ++i) {
+    ASSERT_EQ(a.patches[i].edges.size(), b.patches[i].edges.size());
+    EXPECT_EQ(a.patches[i].tags, b.patches[i].tags);
+    for (std::size_t k = 0; k < a.patches[i].edges.size(); ++k) {
+      EXPECT_EQ(a.patches[i].edges[k].line.size(), b.patches[i].edges[k].line.size());
+      EXPECT_EQ(a.patches[i].edges[k].line.front().x, b.patches[i].edges[k].line.front().x);
+      EXPECT_EQ(a.patches[i].edges[k].line.back().y, b.patches[i].edges[k].line.back().y);
+    }
+  }
+}
+
 TEST(ExtractPatches, BadInputIsRejected) {
   GeosContext geos;
   EXPECT_THROW(extract_patches(geos, {}, PatchParams{}), Error);

@@ -227,7 +227,24 @@ PatchExtraction extract_patches(GeosContext& geos, const std::vector<PatchInputE
       }
     }
   }
-  StreetGraph g = build_street_graph(example);
+  // The patches depend on the example's content only, not on its row order or digitising
+  // direction: edges are put in a canonical order (and direction) first.
+  std::vector<PatchInputEdge> sorted = example;
+  auto less = [](Point a, Point b) { return a.x < b.x || (a.x == b.x && a.y < b.y); };
+  for (PatchInputEdge& e : sorted) {
+    if (e.line.size() >= 2 && less(e.line.back(), e.line.front())) e.line = reversed(std::move(e.line));
+  }
+  std::stable_sort(sorted.begin(), sorted.end(), [&](const PatchInputEdge& a, const PatchInputEdge& b) {
+    if (a.line.empty() || b.line.empty()) return a.line.size() < b.line.size();
+    if (less(a.line.front(), b.line.front())) return true;
+    if (less(b.line.front(), a.line.front())) return false;
+    if (less(a.line.back(), b.line.back())) return true;
+    if (less(b.line.back(), a.line.back())) return false;
+    if (a.line.size() != b.line.size()) return a.line.size() < b.line.size();
+    if (a.road_class != b.road_class) return a.road_class < b.road_class;
+    return a.id < b.id;
+  });
+  StreetGraph g = build_street_graph(sorted);
   if (g.streets.empty()) {
     throw_invalid_argument("example has no edges", "The example holds no line of two distinct points.",
                            "Pass a query (or model) whose rows hold the example's road edges.");
