@@ -1306,6 +1306,10 @@ class Grower {
     if (nodes_[v].edges.size() != 1 || new_edges_ + 2 > params_.max_edges) return;  // a join may split an edge
     const std::uint32_t e = nodes_[v].edges[0];
     const int level = std::max(0, edges_[e].level);
+    // Growth I counts the join as the front's example; patch growth counts it as statistical
+    // (no patch made it), so the example-based share stays honest.
+    const std::int64_t join_id = params_.use_patches ? 0 : edges_[e].example_id;
+    const int join_source = params_.use_patches ? -1 : edges_[e].source;
     const Point p = nodes_[v].p;
     const Point u = unit(p - other_end(e, v));
     const double reach = 1.5 * mean_length_;
@@ -1317,10 +1321,10 @@ class Grower {
         Point x = p + (c.t * reach) * u;
         std::uint32_t near = distance(nodes_[hit.a].p, x) <= distance(nodes_[hit.b].p, x) ? hit.a : hit.b;
         if (distance(nodes_[near].p, x) <= snap_) {
-          if (try_connect_node(v, near, level, edges_[e].example_id, edges_[e].source)) return;
+          if (try_connect_node(v, near, level, join_id, join_source)) return;
         } else {
           std::uint32_t m = split_edge(c.edge, x);
-          add_edge(v, m, level, edges_[e].example_id, edges_[e].source);
+          add_edge(v, m, level, join_id, join_source);
           ++stats_.accepted;
           ++stats_.snapped;
           return;
@@ -1338,7 +1342,7 @@ class Grower {
     for (const PointValue& pv : point_hits_) {
       std::uint32_t w = pv.second;
       if (w == v || distance(nodes_[w].p, p) > reach) continue;
-      if (try_connect_node(v, w, level, edges_[e].example_id, edges_[e].source)) return;
+      if (try_connect_node(v, w, level, join_id, join_source)) return;
     }
   }
 
