@@ -225,5 +225,20 @@ SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT patch_id, role, 
                    (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'))$$,
                  '22023', NULL, 'grow_patches: polygons are not patch edges (22023)');
 
+-- A long growth is cancelled by statement_timeout with 57014 (the C++ loop polls once per front),
+-- and the session grows again.
+CREATE TEMP TABLE outcome (state text, seconds double precision);
+SET LOCAL statement_timeout = '200ms';
+INSERT INTO outcome SELECT * FROM test_helpers.sqlstate_and_seconds(
+  $$SELECT count(*) FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+      'POLYGON((-20000 -20000, 20000 -20000, 20000 20000, -20000 20000, -20000 -20000))', 'POINT(0 0)', NULL,
+      '{"max_edges": 1000000}')$$);
+RESET statement_timeout;
+SELECT is((SELECT state FROM outcome), '57014', 'statement_timeout cancels a long patch growth with 57014');
+SELECT cmp_ok((SELECT seconds FROM outcome), '<', 2.0::double precision, 'within the growth, not after it');
+SELECT is((SELECT count(*) FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+             (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+             '{"max_edges": 50}')) BETWEEN 20 AND 50, true, 'and the session grows again');
+
 SELECT * FROM finish();
 ROLLBACK;
