@@ -8,6 +8,14 @@ extern "C" {
 
 namespace streetgen::pg {
 
+void require_argument_count(FunctionCallInfo fcinfo, int expected, const char* function) {
+  if (PG_NARGS() != expected) {
+    ereport(ERROR, (errcode(ERRCODE_OBJECT_NOT_IN_PREREQUISITE_STATE),
+                    errmsg("%s expects %d arguments, got %d", function, expected, PG_NARGS()),
+                    errhint("Run ALTER EXTENSION streetgen UPDATE, or re-create the extension.")));
+  }
+}
+
 ArrayArg array_arg(FunctionCallInfo fcinfo, int argno, Oid element_type, const char* parameter) {
   ArrayArg out;
   if (PG_ARGISNULL(argno)) return out;

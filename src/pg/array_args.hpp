@@ -19,6 +19,10 @@ struct ArrayArg {
 
 ArrayArg array_arg(FunctionCallInfo fcinfo, int argno, Oid element_type, const char* parameter);
 
+// Raises 55000 (with a hint to update the extension) unless the call has `expected` arguments: a
+// library newer than the installed SQL would read arguments that are not there.
+void require_argument_count(FunctionCallInfo fcinfo, int expected, const char* function);
+
 // Raises 22023 naming the parameters when the two arrays differ in length.
 void require_same_length(const ArrayArg& a, const char* a_name, const ArrayArg& b, const char* b_name);
 

@@ -49,11 +49,7 @@ PG_FUNCTION_INFO_V1(_streetgen_grow_example);
 // See enum Arg; -> SETOF (id, from_node, to_node, road_class, origin, geom bytea).
 Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   // Phase 1.
-  if (PG_NARGS() != kArgs) {
-    ereport(ERROR, (errcode(ERRCODE_OBJECT_NOT_IN_PREREQUISITE_STATE),
-                    errmsg("_streetgen_grow_example expects %d arguments, got %d", kArgs, PG_NARGS()),
-                    errhint("Run ALTER EXTENSION streetgen UPDATE, or re-create the extension.")));
-  }
+  pg::require_argument_count(fcinfo, kArgs, "_streetgen_grow_example");
   static const char* const names[kArgs] = {
       "example", "example road classes", "example ids", "example sources", "region", "seeds x", "seeds y",
       "obstacles", "epsilon", "r", "rotation", "seed", "max_edges", "match_levels", "snap", "min_angle",

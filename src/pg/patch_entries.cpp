@@ -42,16 +42,6 @@ struct GrowRow {
   core::Bytes geom;
 };
 
-core::Bytes line_ewkb(const core::Polyline& line, int srid) {
-  std::vector<double> xy;
-  xy.reserve(2 * line.size());
-  for (core::Point p : line) {
-    xy.push_back(p.x);
-    xy.push_back(p.y);
-  }
-  return core::write_ewkb_coordinates(core::WkbType::line_string, xy.data(), line.size(), srid);
-}
-
 Datum text_array(const std::vector<std::string>& values) {
   auto* elems = static_cast<Datum*>(palloc(sizeof(Datum) * (values.empty() ? 1 : values.size())));
   for (std::size_t i = 0; i < values.size(); ++i) elems[i] = CStringGetTextDatum(values[i].c_str());
@@ -77,11 +67,7 @@ PG_FUNCTION_INFO_V1(_streetgen_extract_patches);
 // end_tags, example_id, geom bytea).
 Datum _streetgen_extract_patches(PG_FUNCTION_ARGS) {
   // Phase 1.
-  if (PG_NARGS() != kXArgs) {
-    ereport(ERROR, (errcode(ERRCODE_OBJECT_NOT_IN_PREREQUISITE_STATE),
-                    errmsg("_streetgen_extract_patches expects %d arguments, got %d", kXArgs, PG_NARGS()),
-                    errhint("Run ALTER EXTENSION streetgen UPDATE, or re-create the extension.")));
-  }
+  pg::require_argument_count(fcinfo, kXArgs, "_streetgen_extract_patches");
   static const char* const names[kXArgs] = {"example", "example road classes", "example ids", "example roundabouts",
                                             "short_edge", "cluster_distance", "detect_circles",
                                             "circle_min_diameter", "circle_max_diameter", "circle_compactness"};
@@ -149,7 +135,7 @@ Datum _streetgen_extract_patches(PG_FUNCTION_ARGS) {
       int k = 0;
       for (const core::PatchEdge& e : p.edges) {
         out.push_back({p.id, ++k, core::role_name(e.role), e.road_class, p.tags, e.tags, e.start_tags, e.end_tags,
-                       e.example_id, line_ewkb(e.line, srid)});
+                       e.example_id, core::write_ewkb_polyline(core::WkbType::line_string, e.line, srid)});
       }
     }
     rows.emplace(std::move(out));
@@ -183,11 +169,7 @@ PG_FUNCTION_INFO_V1(_streetgen_grow_patches);
 // See enum GrowArg; -> SETOF (id, from_node, to_node, road_class, origin, geom bytea).
 Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   // Phase 1.
-  if (PG_NARGS() != kGArgs) {
-    ereport(ERROR, (errcode(ERRCODE_OBJECT_NOT_IN_PREREQUISITE_STATE),
-                    errmsg("_streetgen_grow_patches expects %d arguments, got %d", kGArgs, PG_NARGS()),
-                    errhint("Run ALTER EXTENSION streetgen UPDATE, or re-create the extension.")));
-  }
+  pg::require_argument_count(fcinfo, kGArgs, "_streetgen_grow_patches");
   static const char* const names[kGArgs] = {
       "patch ids", "roles", "road classes", "patch edges", "max_uses", "region", "seeds x", "seeds y", "obstacles",
       "seed", "max_edges", "snap", "min_angle", "scale", "max_distance", "angle_window", "tries", "max_uses",
