@@ -36,4 +36,12 @@ inline ByteView byte_view(Datum d) {
   return {reinterpret_cast<const std::uint8_t*>(VARDATA_ANY(b)), VARSIZE_ANY_EXHDR(b)};
 }
 
+// Interleaved x, y from two float8 array arguments of one length (palloc'd, never NULL); a NULL
+// coordinate raises 22004 naming `what`. *count is the number of pairs.
+double* xy_pairs(const ArrayArg& xs, const ArrayArg& ys, const char* what, int* count);
+
+// The non-NULL values of a bytea array argument, read in place (palloc'd, never NULL); *count
+// is how many there are.
+ByteView* byte_views(const ArrayArg& arg, int* count);
+
 }  // namespace streetgen::pg

@@ -104,28 +104,15 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
     }
     if (e.source + 1 > example_sets) example_sets = e.source + 1;
   }
-  auto* seed_xy = static_cast<double*>(palloc0(sizeof(double) * 2 * (xs.count > 0 ? xs.count : 1)));
-  for (int i = 0; i < xs.count; ++i) {
-    if (xs.nulls[i] || ys.nulls[i]) pg::raise_null_argument("a seed coordinate");
-    seed_xy[2 * i] = DatumGetFloat8(xs.values[i]);
-    seed_xy[2 * i + 1] = DatumGetFloat8(ys.values[i]);
-  }
-  auto* blend_xy = static_cast<double*>(palloc0(sizeof(double) * 2 * (blend_xs.count > 0 ? blend_xs.count : 1)));
-  for (int i = 0; i < blend_xs.count; ++i) {
-    if (blend_xs.nulls[i] || blend_ys.nulls[i]) pg::raise_null_argument("a blend point coordinate");
-    blend_xy[2 * i] = DatumGetFloat8(blend_xs.values[i]);
-    blend_xy[2 * i + 1] = DatumGetFloat8(blend_ys.values[i]);
-  }
-  int blend_count = blend_xs.count;
-  auto* obstacles = static_cast<pg::ByteView*>(palloc0(sizeof(pg::ByteView) * (obstacle_arg.count > 0 ? obstacle_arg.count : 1)));
+  int seed_count = 0;
+  double* seed_xy = pg::xy_pairs(xs, ys, "a seed coordinate", &seed_count);
+  int blend_count = 0;
+  double* blend_xy = pg::xy_pairs(blend_xs, blend_ys, "a blend point coordinate", &blend_count);
   int obstacle_count = 0;
-  for (int i = 0; i < obstacle_arg.count; ++i) {
-    if (!obstacle_arg.nulls[i]) obstacles[obstacle_count++] = pg::byte_view(obstacle_arg.values[i]);
-  }
+  pg::ByteView* obstacles = pg::byte_views(obstacle_arg, &obstacle_count);
   pg::ByteView region = pg::byte_view(PG_GETARG_DATUM(kRegion));
   bool has_guide = !PG_ARGISNULL(kGuide);
   pg::ByteView guide = has_guide ? pg::byte_view(PG_GETARG_DATUM(kGuide)) : pg::ByteView{nullptr, 0};
-  int seed_count = xs.count;
   core::GrowParams params;
   params.epsilon = PG_GETARG_FLOAT8(kEpsilon);
   params.radius = PG_GETARG_FLOAT8(kRadius);

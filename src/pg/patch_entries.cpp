@@ -232,18 +232,10 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
     e.geom = pg::byte_view(geoms.values[i]);
   }
   int edge_count = geoms.count;
-  auto* seed_xy = static_cast<double*>(palloc0(sizeof(double) * 2 * (xs.count > 0 ? xs.count : 1)));
-  for (int i = 0; i < xs.count; ++i) {
-    if (xs.nulls[i] || ys.nulls[i]) pg::raise_null_argument("a seed coordinate");
-    seed_xy[2 * i] = DatumGetFloat8(xs.values[i]);
-    seed_xy[2 * i + 1] = DatumGetFloat8(ys.values[i]);
-  }
-  int seed_count = xs.count;
-  auto* obstacles = static_cast<pg::ByteView*>(palloc0(sizeof(pg::ByteView) * (obstacle_arg.count > 0 ? obstacle_arg.count : 1)));
+  int seed_count = 0;
+  double* seed_xy = pg::xy_pairs(xs, ys, "a seed coordinate", &seed_count);
   int obstacle_count = 0;
-  for (int i = 0; i < obstacle_arg.count; ++i) {
-    if (!obstacle_arg.nulls[i]) obstacles[obstacle_count++] = pg::byte_view(obstacle_arg.values[i]);
-  }
+  pg::ByteView* obstacles = pg::byte_views(obstacle_arg, &obstacle_count);
   pg::ByteView region = pg::byte_view(PG_GETARG_DATUM(kGRegion));
   core::GrowParams params;
   params.use_patches = true;
