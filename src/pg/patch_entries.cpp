@@ -15,6 +15,7 @@
 #include "core/interrupts.hpp"
 #include "pg/array_args.hpp"
 #include "pg/boundary.hpp"
+#include "pg/grown_rows.hpp"
 #include "pg/owned_result.hpp"
 
 extern "C" {
@@ -33,12 +34,6 @@ struct PatchRow {
   std::string role, road_class;
   std::vector<std::string> tags, edge_tags, start_tags, end_tags;
   std::int64_t example_id;
-  core::Bytes geom;
-};
-
-struct GrowRow {
-  std::int64_t id, from_node, to_node;
-  std::string road_class, origin;
   core::Bytes geom;
 };
 
@@ -258,7 +253,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   params.patch.clearance = PG_GETARG_FLOAT8(kGClearance);
   params.rotation = true;  // the fallback's streets turn from the front's street, as Nishida's (about 90°)
   InitMaterializedSRF(fcinfo, 0);
-  auto rows = pg::OwnedResult<std::vector<GrowRow>>::create();
+  auto rows = pg::OwnedResult<std::vector<pg::GrownRow>>::create();
   core::GrowStats stats;
   std::size_t from_patches = 0, total = 0;
   double length_patches = 0.0, length_total = 0.0;
@@ -293,22 +288,14 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       pe.example_id = e.patch_id;
       patch.edges.push_back(std::move(pe));
     }
-    core::SridGeometry reg = core::read_ewkb(geos, region.data, region.size, "region");
-    input.region = reg.geom.get();
-    std::vector<core::SridGeometry> obstacle_geoms;
-    for (int i = 0; i < obstacle_count; ++i) {
-      std::string name = "obstacle " + std::to_string(i + 1);
-      obstacle_geoms.push_back(core::read_ewkb(geos, obstacles[i].data, obstacles[i].size, name.c_str()));
-      core::require_finite_coordinates(geos, obstacle_geoms.back().geom.get(), name.c_str());
-      input.obstacles.push_back(obstacle_geoms.back().geom.get());
-    }
+    std::vector<core::SridGeometry> region_and_obstacles;
+    int srid = pg::read_region_and_obstacles(geos, region, obstacles, obstacle_count, input, region_and_obstacles);
     for (int i = 0; i < seed_count; ++i) input.seeds.push_back({seed_xy[2 * i], seed_xy[2 * i + 1]});
     core::GrowResult result = core::grow_example(geos, input, params);
     stats = result.stats;
-    std::vector<GrowRow> out;
+    std::vector<pg::GrownRow> out;
     out.reserve(result.edges.size());
     for (const core::GrownEdge& e : result.edges) {
-      double xy[4] = {e.a.x, e.a.y, e.b.x, e.b.y};
       double len = core::distance(e.a, e.b);
       ++total;
       length_total += len;
@@ -317,8 +304,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
         length_patches += len;
       }
       std::string origin = e.example < 0 ? std::string("grow_parametric") : "grow_patches:" + std::to_string(e.example_id);
-      out.push_back({e.id, e.from_node, e.to_node, e.road_class, std::move(origin),
-                     core::write_ewkb_coordinates(core::WkbType::line_string, xy, 2, reg.srid)});
+      out.push_back(pg::grown_row(e, std::move(origin), srid));
     }
     rows.emplace(std::move(out));
   });
@@ -331,18 +317,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           stats.steps, stats.patches_placed, stats.fallback, stats.patch_candidates, stats.patch_illegal,
                           stats.patches_dropped, stats.restarts, total > 0 ? 100.0 * from_patches / total : 0.0,
                           length_total > 0 ? 100.0 * length_patches / length_total : 0.0)));
-  auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
-  for (const GrowRow& row : *rows) {
-    Datum v[6];
-    bool null[6] = {false, false, false, false, false, false};
-    v[0] = Int64GetDatum(row.id);
-    v[1] = Int64GetDatum(row.from_node);
-    v[2] = Int64GetDatum(row.to_node);
-    v[3] = CStringGetTextDatum(row.road_class.c_str());
-    v[4] = CStringGetTextDatum(row.origin.c_str());
-    v[5] = PointerGetDatum(pg::to_bytea(row.geom));
-    tuplestore_putvalues(rsinfo->setResult, rsinfo->setDesc, v, null);
-  }
+  pg::emit_grown_rows(fcinfo, *rows);
   rows.release();
   PG_RETURN_NULL();
 }
