@@ -79,4 +79,14 @@ Bytes write_ewkb_coordinates(WkbType type, const double* xy, std::size_t point_c
   return out;
 }
 
+Bytes write_ewkb_polyline(WkbType type, const Polyline& line, int srid) {
+  std::vector<double> xy;
+  xy.reserve(line.size() * 2);
+  for (const Point& p : line) {
+    xy.push_back(p.x);
+    xy.push_back(p.y);
+  }
+  return write_ewkb_coordinates(type, xy.data(), line.size(), srid);
+}
+
 }  // namespace streetgen::core

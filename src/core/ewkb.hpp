@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/geos_context.hpp"
+#include "core/streets/polyline.hpp"
 
 namespace streetgen::core {
 
@@ -29,5 +30,8 @@ Bytes write_ewkb(GeosContext& ctx, GEOSGeometry* geom, int srid);
 // or a CircularString (which GEOS 3.11 cannot represent; PostGIS reads it as a true arc).
 enum class WkbType : std::uint32_t { point = 1, line_string = 2, circular_string = 8 };
 Bytes write_ewkb_coordinates(WkbType type, const double* xy, std::size_t point_count, int srid);
+
+// The same from a polyline (a LineString, or a CircularString of its points).
+Bytes write_ewkb_polyline(WkbType type, const Polyline& line, int srid);
 
 }  // namespace streetgen::core

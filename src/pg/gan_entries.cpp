@@ -23,14 +23,6 @@ pg::ByteView blob_arg(FunctionCallInfo fcinfo, int n, const char* parameter) {
   return pg::byte_view(PG_GETARG_DATUM(n));
 }
 
-void require_args(FunctionCallInfo fcinfo, int expected, const char* name) {
-  // A library newer than the installed SQL would read arguments that are not there.
-  if (PG_NARGS() != expected) {
-    ereport(ERROR, (errcode(ERRCODE_OBJECT_NOT_IN_PREREQUISITE_STATE),
-                    errmsg("%s expects %d arguments, got %d", name, expected, PG_NARGS()),
-                    errhint("Run ALTER EXTENSION streetgen UPDATE, or re-create the extension.")));
-  }
-}
 
 }  // namespace
 
@@ -41,7 +33,7 @@ PG_FUNCTION_INFO_V1(_streetgen_gan_sample);
 //  upper_left_y float8, srid int4) -> bytea (PostGIS raster WKB)
 Datum _streetgen_gan_sample(PG_FUNCTION_ARGS) {
   // Phase 1: arguments, every NULL named.
-  require_args(fcinfo, 8, "_streetgen_gan_sample");
+  pg::require_argument_count(fcinfo, 8, "_streetgen_gan_sample");
   const pg::ByteView generator = blob_arg(fcinfo, 0, "generator");
   const char* names[] = {"generator", "width_px", "height_px", "seed", "raw", "upper_left x", "upper_left y", "srid"};
   for (int a = 1; a < 8; ++a) {
@@ -74,7 +66,7 @@ PG_FUNCTION_INFO_V1(_streetgen_gan_generator_info);
 // (weights bytea, OUT noise_channels int4, OUT layer_count int4, OUT parameter_count int8,
 //  OUT metres_per_pixel float8, OUT kernel int4, OUT stride int4, OUT padding int4) -> record
 Datum _streetgen_gan_generator_info(PG_FUNCTION_ARGS) {
-  require_args(fcinfo, 1, "_streetgen_gan_generator_info");
+  pg::require_argument_count(fcinfo, 1, "_streetgen_gan_generator_info");
   const pg::ByteView generator = blob_arg(fcinfo, 0, "weights");
   TupleDesc desc;
   if (get_call_result_type(fcinfo, nullptr, &desc) != TYPEFUNC_COMPOSITE || desc->natts != 7) {

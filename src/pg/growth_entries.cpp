@@ -13,6 +13,7 @@
 #include "core/interrupts.hpp"
 #include "pg/array_args.hpp"
 #include "pg/boundary.hpp"
+#include "pg/grown_rows.hpp"
 #include "pg/owned_result.hpp"
 
 extern "C" {
@@ -25,13 +26,6 @@ using namespace streetgen;
 
 namespace {
 
-struct OutRow {
-  std::int64_t id, from_node, to_node;
-  std::string road_class, origin;
-  core::Bytes geom;
-};
-
-
 // The C function's arguments, in order (sql/80-growth.sql).
 enum Arg {
   kExampleGeoms, kExampleClasses, kExampleIds, kExampleSources, kRegion, kSeedsX, kSeedsY, kObstacles, kEpsilon,
@@ -39,7 +33,6 @@ enum Arg {
   kFallback, kKeepFrame, kCoherence, kCropMargin, kFill, kLength, kLengthDeviation, kMinLength, kMinDegree, kMaxDegree, kAngleDeviation, kRoadClass, kGuide,
   kGuideReach, kBlendMode, kBlendAngle, kBlendX, kBlendY, kBlendSigma, kArgs
 };
-constexpr int kColumns = 6;
 
 }  // namespace
 
@@ -49,11 +42,7 @@ PG_FUNCTION_INFO_V1(_streetgen_grow_example);
 // See enum Arg; -> SETOF (id, from_node, to_node, road_class, origin, geom bytea).
 Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   // Phase 1.
-  if (PG_NARGS() != kArgs) {
-    ereport(ERROR, (errcode(ERRCODE_OBJECT_NOT_IN_PREREQUISITE_STATE),
-                    errmsg("_streetgen_grow_example expects %d arguments, got %d", kArgs, PG_NARGS()),
-                    errhint("Run ALTER EXTENSION streetgen UPDATE, or re-create the extension.")));
-  }
+  pg::require_argument_count(fcinfo, kArgs, "_streetgen_grow_example");
   static const char* const names[kArgs] = {
       "example", "example road classes", "example ids", "example sources", "region", "seeds x", "seeds y",
       "obstacles", "epsilon", "r", "rotation", "seed", "max_edges", "match_levels", "snap", "min_angle",
@@ -108,28 +97,15 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
     }
     if (e.source + 1 > example_sets) example_sets = e.source + 1;
   }
-  auto* seed_xy = static_cast<double*>(palloc0(sizeof(double) * 2 * (xs.count > 0 ? xs.count : 1)));
-  for (int i = 0; i < xs.count; ++i) {
-    if (xs.nulls[i] || ys.nulls[i]) pg::raise_null_argument("a seed coordinate");
-    seed_xy[2 * i] = DatumGetFloat8(xs.values[i]);
-    seed_xy[2 * i + 1] = DatumGetFloat8(ys.values[i]);
-  }
-  auto* blend_xy = static_cast<double*>(palloc0(sizeof(double) * 2 * (blend_xs.count > 0 ? blend_xs.count : 1)));
-  for (int i = 0; i < blend_xs.count; ++i) {
-    if (blend_xs.nulls[i] || blend_ys.nulls[i]) pg::raise_null_argument("a blend point coordinate");
-    blend_xy[2 * i] = DatumGetFloat8(blend_xs.values[i]);
-    blend_xy[2 * i + 1] = DatumGetFloat8(blend_ys.values[i]);
-  }
-  int blend_count = blend_xs.count;
-  auto* obstacles = static_cast<pg::ByteView*>(palloc0(sizeof(pg::ByteView) * (obstacle_arg.count > 0 ? obstacle_arg.count : 1)));
+  int seed_count = 0;
+  double* seed_xy = pg::xy_pairs(xs, ys, "a seed coordinate", &seed_count);
+  int blend_count = 0;
+  double* blend_xy = pg::xy_pairs(blend_xs, blend_ys, "a blend point coordinate", &blend_count);
   int obstacle_count = 0;
-  for (int i = 0; i < obstacle_arg.count; ++i) {
-    if (!obstacle_arg.nulls[i]) obstacles[obstacle_count++] = pg::byte_view(obstacle_arg.values[i]);
-  }
+  pg::ByteView* obstacles = pg::byte_views(obstacle_arg, &obstacle_count);
   pg::ByteView region = pg::byte_view(PG_GETARG_DATUM(kRegion));
   bool has_guide = !PG_ARGISNULL(kGuide);
   pg::ByteView guide = has_guide ? pg::byte_view(PG_GETARG_DATUM(kGuide)) : pg::ByteView{nullptr, 0};
-  int seed_count = xs.count;
   core::GrowParams params;
   params.epsilon = PG_GETARG_FLOAT8(kEpsilon);
   params.radius = PG_GETARG_FLOAT8(kRadius);
@@ -178,7 +154,7 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   params.max_edges = static_cast<std::size_t>(max_edges);
   params.candidates = static_cast<std::size_t>(candidates);
   InitMaterializedSRF(fcinfo, 0);
-  auto rows = pg::OwnedResult<std::vector<OutRow>>::create();
+  auto rows = pg::OwnedResult<std::vector<pg::GrownRow>>::create();
   core::GrowStats stats;  // plain data: reported at DEBUG1 in phase 3
 
   // Phase 2.
@@ -198,15 +174,8 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
         input.example.push_back({std::move(line), example[i].road_class, example[i].id, example[i].source});
       }
     }
-    core::SridGeometry reg = core::read_ewkb(geos, region.data, region.size, "region");
-    input.region = reg.geom.get();
-    std::vector<core::SridGeometry> obstacle_geoms;
-    for (int i = 0; i < obstacle_count; ++i) {
-      std::string name = "obstacle " + std::to_string(i + 1);
-      obstacle_geoms.push_back(core::read_ewkb(geos, obstacles[i].data, obstacles[i].size, name.c_str()));
-      core::require_finite_coordinates(geos, obstacle_geoms.back().geom.get(), name.c_str());
-      input.obstacles.push_back(obstacle_geoms.back().geom.get());
-    }
+    std::vector<core::SridGeometry> region_and_obstacles;
+    int srid = pg::read_region_and_obstacles(geos, region, obstacles, obstacle_count, input, region_and_obstacles);
     for (int i = 0; i < existing_count; ++i) {
       poller.tick();
       std::string name = "existing edge " + std::to_string(i + 1);
@@ -223,18 +192,16 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
     }
     core::GrowResult result = core::grow_example(geos, input, params);
     stats = result.stats;
-    std::vector<OutRow> out;
+    std::vector<pg::GrownRow> out;
     out.reserve(result.edges.size());
     for (const core::GrownEdge& e : result.edges) {
-      double xy[4] = {e.a.x, e.a.y, e.b.x, e.b.y};
       // Which example an edge came from: grow_example:<id>, with several grow_example:<k>:<id>;
       // parametric growth (alone or as the fallback): grow_parametric.
       std::string origin = e.example < 0       ? std::string("grow_parametric")
                            : example_sets > 1 ? "grow_example:" + std::to_string(e.example + 1) + ":" +
                                                      std::to_string(e.example_id)
                                                : "grow_example:" + std::to_string(e.example_id);
-      out.push_back({e.id, e.from_node, e.to_node, e.road_class, std::move(origin),
-                     core::write_ewkb_coordinates(core::WkbType::line_string, xy, 2, reg.srid)});
+      out.push_back(pg::grown_row(e, std::move(origin), srid));
     }
     rows.emplace(std::move(out));
   });
@@ -246,18 +213,7 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
                           "%zu restarts",
                           stats.steps, stats.coherent, stats.unmatched, stats.fallback, stats.guided, stats.proposals,
                           stats.accepted, stats.snapped, stats.clipped, stats.rejected, stats.reseeds, stats.restarts)));
-  auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
-  for (const OutRow& row : *rows) {
-    Datum v[kColumns];
-    bool null[kColumns] = {false, false, false, false, false, false};
-    v[0] = Int64GetDatum(row.id);
-    v[1] = Int64GetDatum(row.from_node);
-    v[2] = Int64GetDatum(row.to_node);
-    v[3] = CStringGetTextDatum(row.road_class.c_str());
-    v[4] = CStringGetTextDatum(row.origin.c_str());
-    v[5] = PointerGetDatum(pg::to_bytea(row.geom));
-    tuplestore_putvalues(rsinfo->setResult, rsinfo->setDesc, v, null);
-  }
+  pg::emit_grown_rows(fcinfo, *rows);
   rows.release();
   PG_RETURN_NULL();
 }

@@ -38,11 +38,7 @@ PG_FUNCTION_INFO_V1(_streetgen_raster_to_network);
 //  -> SETOF (id int8, from_node int8, to_node int8, geom bytea)
 Datum _streetgen_raster_to_network(PG_FUNCTION_ARGS) {
   // Phase 1.
-  if (PG_NARGS() != kArgs) {
-    ereport(ERROR, (errcode(ERRCODE_OBJECT_NOT_IN_PREREQUISITE_STATE),
-                    errmsg("_streetgen_raster_to_network expects %d arguments, got %d", kArgs, PG_NARGS()),
-                    errhint("Run ALTER EXTENSION streetgen UPDATE, or re-create the extension.")));
-  }
+  pg::require_argument_count(fcinfo, kArgs, "_streetgen_raster_to_network");
   static const char* const names[] = {"rast",           "threshold",           "erode",
                                       "dilate",         "min_block_area",      "min_dead_end_length",
                                       "smooth_iterations", "simplify_tolerance"};
@@ -69,15 +65,8 @@ Datum _streetgen_raster_to_network(PG_FUNCTION_ARGS) {
     core::RasterNetwork net = core::raster_to_network(geos, raster, params);
     std::vector<OutRow> out;
     out.reserve(net.edges.size());
-    std::vector<double> xy;
     for (const core::RasterEdge& e : net.edges) {
-      xy.clear();
-      for (const core::Point& p : e.line) {
-        xy.push_back(p.x);
-        xy.push_back(p.y);
-      }
-      out.push_back({e.id, e.from_node, e.to_node,
-                     core::write_ewkb_coordinates(core::WkbType::line_string, xy.data(), e.line.size(), raster.srid)});
+      out.push_back({e.id, e.from_node, e.to_node, core::write_ewkb_polyline(core::WkbType::line_string, e.line, raster.srid)});
     }
     rows.emplace(std::move(out));
   });

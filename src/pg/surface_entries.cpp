@@ -74,16 +74,6 @@ std::map<std::string, std::string> parse_lane_tags(const char* text) {
   return tags;
 }
 
-core::Bytes polyline_ewkb(core::WkbType type, const core::Polyline& line, int srid) {
-  std::vector<double> xy;
-  xy.reserve(line.size() * 2);
-  for (const core::Point& p : line) {
-    xy.push_back(p.x);
-    xy.push_back(p.y);
-  }
-  return core::write_ewkb_coordinates(type, xy.data(), line.size(), srid);
-}
-
 core::Polyline read_axis_line(core::GeosContext& geos, const AxisArg& arg, int& srid, bool first) {
   std::string name = "geometry of axis " + std::to_string(arg.id);
   core::SridGeometry g = core::read_ewkb(geos, arg.ewkb, arg.ewkb_size, name.c_str());
@@ -128,7 +118,7 @@ std::vector<OutRow> to_rows(core::GeosContext& geos, core::SurfaceResult& r, int
     row.start_border = s.start_border;
     row.end_border = s.end_border;
     if (s.surface) row.geom = core::write_ewkb(geos, s.surface.get(), srid);
-    row.geom2 = polyline_ewkb(core::WkbType::line_string, s.centre_line, srid);
+    row.geom2 = core::write_ewkb_polyline(core::WkbType::line_string, s.centre_line, srid);
     rows.push_back(std::move(row));
   }
   for (const core::CornerResult& c : r.corners) {
@@ -146,7 +136,7 @@ std::vector<OutRow> to_rows(core::GeosContext& geos, core::SurfaceResult& r, int
     if (c.centre && c.radius > 0.0) {
       double arc[6] = {c.arc[0].x, c.arc[0].y, c.arc[1].x, c.arc[1].y, c.arc[2].x, c.arc[2].y};
       row.geom = core::write_ewkb_coordinates(core::WkbType::circular_string, arc, 3, srid);
-      row.geom2 = polyline_ewkb(core::WkbType::line_string, c.arc_points, srid);
+      row.geom2 = core::write_ewkb_polyline(core::WkbType::line_string, c.arc_points, srid);
       double xy[2] = {c.centre->x, c.centre->y};
       row.geom3 = core::write_ewkb_coordinates(core::WkbType::point, xy, 1, srid);
     } else if (!c.arc_points.empty()) {  // a sharp corner: its point

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <random>
 #include <unordered_map>
 #include <unordered_set>
@@ -195,6 +196,8 @@ class Grower {
       mean_length_ = shape_.length;
       level_of(shape_.road_class);
       max_degree_ = static_cast<std::size_t>(shape_.max_degree);
+    } else if (params.use_patches) {
+      build_library(input.patches);
     } else {
       build_examples(input.example);
     }
@@ -204,6 +207,7 @@ class Grower {
     snap_ = params.snap > 0.0 ? params.snap : 0.45 * mean_length_;
     min_length_ = params.parametric ? shape_.min_length : 0.15 * mean_length_;
     if (!params.parametric) derive_shape();
+    if (params.use_patches) derive_patch_shape();
     crop_margin_ = params.crop_margin >= 0.0 ? params.crop_margin : mean_length_;
     epsilon_ = params.epsilon * kPi / 180.0;
     min_angle_ = params.min_angle * kPi / 180.0;
@@ -236,6 +240,9 @@ class Grower {
       target_degree_.clear();
       frames_.clear();
       copied_from_.clear();
+      completed_.clear();
+      queue_head_ = 0;
+      for (LibPatch& lp : library_) lp.uses = 0;
       new_edges_ = 0;
       load_existing();
       place_seeds();
@@ -272,10 +279,23 @@ class Grower {
   void grow() {
     while (!unfinished_.empty() && new_edges_ < params_.max_edges) {
       poll_interrupts();
-      std::size_t pick = uniform(unfinished_.size());
-      std::uint32_t v = unfinished_[pick];
-      unfinished_[pick] = unfinished_.back();
-      unfinished_.pop_back();
+      std::uint32_t v;
+      if (params_.use_patches) {  // Nishida's FIFO queue: breadth first from the seeds
+        v = unfinished_[queue_head_++];
+        if (queue_head_ > 4096 && 2 * queue_head_ > unfinished_.size()) {
+          unfinished_.erase(unfinished_.begin(), unfinished_.begin() + static_cast<std::ptrdiff_t>(queue_head_));
+          queue_head_ = 0;
+        }
+        if (queue_head_ == unfinished_.size()) {
+          unfinished_.clear();
+          queue_head_ = 0;
+        }
+      } else {
+        std::size_t pick = uniform(unfinished_.size());
+        v = unfinished_[pick];
+        unfinished_[pick] = unfinished_.back();
+        unfinished_.pop_back();
+      }
       std::size_t before = stats_.accepted;
       done_ = false;
       step(v);
@@ -348,6 +368,24 @@ class Grower {
                              "It is " + std::to_string(params_.guide_reach) + " m.");
     }
     if (params_.parametric) check_shape(params_.shape);
+    if (params_.use_patches) {
+      const PatchGrowParams& pp = params_.patch;
+      if (!std::isfinite(pp.scale) || pp.scale <= 0.0) {
+        throw_invalid_argument("scale must be a finite number > 0", "It is " + std::to_string(pp.scale) + " m.");
+      }
+      if (!std::isfinite(pp.max_distance) || pp.max_distance < 0.0) {
+        throw_invalid_argument("max_distance must be a finite number > 0", "It is " + std::to_string(pp.max_distance) + " m.");
+      }
+      if (!(pp.angle_window > 0.0 && pp.angle_window <= 180.0)) {
+        throw_invalid_argument("angle_window must be in (0, 180] degrees", "It is " + std::to_string(pp.angle_window) + ".");
+      }
+      if (pp.tries <= 0) throw_invalid_argument("tries must be > 0", "It is " + std::to_string(pp.tries) + ".");
+      if (pp.max_uses < 0) throw_invalid_argument("max_uses must be >= 0", "It is " + std::to_string(pp.max_uses) + ".");
+      if (!std::isfinite(pp.rotation)) throw_invalid_argument("rotation must be a finite number of degrees");
+      if (!std::isfinite(pp.clearance) || pp.clearance < 0.0) {
+        throw_invalid_argument("clearance must be a finite number > 0", "It is " + std::to_string(pp.clearance) + " m.");
+      }
+    }
     const BlendParams& b = params_.blend;
     if (!std::isfinite(b.angle)) throw_invalid_argument("blend_angle must be a finite number of degrees");
     if (!std::isfinite(b.sigma) || b.sigma < 0.0) {
@@ -683,6 +721,7 @@ class Grower {
     attempts_.push_back(0);
     frames_.push_back(NAN);
     copied_from_.push_back({-1, 0});
+    completed_.push_back(0);
     node_tree_.insert(PointValue(BPoint(p.x, p.y), id));
     return id;
   }
@@ -787,6 +826,10 @@ class Grower {
   // ---- one step at an unfinished node -------------------------------------------------------
   void step(std::uint32_t v) {
     ++stats_.steps;
+    if (params_.use_patches) {
+      patch_step(v);
+      return;
+    }
     const Point p = nodes_[v].p;
     std::vector<std::pair<double, int>> incident;  // angle, level
     for (std::uint32_t e : nodes_[v].edges) {
@@ -852,7 +895,14 @@ class Grower {
     const ParametricParams& sh = shape_;
     if (target_degree_.size() < nodes_.size()) target_degree_.resize(nodes_.size(), 0);
     if (target_degree_[v] == 0) {
-      target_degree_[v] = static_cast<std::uint8_t>(sh.min_degree + static_cast<int>(uniform(sh.max_degree - sh.min_degree + 1)));
+      if (!degree_cdf_.empty()) {  // patch growth's fallback: the example's junction mix
+        double u = uniform01();
+        std::size_t k = 0;
+        while (k + 1 < degree_cdf_.size() && u > degree_cdf_[k]) ++k;
+        target_degree_[v] = static_cast<std::uint8_t>(std::max<std::size_t>(2, k));
+      } else {
+        target_degree_[v] = static_cast<std::uint8_t>(sh.min_degree + static_cast<int>(uniform(sh.max_degree - sh.min_degree + 1)));
+      }
     }
     step_frame_ = frames_[v];
     step_copy_ = {-1, 0};
@@ -898,6 +948,9 @@ class Grower {
     std::size_t made = 0;
     for (const auto& [priority, a] : dirs) {
       if (d + made >= target_degree_[v] || new_edges_ >= params_.max_edges) break;
+      // Patch growth's fallback continues a street of degree 2 straight on only: a turn there
+      // would be a corner without a junction, which the examples' streets rarely have.
+      if (params_.use_patches && target_degree_[v] == 2 && d == 1 && priority > 0.0) break;
       double angle = wrap(a + (uniform01() * 2.0 - 1.0) * dev);
       double length = std::max(sh.min_length, sh.length + (uniform01() * 2.0 - 1.0) * sh.length_deviation);
       std::size_t before = stats_.accepted;
@@ -1253,6 +1306,10 @@ class Grower {
     if (nodes_[v].edges.size() != 1 || new_edges_ + 2 > params_.max_edges) return;  // a join may split an edge
     const std::uint32_t e = nodes_[v].edges[0];
     const int level = std::max(0, edges_[e].level);
+    // Growth I counts the join as the front's example; patch growth counts it as statistical
+    // (no patch made it), so the example-based share stays honest.
+    const std::int64_t join_id = params_.use_patches ? 0 : edges_[e].example_id;
+    const int join_source = params_.use_patches ? -1 : edges_[e].source;
     const Point p = nodes_[v].p;
     const Point u = unit(p - other_end(e, v));
     const double reach = 1.5 * mean_length_;
@@ -1264,10 +1321,10 @@ class Grower {
         Point x = p + (c.t * reach) * u;
         std::uint32_t near = distance(nodes_[hit.a].p, x) <= distance(nodes_[hit.b].p, x) ? hit.a : hit.b;
         if (distance(nodes_[near].p, x) <= snap_) {
-          if (try_connect_node(v, near, level, edges_[e].example_id, edges_[e].source)) return;
+          if (try_connect_node(v, near, level, join_id, join_source)) return;
         } else {
           std::uint32_t m = split_edge(c.edge, x);
-          add_edge(v, m, level, edges_[e].example_id, edges_[e].source);
+          add_edge(v, m, level, join_id, join_source);
           ++stats_.accepted;
           ++stats_.snapped;
           return;
@@ -1285,7 +1342,7 @@ class Grower {
     for (const PointValue& pv : point_hits_) {
       std::uint32_t w = pv.second;
       if (w == v || distance(nodes_[w].p, p) > reach) continue;
-      if (try_connect_node(v, w, level, edges_[e].example_id, edges_[e].source)) return;
+      if (try_connect_node(v, w, level, join_id, join_source)) return;
     }
   }
 
@@ -1345,6 +1402,648 @@ class Grower {
     // The split node stays finished, unlike the paper's new nodes: letting streets go on across
     // (4-way junctions) measured denser and further from every example (bench/growth).
   }
+
+  // ---- patch growth (Nishida et al. 2016) ---------------------------------------------------
+  struct LibEdge {
+    Polyline line;  // patch coordinates (turned by params.patch.rotation)
+    int level;
+    PatchEdgeRole role;
+  };
+  struct LibPatch {
+    std::int64_t id;
+    std::vector<LibEdge> edges;
+    std::vector<std::uint32_t> connectors;  // indices into edges
+    int max_uses;
+    int uses = 0;
+  };
+  struct LibConnector {
+    std::uint32_t patch, edge;
+    double angle;   // direction from the inner end to the point `probe_` along it
+    double length;
+    int level;
+    double reach;  // the farthest vertex from the inner end
+  };
+  static double reach_of(const Polyline& line) {
+    double r = 0.0;
+    for (Point q : line) r = std::max(r, distance(q, line[0]));
+    return r;
+  }
+  static constexpr int kBuckets = 72;  // connector directions in 5° bins
+
+  // Polylines closer than `contact` to each other but not at a shared end point: the patch would
+  // not be planar.
+  static bool self_crossing(const std::vector<LibEdge>& edges) {
+    struct S {
+      Point a, b;
+    };
+    std::vector<S> segs;
+    for (const LibEdge& e : edges) {
+      for (std::size_t i = 0; i + 1 < e.line.size(); ++i) segs.push_back({e.line[i], e.line[i + 1]});
+    }
+    auto same = [](Point p, Point q) { return distance(p, q) <= kContact; };
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+      for (std::size_t j = i + 1; j < segs.size(); ++j) {
+        const S &x = segs[i], &y = segs[j];
+        bool shared = same(x.a, y.a) || same(x.a, y.b) || same(x.b, y.a) || same(x.b, y.b);
+        if (shared) continue;
+        if (segment_distance(x.a, x.b, y.a, y.b) <= kContact) return true;
+      }
+    }
+    return false;
+  }
+
+  void build_library(const std::vector<Patch>& patches) {
+    if (patches.empty()) {
+      throw_invalid_argument("patches has no rows", "The patch query returned no patch edge.",
+                             "Fill the patch table with streetgen.extract_patches(example).");
+    }
+    const double rot = params_.patch.rotation * kPi / 180.0;
+    const double cs = std::cos(rot), sn = std::sin(rot);
+    std::vector<ExampleEdge> example;
+    std::size_t with_connectors = 0;
+    for (const Patch& p : patches) {
+      LibPatch lp{p.id, {}, {}, p.max_uses > 0 ? p.max_uses : params_.patch.max_uses};
+      for (const PatchEdge& e : p.edges) {
+        if (e.line.size() < 2) continue;
+        LibEdge le{e.line, level_of(e.road_class), e.role};
+        for (Point& q : le.line) q = {cs * q.x - sn * q.y, sn * q.x + cs * q.y};
+        if (length(le.line) <= kContact) continue;
+        if (le.role == PatchEdgeRole::connector) lp.connectors.push_back(static_cast<std::uint32_t>(lp.edges.size()));
+        example.push_back({le.line, e.road_class, p.id, 0});
+        lp.edges.push_back(std::move(le));
+      }
+      with_connectors += !lp.connectors.empty();
+      if (lp.edges.empty()) continue;
+      if (self_crossing(lp.edges)) {  // a bridge in the example: its patch cannot be placed planar
+        ++stats_.patches_dropped;
+        continue;
+      }
+      library_.push_back(std::move(lp));
+    }
+    if (with_connectors == 0) {
+      throw_invalid_argument("no patch has a connector",
+                             "There are " + std::to_string(patches.size()) +
+                                 " patches and none has an edge with role 'connector', so none can be attached "
+                                 "to another.",
+                             "Extract the patches from a larger example, or use a smaller short_edge.");
+    }
+    build_examples(example);  // statistics, degrees and levels of the patch streets
+    std::vector<const Polyline*> streets;
+    for (const LibPatch& lp : library_) {
+      for (const LibEdge& e : lp.edges) streets.push_back(&e.line);
+    }
+    street_stats_ = street_statistics(streets);
+    // The streets' degrees at their ends (each street once: a connector is in two patches), for
+    // the fallback's target degree: P(degree = k | k >= 2).
+    {
+      std::map<MillimetreKey, std::size_t> degree;
+      std::set<std::pair<MillimetreKey, MillimetreKey>> seen;
+      auto key = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
+      for (const Polyline* l : streets) {
+        MillimetreKey a = key(l->front()), b = key(l->back());
+        if (!seen.insert({std::min(a, b), std::max(a, b)}).second) continue;
+        ++degree[a];
+        ++degree[b];
+      }
+      std::vector<double> count(9, 0.0);
+      double total = 0.0;
+      for (const auto& [k, d] : degree) {
+        if (d < 2) continue;
+        count[std::min<std::size_t>(d, 8)] += 1.0;
+        total += 1.0;
+      }
+      if (total > 0.0) {
+        double acc = 0.0;
+        for (double c : count) degree_cdf_.push_back(acc += c / total);
+      }
+    }
+    probe_ = 0.5 * street_stats_.length_mean;
+    buckets_.assign(kBuckets, {});
+    for (std::uint32_t i = 0; i < library_.size(); ++i) {
+      const LibPatch& lp = library_[i];
+      if (lp.connectors.size() >= 2) seed_patches_.push_back(i);
+      for (std::uint32_t c : lp.connectors) {
+        const Polyline& line = lp.edges[c].line;
+        double len = length(line);
+        Point q = point_at(line, std::min(len, probe_));
+        double angle = std::atan2(q.y - line[0].y, q.x - line[0].x);
+        buckets_[bucket_of(angle)].push_back(static_cast<std::uint32_t>(connectors_.size()));
+        connectors_.push_back({i, c, angle, len, lp.edges[c].level, reach_of(line)});
+      }
+    }
+    // Within a direction bin, connectors by reach: a whole street only meets those of about its reach.
+    for (std::vector<std::uint32_t>& b : buckets_) {
+      std::stable_sort(b.begin(), b.end(), [&](std::uint32_t x, std::uint32_t y) { return connectors_[x].reach < connectors_[y].reach; });
+    }
+    if (seed_patches_.empty()) {
+      for (std::uint32_t i = 0; i < library_.size(); ++i) {
+        if (!library_[i].connectors.empty()) seed_patches_.push_back(i);
+      }
+    }
+  }
+  static int bucket_of(double angle) {
+    int b = static_cast<int>(std::floor((wrap(angle) + kPi) / (2.0 * kPi) * kBuckets));
+    return std::clamp(b, 0, kBuckets - 1);
+  }
+
+  // The statistical fallback (Nishida's procedural growth, here growth I's parametric rule) takes
+  // the patch streets' length distribution, not the segments'.
+  void derive_patch_shape() {
+    shape_.length = std::max(street_stats_.length_mean, 2.0 * min_length_);
+    shape_.length_deviation = std::min(0.5 * shape_.length, street_stats_.length_sd);
+    shape_.min_length = std::min(shape_.length, std::max(min_length_, 0.25 * shape_.length));
+    shape_.angle_deviation = 0.0;  // Nishida: new streets at about 90° to the front's street
+    max_distance_ = params_.patch.max_distance > 0.0 ? params_.patch.max_distance : 0.25 * street_stats_.length_mean;
+    clearance_ = params_.patch.clearance > 0.0 ? params_.patch.clearance : 0.04 * street_stats_.length_mean;
+  }
+
+  // Points every `step` metres along the line (its vertices included).
+  static void densify(const Polyline& line, double step, std::vector<Point>& out) {
+    out.clear();
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      Point a = line[i], b = line[i + 1];
+      out.push_back(a);
+      double d = distance(a, b);
+      int k = static_cast<int>(d / step);
+      for (int j = 1; j <= k; ++j) out.push_back(a + (j / (k + 1.0)) * (b - a));
+    }
+    out.push_back(line.back());
+  }
+  static double directed(const std::vector<Point>& pts, const Polyline& line, double stop) {
+    double worst = 0.0;
+    for (Point p : pts) {
+      double best = INFINITY;
+      for (std::size_t i = 0; i + 1 < line.size() && best > worst; ++i) {
+        best = std::min(best, point_segment_distance(p, line[i], line[i + 1]));
+      }
+      worst = std::max(worst, best);
+      if (worst > stop) return worst;
+    }
+    return worst;
+  }
+  // Hausdorff distance between two polylines, from points every few metres on each to the other
+  // (exact to the spacing); stops early once above `stop`.
+  double hausdorff(const Polyline& a, const Polyline& b, double stop) {
+    const double step = std::max(1.0, 0.1 * std::max(length(a), length(b)));
+    densify(a, step, dense_);
+    double d = directed(dense_, b, stop);
+    if (d > stop) return d;
+    densify(b, step, dense_);
+    return std::max(d, directed(dense_, a, stop));
+  }
+  std::vector<Point> dense_;
+
+  // The street leaving v by edge e: on through nodes of degree 2, up to `cap` metres.
+  Polyline chain(std::uint32_t v, std::uint32_t e, double cap) const {
+    Polyline line{nodes_[v].p};
+    std::uint32_t cur = v;
+    double len = 0.0;
+    for (int guard = 0; guard < 10000; ++guard) {
+      const OEdge& edge = edges_[e];
+      std::uint32_t next = edge.a == cur ? edge.b : edge.a;
+      len += distance(nodes_[cur].p, nodes_[next].p);
+      line.push_back(nodes_[next].p);
+      cur = next;
+      if (len >= cap || next == v || nodes_[next].edges.size() != 2) break;
+      e = nodes_[next].edges[0] == e ? nodes_[next].edges[1] : nodes_[next].edges[0];
+    }
+    return line;
+  }
+  // w is reached from u along a street (through degree-2 nodes): a patch edge u-w is redundant.
+  bool connected_by_street(std::uint32_t u, std::uint32_t w) const {
+    for (std::uint32_t e : nodes_[u].edges) {
+      std::uint32_t cur = u, edge = e;
+      for (int guard = 0; guard < 10000; ++guard) {
+        const OEdge& oe = edges_[edge];
+        std::uint32_t next = oe.a == cur ? oe.b : oe.a;
+        if (next == w) return true;
+        if (next == u || nodes_[next].edges.size() != 2) break;
+        cur = next;
+        edge = nodes_[next].edges[0] == edge ? nodes_[next].edges[1] : nodes_[next].edges[0];
+      }
+    }
+    return false;
+  }
+
+  void patch_step(std::uint32_t v) {
+    if (completed_[v]) {
+      done_ = true;
+      return;
+    }
+    const Point p = nodes_[v].p;
+    if (nodes_[v].edges.empty()) {
+      if (crowded(p, min_length_, v)) return;
+      // A seed: a patch with two or more connectors, drawn at random, its first connector's inner
+      // end on the seed.
+      std::vector<std::uint32_t> order = seed_patches_;
+      for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[uniform(i)]);
+      int tries = 0;
+      for (std::uint32_t j : order) {
+        if (tries++ >= params_.patch.tries) break;
+        const LibPatch& lp = library_[j];
+        if (lp.max_uses > 0 && lp.uses >= lp.max_uses) continue;
+        if (place_patch(v, j, lp.edges[lp.connectors[0]].line[0], UINT32_MAX)) {
+          done_ = true;
+          return;
+        }
+      }
+      if (!params_.fallback) return;
+      ++stats_.fallback;
+      parametric_step(v, 0, NAN);
+      return;
+    }
+    // Fronts: every connector leaving within angle_window of one of v's streets, placed with its
+    // inner end on v, scored by the Hausdorff distance between it and that street (both cut to the
+    // shorter length); each patch keeps its best pair.
+    const double window = params_.patch.angle_window * kPi / 180.0;
+    const double cap = 3.0 * street_stats_.length_mean;
+    ++stamp_;
+    if (best_.size() < library_.size()) {
+      best_.resize(library_.size());
+      best_stamp_.resize(library_.size(), 0);
+    }
+    touched_.clear();
+    int level = 0;
+    for (std::size_t k = 0; k < nodes_[v].edges.size(); ++k) {
+      std::uint32_t e = nodes_[v].edges[k];
+      const int street_level = edges_[e].level;
+      if (k == 0) level = std::max(0, street_level);
+      Polyline street = chain(v, e, cap);
+      double street_len = length(street);
+      // A street a patch made is compared whole (Nishida's Hausdorff distance between edges: the
+      // example's own neighbour fits best); one the fallback made only over the shorter length,
+      // so that patches take over again after it.
+      const bool whole = edges_[e].source >= 0;
+      const double street_reach = reach_of(street);
+      Point q = point_at(street, std::min(street_len, probe_));
+      double angle = std::atan2(q.y - p.y, q.x - p.x);
+      int span = static_cast<int>(std::ceil(window / (2.0 * kPi / kBuckets)));
+      int centre = bucket_of(angle);
+      for (int db = -span; db <= span; ++db) {
+        const std::vector<std::uint32_t>& bucket = buckets_[(centre + db + kBuckets) % kBuckets];
+        auto first = bucket.begin();
+        if (whole) {
+          first = std::lower_bound(bucket.begin(), bucket.end(), street_reach - max_distance_,
+                                   [&](std::uint32_t x, double r) { return connectors_[x].reach < r; });
+        }
+        for (auto it = first; it != bucket.end(); ++it) {
+          const std::uint32_t ci = *it;
+          const LibConnector& c = connectors_[ci];
+          if (whole && c.reach > street_reach + max_distance_) break;
+          if (std::abs(wrap(c.angle - angle)) > window) continue;
+          // Levels (Nishida: arterial and local patches apart): a connector continues a street of its class.
+          if (params_.match_levels && street_level >= 0 && c.level != street_level) continue;
+          const LibPatch& lp = library_[c.patch];
+          if (lp.max_uses > 0 && lp.uses >= lp.max_uses) continue;
+          const Polyline& line = lp.edges[c.edge].line;
+          double bound = best_stamp_[c.patch] == stamp_ ? std::min(best_[c.patch].d, max_distance_) : max_distance_;
+          // Both start at v: the Hausdorff distance is at least the difference of their reaches.
+          if (whole && std::abs(c.reach - street_reach) > bound) continue;
+          double s = whole ? std::max(street_len, c.length) : std::min(street_len, c.length);
+          Polyline placed = substring(line, 0.0, s);
+          Point t = p - line[0];
+          for (Point& x : placed) x = x + t;
+          Polyline cut = substring(street, 0.0, s);
+          double d = hausdorff(placed, cut, bound);
+          if (d > bound || (best_stamp_[c.patch] == stamp_ && d >= best_[c.patch].d)) continue;
+          if (best_stamp_[c.patch] != stamp_) {
+            best_stamp_[c.patch] = stamp_;
+            touched_.push_back(c.patch);
+          }
+          best_[c.patch] = {d, c.edge};
+        }
+      }
+    }
+    stats_.patch_candidates += touched_.size();
+    // Draw without replacement with weights exp(-d / scale) (Efraimidis & Spirakis keys): trying
+    // the draws in order until one is legal samples Nishida's eq. 2 over the legal patches.
+    std::sort(touched_.begin(), touched_.end());
+    keyed_.clear();
+    for (std::uint32_t j : touched_) {
+      double u = std::max(uniform01(), 1e-300);
+      double x = std::min(best_[j].d / params_.patch.scale, 700.0);
+      keyed_.emplace_back(std::log(u) * std::exp(x), j);
+    }
+    std::sort(keyed_.begin(), keyed_.end(), [](const auto& a, const auto& b) {
+      return a.first > b.first || (a.first == b.first && a.second < b.second);
+    });
+    int tries = 0;
+    for (const auto& [key, j] : keyed_) {
+      if (tries++ >= params_.patch.tries) break;
+      const LibPatch& lp = library_[j];
+      if (place_patch(v, j, lp.edges[best_[j].edge].line[0], best_[j].edge)) {
+        done_ = true;
+        return;
+      }
+    }
+    // A front that two patches already reached is connected: the fallback only continues streets
+    // that would otherwise end where the example did not end them.
+    if (!params_.fallback || nodes_[v].edges.size() >= 2) {
+      done_ = true;
+      return;
+    }
+    ++stats_.fallback;
+    parametric_step(v, level, NAN);
+  }
+  struct BestPair {
+    double d;
+    std::uint32_t edge;
+  };
+  std::vector<BestPair> best_;
+  std::vector<std::uint64_t> best_stamp_;
+  std::uint64_t stamp_ = 0;
+  std::vector<std::uint32_t> touched_;
+  std::vector<std::pair<double, std::uint32_t>> keyed_;
+
+  // Glues patch j with its point `anchor` on v, leaving out edge `skip` (the connector that
+  // doubles v's street). Patch end points within snap of a node are merged into it; edges doubling
+  // a street between merged nodes are left out; a connector leaving the region or touching an
+  // obstacle is clipped, any other illegal edge rejects the patch. Nothing changes unless it is
+  // legal as a whole.
+  bool place_patch(std::uint32_t v, std::uint32_t j, Point anchor, std::uint32_t skip) {
+    const LibPatch& lp = library_[j];
+    const Point t = nodes_[v].p - anchor;
+    // Patch vertices (edge ends): an existing node (>= 0), or a new one (-(index into fresh) - 1).
+    std::unordered_map<MillimetreKey, std::int64_t, MillimetreKeyHash> vertex;
+    std::vector<Point> fresh;
+    const MillimetreKey anchor_key{std::llround(anchor.x * 1000.0), std::llround(anchor.y * 1000.0)};
+    auto vertex_of = [&](Point q) -> std::int64_t {
+      MillimetreKey key{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)};
+      auto it = vertex.find(key);
+      if (it != vertex.end()) return it->second;
+      std::int64_t id;
+      Point at = q + t;
+      if (key == anchor_key) {
+        id = v;
+      } else {
+        // (Several vertices of the patch may merge into one node, folding a dual carriageway's
+        // junctions into one: the planarity check below follows every moved end.)
+        point_hits_.clear();
+        node_tree_.query(bgi::nearest(BPoint(at.x, at.y), 1), std::back_inserter(point_hits_));
+        if (!point_hits_.empty() && distance(nodes_[point_hits_[0].second].p, at) <= snap_) {
+          id = point_hits_[0].second;
+        } else {
+          fresh.push_back(at);
+          id = -static_cast<std::int64_t>(fresh.size());
+        }
+      }
+      vertex.emplace(key, id);
+      return id;
+    };
+    struct Planned {
+      Polyline line;  // output coordinates; ends at the vertices' positions
+      std::int64_t a, b;
+      int level;
+      bool open_end;  // a connector whose outer end is new: a front
+      bool outer;     // a connector: its end b is the neighbouring patch's junction
+      Point from, to; // where the ends were before merging or clipping
+    };
+    std::vector<Planned> plan;
+    auto pos = [&](std::int64_t id) {
+      return id >= 0 ? nodes_[static_cast<std::uint32_t>(id)].p : fresh[static_cast<std::size_t>(-id - 1)];
+    };
+    for (std::uint32_t k = 0; k < lp.edges.size(); ++k) {
+      if (k == skip) continue;
+      const LibEdge& e = lp.edges[k];
+      std::int64_t a = vertex_of(e.line.front()), b = vertex_of(e.line.back());
+      if (a == b && (a >= 0 || e.line.size() < 4)) continue;  // a loop street kept only when whole and new
+      if (a >= 0 && b >= 0 && (a == b || connected_by_street(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b)))) {
+        continue;
+      }
+      Planned pl{{}, a, b, e.level, e.role == PatchEdgeRole::connector && b < 0, e.role == PatchEdgeRole::connector,
+                 e.line.front() + t, e.line.back() + t};
+      pl.line.reserve(e.line.size());
+      for (Point q : e.line) pl.line.push_back(q + t);
+      pl.line.front() = pos(a);
+      pl.line.back() = pos(b);
+      plan.push_back(std::move(pl));
+    }
+    // Nishida: the patch's edges that double existing streets are removed (every point of the edge
+    // within snap of the network).
+    plan.erase(std::remove_if(plan.begin(), plan.end(), [&](const Planned& pl) { return redundant(pl.line); }), plan.end());
+    if (plan.empty()) return false;
+    // Region and obstacles: clip open connectors to their longest legal prefix.
+    for (Planned& pl : plan) {
+      for (std::size_t k = 0; k + 1 < pl.line.size(); ++k) {
+        if (legal(pl.line[k], pl.line[k + 1])) continue;
+        if (!pl.open_end) {
+          ++stats_.patch_illegal;
+          return false;
+        }
+        double lo = 0.0, hi = 1.0;
+        Point a = pl.line[k], b = pl.line[k + 1];
+        for (int it = 0; it < 30; ++it) {
+          double mid = 0.5 * (lo + hi);
+          if (legal(a, a + mid * (b - a))) lo = mid; else hi = mid;
+        }
+        pl.line.resize(k + 1);
+        Point end = a + lo * (b - a);
+        if (distance(end, a) > kContact) pl.line.push_back(end);
+        pl.open_end = false;
+        if (pl.line.size() < 2 || length(pl.line) < min_length_) {
+          pl.line.clear();  // too short to keep: dropped
+        } else {
+          fresh.push_back(pl.line.back());
+          pl.b = -static_cast<std::int64_t>(fresh.size());
+        }
+        break;
+      }
+    }
+    plan.erase(std::remove_if(plan.begin(), plan.end(), [](const Planned& pl) { return pl.line.empty(); }), plan.end());
+    if (plan.empty()) return false;
+    std::size_t segments = 0;
+    for (const Planned& pl : plan) segments += pl.line.size() - 1;
+    if (new_edges_ + segments > params_.max_edges) return false;
+    // New streets keep the clearance from the network that the example's streets keep from each
+    // other (away from the nodes they share with it).
+    for (const Planned& pl : plan) {
+      for (std::size_t k = 0; k + 1 < pl.line.size(); ++k) {
+        if (!clear_of_network(pl.line[k], pl.line[k + 1], clearance_, v, pl.a, pl.b)) {
+          ++stats_.patch_illegal;
+          return false;
+        }
+      }
+    }
+    // Angles and degrees at existing nodes.
+    std::map<std::uint32_t, std::vector<double>> leaving;
+    for (const Planned& pl : plan) {
+      if (pl.a >= 0) {
+        leaving[static_cast<std::uint32_t>(pl.a)].push_back(std::atan2(pl.line[1].y - pl.line[0].y, pl.line[1].x - pl.line[0].x));
+      }
+      if (pl.b >= 0) {
+        const Point& z = pl.line.back();
+        const Point& y = pl.line[pl.line.size() - 2];
+        leaving[static_cast<std::uint32_t>(pl.b)].push_back(std::atan2(y.y - z.y, y.x - z.x));
+      }
+    }
+    std::vector<std::uint32_t> merged;
+    for (auto& [node, angles] : leaving) {
+      merged.push_back(node);
+      const std::size_t d0 = nodes_[node].edges.size(), d1 = d0 + angles.size();
+      if (d1 > max_degree_) {
+        ++stats_.patch_illegal;
+        return false;
+      }
+      // A junction made busier than 3 by a merge: as often as the example's junctions are (the
+      // junction mix follows the example, as in growth I).
+      for (std::size_t d = std::max<std::size_t>(d0, 3); node != v && d < d1; ++d) {
+        if (!example_allows_one_more(d)) {
+          ++stats_.patch_illegal;
+          return false;
+        }
+      }
+      for (std::size_t a = 0; a < angles.size(); ++a) {
+        bool ok = angle_free(node, angles[a]);
+        for (std::size_t b = a + 1; b < angles.size() && ok; ++b) ok = std::abs(wrap(angles[a] - angles[b])) >= min_angle_;
+        if (!ok) {
+          ++stats_.patch_illegal;
+          return false;
+        }
+      }
+    }
+    // No crossing with the network: a segment may only touch the edges at its own existing ends.
+    for (const Planned& pl : plan) {
+      for (std::size_t k = 0; k + 1 < pl.line.size(); ++k) {
+        std::uint32_t s1 = k == 0 && pl.a >= 0 ? static_cast<std::uint32_t>(pl.a) : UINT32_MAX;
+        std::uint32_t s2 = k + 2 == pl.line.size() && pl.b >= 0 ? static_cast<std::uint32_t>(pl.b) : UINT32_MAX;
+        if (s1 == UINT32_MAX && s2 != UINT32_MAX) std::swap(s1, s2);
+        bool hit = s1 == UINT32_MAX ? touches_network(pl.line[k], pl.line[k + 1])
+                                    : first_contact(pl.line[k], pl.line[k + 1], s1, s2).found;
+        if (hit) {
+          ++stats_.patch_illegal;
+          return false;
+        }
+      }
+    }
+    // Within the patch: the library's patches are planar; only segments moved by a merge (or a
+    // clip) can now cross the others.
+    auto same = [](Point x, Point y) { return distance(x, y) <= kContact; };
+    for (std::size_t i = 0; i < plan.size(); ++i) {
+      const Planned& pl = plan[i];
+      for (std::size_t k = 0; k + 1 < pl.line.size(); ++k) {
+        bool moved = (k == 0 && distance(pl.line.front(), pl.from) > kContact) ||
+                     (k + 2 == pl.line.size() && distance(pl.line.back(), pl.to) > kContact);
+        if (!moved) continue;
+        for (std::size_t i2 = 0; i2 < plan.size(); ++i2) {
+          const Planned& other = plan[i2];
+          for (std::size_t k2 = 0; k2 + 1 < other.line.size(); ++k2) {
+            if (i2 == i && k2 == k) continue;
+            Point a = pl.line[k], b = pl.line[k + 1], c = other.line[k2], d = other.line[k2 + 1];
+            if (same(a, c) || same(a, d) || same(b, c) || same(b, d)) continue;
+            if (segment_distance(a, b, c, d) <= kContact) {
+              ++stats_.patch_illegal;
+              return false;
+            }
+          }
+        }
+      }
+    }
+    // Legal: glue it.
+    std::vector<std::uint32_t> fresh_id(fresh.size(), UINT32_MAX);
+    auto node_id = [&](std::int64_t id) {
+      if (id >= 0) return static_cast<std::uint32_t>(id);
+      auto f = static_cast<std::size_t>(-id - 1);
+      if (fresh_id[f] == UINT32_MAX) {
+        fresh_id[f] = add_node(fresh[f]);
+        completed_[fresh_id[f]] = 1;
+        frames_[fresh_id[f]] = 0.0;
+      }
+      return fresh_id[f];
+    };
+    for (const Planned& pl : plan) {
+      std::uint32_t prev = node_id(pl.a);
+      for (std::size_t k = 1; k < pl.line.size(); ++k) {
+        std::uint32_t next = k + 1 == pl.line.size() ? node_id(pl.b) : add_node(pl.line[k]);
+        if (k + 1 < pl.line.size()) completed_[next] = 1;
+        add_edge(prev, next, pl.level, lp.id, 0);
+        ++stats_.accepted;
+        ++stats_.patch_edges;
+        prev = next;
+      }
+      if (pl.open_end) {
+        completed_[prev] = 0;
+        unfinished_.push_back(prev);
+      }
+    }
+    // An existing node that became one of the patch's own junctions is finished; one that only
+    // a connector reached (the outer end, a neighbouring patch's place) stays a front.
+    for (const Planned& pl : plan) {
+      if (pl.a >= 0) completed_[static_cast<std::uint32_t>(pl.a)] = 1;
+      if (pl.b >= 0 && !pl.outer) completed_[static_cast<std::uint32_t>(pl.b)] = 1;
+    }
+    completed_[v] = 1;
+    // A front a connector reached is the neighbouring patch's place: it is (again) in the queue,
+    // so the patch that joins both streets is looked for there, even if it was tried before.
+    for (const Planned& pl : plan) {
+      if (pl.b >= 0 && pl.outer && !completed_[static_cast<std::uint32_t>(pl.b)]) {
+        unfinished_.push_back(static_cast<std::uint32_t>(pl.b));
+      }
+    }
+    ++library_[j].uses;
+    ++stats_.patches_placed;
+    return true;
+  }
+
+  // Every point of the line (sampled every few metres) is within snap of the network.
+  bool redundant(const Polyline& line) {
+    densify(line, std::max(1.0, 0.5 * snap_), dense_);
+    for (Point q : dense_) {
+      hits_.clear();
+      edge_tree_.query(bgi::intersects(box_around(q, snap_)), std::back_inserter(hits_));
+      bool near = false;
+      for (const BoxValue& hv : hits_) {
+        const OEdge& edge = edges_[hv.second];
+        if (point_segment_distance(q, nodes_[edge.a].p, nodes_[edge.b].p) <= snap_) {
+          near = true;
+          break;
+        }
+      }
+      if (!near) return false;
+    }
+    return true;
+  }
+
+  // Segment p-q is at least d from every edge of the network not at v, a or b (node ids; < 0: none).
+  bool clear_of_network(Point p, Point q, double d, std::uint32_t v, std::int64_t a, std::int64_t b) {
+    hits_.clear();
+    Box box = box_of(p, q);
+    bg::expand(box, box_around(p, d));
+    bg::expand(box, box_around(q, d));
+    edge_tree_.query(bgi::intersects(box), std::back_inserter(hits_));
+    auto at = [&](std::uint32_t n) {
+      return n == v || (a >= 0 && n == static_cast<std::uint32_t>(a)) || (b >= 0 && n == static_cast<std::uint32_t>(b));
+    };
+    for (const BoxValue& hv : hits_) {
+      const OEdge& edge = edges_[hv.second];
+      if (at(edge.a) || at(edge.b)) continue;
+      if (segment_distance(p, q, nodes_[edge.a].p, nodes_[edge.b].p) < d) return false;
+    }
+    return true;
+  }
+
+  // Segment p-q touches an edge of the network.
+  bool touches_network(Point p, Point q) {
+    hits_.clear();
+    Box b = box_of(p, q);
+    bg::expand(b, box_around(p, kContact));
+    bg::expand(b, box_around(q, kContact));
+    edge_tree_.query(bgi::intersects(b), std::back_inserter(hits_));
+    for (const BoxValue& hv : hits_) {
+      const OEdge& edge = edges_[hv.second];
+      if (segment_distance(p, q, nodes_[edge.a].p, nodes_[edge.b].p) <= kContact) return true;
+    }
+    return false;
+  }
+
+  std::vector<LibPatch> library_;
+  std::vector<LibConnector> connectors_;
+  std::vector<std::vector<std::uint32_t>> buckets_;
+  std::vector<std::uint32_t> seed_patches_;
+  StreetStatistics street_stats_;
+  double probe_ = 0.0, max_distance_ = 0.0, clearance_ = 0.0;
+  std::vector<double> degree_cdf_;  // patch growth's fallback: P(degree <= k | degree >= 2) of the patch streets
+  std::vector<char> completed_;  // patch growth: nodes a patch finished (junctions, merged ends)
+  std::size_t queue_head_ = 0;
 
   GeosContext& geos_;
   const GrowParams& params_;

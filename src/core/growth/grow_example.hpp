@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/geos_context.hpp"
+#include "core/growth/patches.hpp"
 #include "core/streets/polyline.hpp"
 
 namespace streetgen::core {
@@ -49,6 +50,21 @@ struct BlendParams {
   std::vector<Point> points;  // points: one per example; weight exp(-d^2 / (2 sigma^2))
   double sigma = 0.0;         // metres; 0: a quarter of the region's extent diagonal
 };
+// Patch growth (Nishida et al. 2016, section 4.3): at a front, a patch is drawn with probability
+// proportional to exp(-d / scale), d the smallest Hausdorff distance between one of its connectors
+// (placed with its inner end on the front) and one of the front's streets, among the patches that
+// pass the legality checks (region, obstacles, no crossing, angles, degrees).
+struct PatchGrowParams {
+  double scale = 0.1;         // metres; Nishida's eq. 2 reads d in metres (scale 1): 0.1 measured closer (README)
+  double max_distance = 0.0;  // metres: patches farther than this are not drawn; 0: 0.25 x the mean street length
+  double angle_window = 30.0; // degrees: connectors compared with a street leave within this of its direction
+  int tries = 24;             // legality checks per front before the statistical fallback
+  int max_uses = 0;           // uses per patch when the patch sets none; 0: unlimited
+  double rotation = 0.0;      // degrees: every patch turned by this (Nishida: one rotation per growth)
+  double clearance = 0.0;     // metres: new patch streets keep this far from streets they do not meet;
+                              // 0: 4 % of the mean street length
+};
+
 struct GrowParams {
   double epsilon = 30.0;       // degrees: largest angle between a matched pair of incident edges
   double radius = 0.0;         // metres: neighbourhood radius r; 0: 3 x mean example segment length
@@ -70,6 +86,8 @@ struct GrowParams {
   ParametricParams shape;      // the parametric growth's parameters (with an example: derived from it)
   double guide_reach = 0.0;    // metres: the guide sets θ within this distance of it; 0: everywhere
   BlendParams blend;
+  bool use_patches = false;    // grow_patches: GrowInput::patches instead of node matching
+  PatchGrowParams patch;
 };
 
 struct GrowInput {
@@ -81,6 +99,7 @@ struct GrowInput {
   std::vector<Polyline> existing;        // a network to extend: respected and joined, never emitted
   std::vector<Polyline> guide;           // direction control: θ follows the tangent of the nearest guide
                                          // point (undirected) instead of node matching; may be empty
+  std::vector<Patch> patches;            // use_patches: the patch library (extract_patches)
 };
 
 struct GrownEdge {
@@ -106,6 +125,11 @@ struct GrowStats {
   std::size_t rejected = 0;
   std::size_t reseeds = 0;         // new seeds placed where the fronts had died before covering the region
   std::size_t restarts = 0;        // growths that died within their first 20 edges and began again
+  std::size_t patches_placed = 0;  // patch growth: fronts (and seeds) where a patch was glued
+  std::size_t patch_candidates = 0;  // patches within max_distance, summed over fronts
+  std::size_t patch_illegal = 0;   // drawn patches that failed a legality check
+  std::size_t patch_edges = 0;     // output segments copied from patches
+  std::size_t patches_dropped = 0; // library patches that cross themselves (never used)
   double radius = 0.0;             // the r and snap distance used
   double snap = 0.0;
 };

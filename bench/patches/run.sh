@@ -1,0 +1,200 @@
+#!/usr/bin/env bash
+# Patch-based growth (streetgen.extract_patches + grow_patches, issue 8) against growth I
+# (grow_example, the baseline measured in the same run) on the real example patches of
+# ../shared/data/examples/patches: realism, example-based share, speed.
+#
+#   bash bench/patches/run.sh                 the streetgen installed for the pg_config on PATH
+#   PARAMS='{"scale": 5}' SEEDS='1 2 3' bash bench/patches/run.sh    grow_patches params, seeds
+#   NAMES='tokyo new-york' SPEED=0 bash bench/patches/run.sh         some examples, no speed part
+#   OUT=/tmp/pics bash bench/patches/run.sh   where the PNGs go (default: build/bench-patches)
+#
+# 1. Realism: for each example, extract its patches, grow its convex hull from one seed at its
+#    centre with grow_patches and with grow_example (default params, max_edges 200000), and
+#    compare each with the example by compare_networks, inside the hull shrunk by 50 m, degree-2
+#    chains merged (as bench/growth/run.sh): the eight headline metrics and their median per
+#    pair (the issue's per-pair median), the 4-way and dead-end shares in percentage points, and
+#    whether roundabouts (patches tagged roundabout) and cul-de-sacs were used.
+# 2. Speed: km of road per second of one SQL call (one core) for squares grown from tokyo, for
+#    grow_patches and for grow_example in the same run, and their ratio; a 300 km square is the
+#    issue's benchmark (< 3 s).
+set -euo pipefail
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+data="${STREETGEN_SHARED_DATA:-$repo/../shared/data}"
+data="$(cd "$data" && pwd)"
+port="${STREETGEN_BENCH_PORT:-54337}"
+out="${OUT:-$repo/build/bench-patches}"
+params="${PARAMS:-{\}}"
+seeds="${SEEDS:-1 2 3}"
+names="${NAMES:-tokyo canberra_south_large barcelona_east new-york strasbourg quito}"
+mkdir -p "$out"
+source "$repo/bench/lib.sh"
+bench_cluster "$port" nobuild
+names_sql=$(printf "'%s'," $names)
+psql -X -q -v ON_ERROR_STOP=1 <<SQL
+CREATE TABLE example AS
+SELECT n AS name, row_number() OVER (PARTITION BY n) AS id, f -> 'properties' ->> 'type' AS road_class,
+       (f -> 'properties' ->> 'roundabout')::boolean AS roundabout,
+       ST_SetSRID(ST_GeomFromGeoJSON(f -> 'geometry'), 0) AS geom
+  FROM unnest(ARRAY[${names_sql%,}]) AS n,
+       jsonb_array_elements(pg_read_file('$data/examples/patches/' || n || '.geojson')::jsonb -> 'features') AS f;
+CREATE TABLE region AS SELECT name, ST_ConvexHull(ST_Collect(geom)) AS geom FROM example GROUP BY name;
+CREATE TABLE patch (name text, patch_id bigint, edge_index integer, role text, road_class text, tags text[], edge_tags text[],
+                    start_tags text[], end_tags text[], max_uses integer, example_id bigint, geom geometry);
+CREATE TABLE grown (method text, name text, seed integer, id bigint, from_node bigint, to_node bigint, road_class text,
+                    origin text, geom geometry);
+CREATE TABLE timing (method text, name text, seed integer, seconds double precision);
+SQL
+
+echo "== patches per example"
+for name in $names; do
+  psql -X -q -v ON_ERROR_STOP=1 -c "INSERT INTO patch SELECT '$name', * FROM streetgen.extract_patches(
+    format('SELECT * FROM example WHERE name = %L', '$name'))"
+done
+psql -X -v ON_ERROR_STOP=1 <<'SQL'
+\pset footer off
+SELECT name, count(DISTINCT patch_id) AS patches, count(*) FILTER (WHERE role = 'connector') AS connectors,
+       count(DISTINCT patch_id) FILTER (WHERE 'roundabout' = ANY (tags)) AS roundabout,
+       count(DISTINCT patch_id) FILTER (WHERE 'cul-de-sac' = ANY (tags)) AS cul_de_sac,
+       count(DISTINCT patch_id) FILTER (WHERE 'loop' = ANY (tags)) AS loop,
+       count(DISTINCT patch_id) FILTER (WHERE 'cluster' = ANY (tags)) AS cluster,
+       count(DISTINCT patch_id) FILTER (WHERE 'curved' = ANY (tags)) AS curved,
+       count(DISTINCT patch_id) FILTER (WHERE 'terminal' = ANY (tags)) AS terminal,
+       count(DISTINCT patch_id) FILTER (WHERE 'initial' = ANY (tags)) AS initial
+  FROM patch GROUP BY name ORDER BY name;
+SQL
+
+echo "== realism: grow each example's hull from its centre (grow_patches params $params; grow_example defaults)"
+for seed in $seeds; do
+for name in $names; do
+  psql -X -q -v ON_ERROR_STOP=1 <<SQL
+DO \$\$
+DECLARE
+  t0 timestamptz := clock_timestamp();
+BEGIN
+  INSERT INTO grown
+  SELECT 'patches', r.name, $seed, g.* FROM region r,
+         streetgen.grow_patches(format('SELECT * FROM patch WHERE name = %L', r.name), r.geom,
+                                ST_PointOnSurface(r.geom), NULL, '$params'::jsonb || '{"seed": $seed, "max_edges": 200000}') AS g
+   WHERE r.name = '$name';
+  INSERT INTO timing VALUES ('patches', '$name', $seed, extract(epoch FROM clock_timestamp() - t0));
+  t0 := clock_timestamp();
+  INSERT INTO grown
+  SELECT 'example', r.name, $seed, g.* FROM region r,
+         streetgen.grow_example(format('SELECT id, road_class, geom FROM example WHERE name = %L', r.name), r.geom,
+                                ST_PointOnSurface(r.geom), NULL, '{"seed": $seed, "max_edges": 200000}') AS g
+   WHERE r.name = '$name';
+  INSERT INTO timing VALUES ('example', '$name', $seed, extract(epoch FROM clock_timestamp() - t0));
+END
+\$\$;
+SQL
+  if [ "$seed" = "$(echo $seeds | cut -d' ' -f1)" ]; then
+    /usr/bin/python3 "$repo/bench/growth/plot.py" "host=$PGHOST port=$PGPORT user=postgres dbname=bench" \
+      "SELECT geom, road_class FROM example WHERE name = '$name'" \
+      "SELECT geom, road_class FROM grown WHERE method = 'patches' AND name = '$name' AND seed = $seed" \
+      "$name: example (left) and grow_patches output (right), seed $seed" "$out/$name-seed$seed.png" || true
+  fi
+done
+done
+psql -X -q -v ON_ERROR_STOP=1 <<'SQL'
+CREATE TABLE cmp AS
+SELECT m.method, r.name, s.seed, c.*
+  FROM region r CROSS JOIN (SELECT DISTINCT seed FROM timing) s CROSS JOIN (VALUES ('patches'), ('example')) AS m(method),
+       LATERAL streetgen.compare_networks(
+         streetgen.network_stats(format('SELECT geom FROM example WHERE name = %L', r.name), 0, ST_Buffer(r.geom, -50),
+                                 simplify => true),
+         streetgen.network_stats(format('SELECT geom FROM grown WHERE method = %L AND name = %L AND seed = %s',
+                                        m.method, r.name, s.seed), 0, ST_Buffer(r.geom, -50), simplify => true)) c;
+CREATE TABLE headline AS
+SELECT * FROM cmp WHERE metric IN ('street_density', 'intersection_density', 'mean_degree', 'dead_end_share',
+                                   'degree4_share', 'connected_node_ratio', 'orientation_order', 'block_area_median');
+\pset footer off
+\echo edges, example-based share (patches: edges and length from patches, the rest statistical fallback), speed
+SELECT g.method, g.name, g.seed, count(*) AS edges,
+       round(100.0 * count(*) FILTER (WHERE g.origin NOT LIKE 'grow_parametric%') / count(*), 1) AS example_pct,
+       round((100 * sum(ST_Length(g.geom)) FILTER (WHERE g.origin NOT LIKE 'grow_parametric%') / sum(ST_Length(g.geom)))::numeric, 1) AS example_len_pct,
+       round((sum(ST_Length(g.geom)) / 1000)::numeric, 1) AS km, round(t.seconds::numeric, 2) AS seconds
+  FROM grown g JOIN timing t USING (method, name, seed) GROUP BY g.method, g.name, g.seed, t.seconds
+ ORDER BY g.name, g.method, g.seed;
+\echo headline metrics: example value, grown value and relative difference in % (medians over seeds)
+SELECT name, metric, round(min(reference_value)::numeric, 4) AS example,
+       round(percentile_cont(0.5) WITHIN GROUP (ORDER BY candidate_value) FILTER (WHERE method = 'patches')::numeric, 4) AS patches,
+       round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY relative_difference) FILTER (WHERE method = 'patches'))::numeric, 1) AS patches_pct,
+       round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY relative_difference) FILTER (WHERE method = 'example'))::numeric, 1) AS grow_example_pct
+  FROM headline GROUP BY name, metric ORDER BY name, metric;
+\echo junction mix: 4-way and dead-end shares (percentage points from the example; the goal is within 5)
+SELECT name, method, round((100 * min(reference_value) FILTER (WHERE metric = 'degree4_share'))::numeric, 1) AS ex_4way,
+       round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY candidate_value - reference_value) FILTER (WHERE metric = 'degree4_share'))::numeric, 1) AS d_4way_pp,
+       round((100 * min(reference_value) FILTER (WHERE metric = 'dead_end_share'))::numeric, 1) AS ex_dead,
+       round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY candidate_value - reference_value) FILTER (WHERE metric = 'dead_end_share'))::numeric, 1) AS d_dead_pp
+  FROM headline GROUP BY name, method ORDER BY name, method;
+\echo per pair (method, example, seed): median of the eight headline |relative differences| (capped at 100 %)
+SELECT name, seed, round((100 * max(score) FILTER (WHERE method = 'patches'))::numeric, 1) AS patches_pct,
+       round((100 * max(score) FILTER (WHERE method = 'example'))::numeric, 1) AS grow_example_pct
+  FROM cmp WHERE metric = 'median_abs_relative_difference' GROUP BY name, seed ORDER BY name, seed;
+SELECT method, round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY score))::numeric, 1) AS median_over_pairs_pct,
+       round((100 * max(score))::numeric, 1) AS worst_pair_pct
+  FROM cmp WHERE metric = 'median_abs_relative_difference' GROUP BY method;
+\echo structures: patches tagged roundabout / cul-de-sac in the example, and how often grow_patches used them
+SELECT p.name, count(DISTINCT p.patch_id) FILTER (WHERE 'roundabout' = ANY (p.tags)) AS ex_roundabout_patches,
+       (SELECT count(DISTINCT (g.seed, g.origin)) FROM grown g JOIN patch q ON g.origin = 'grow_patches:' || q.patch_id
+         AND q.name = g.name WHERE g.method = 'patches' AND g.name = p.name AND 'roundabout' = ANY (q.tags)) AS roundabout_uses,
+       count(DISTINCT p.patch_id) FILTER (WHERE 'cul-de-sac' = ANY (p.tags)) AS ex_cul_de_sac_patches,
+       (SELECT count(DISTINCT (g.seed, g.origin)) FROM grown g JOIN patch q ON g.origin = 'grow_patches:' || q.patch_id
+         AND q.name = g.name WHERE g.method = 'patches' AND g.name = p.name AND 'cul-de-sac' = ANY (q.tags)) AS cul_de_sac_uses
+  FROM patch p GROUP BY p.name ORDER BY p.name;
+CREATE INDEX ON grown USING gist (geom);
+ANALYZE grown;
+SELECT method, (SELECT count(*) FROM grown g2 WHERE g2.method = m.method) AS edges_checked,
+       (SELECT count(*) FROM grown a JOIN grown b ON a.method = m.method AND b.method = m.method AND a.name = b.name
+           AND a.seed = b.seed AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
+         WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))) AS crossings_without_node,
+       (SELECT count(*) FROM grown g JOIN region r USING (name) WHERE g.method = m.method AND NOT ST_CoveredBy(g.geom, r.geom)) AS outside_region
+  FROM (VALUES ('patches'), ('example')) AS m(method);
+\echo crossings without a shared node, if any
+SELECT a.method, a.name, a.seed, a.id, b.id, a.origin, b.origin, ST_AsText(ST_Intersection(a.geom, b.geom)) AS at
+  FROM grown a JOIN grown b ON a.method = b.method AND a.name = b.name AND a.seed = b.seed AND a.id < b.id
+   AND ST_Intersects(a.geom, b.geom)
+ WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node));
+SQL
+
+if [ "${SPEED:-1}" = 0 ]; then
+  echo "Road data: © OpenStreetMap contributors, ODbL 1.0 (example patches of Nishida et al. 2016)"
+  exit 0
+fi
+echo "== speed: squares grown from tokyo, one SQL call each, grow_patches against grow_example (same run)"
+psql -X -q -v ON_ERROR_STOP=1 <<SQL
+INSERT INTO patch SELECT 'tokyo-speed', * FROM streetgen.extract_patches('SELECT * FROM example WHERE name = ''tokyo''')
+ WHERE NOT EXISTS (SELECT 1 FROM patch WHERE name = 'tokyo');
+SQL
+psql -X -q -v ON_ERROR_STOP=1 <<'SQL'
+CREATE FUNCTION square(method text, side double precision, OUT km double precision, OUT seconds double precision, OUT edges bigint)
+  LANGUAGE plpgsql AS $$
+DECLARE
+  t0 timestamptz := clock_timestamp();
+  src text := CASE WHEN EXISTS (SELECT 1 FROM patch WHERE name = 'tokyo') THEN 'tokyo' ELSE 'tokyo-speed' END;
+BEGIN
+  IF method = 'patches' THEN
+    SELECT count(*), sum(ST_Length(g.geom)) / 1000 INTO edges, km
+      FROM streetgen.grow_patches(format('SELECT * FROM patch WHERE name = %L', src),
+                                  ST_MakeEnvelope(0, 0, side, side, 0), ST_MakePoint(side / 2, side / 2), NULL,
+                                  '{"seed": 1, "max_edges": 2000000}') AS g;
+  ELSE
+    SELECT count(*), sum(ST_Length(g.geom)) / 1000 INTO edges, km
+      FROM streetgen.grow_example('SELECT id, road_class, geom FROM example WHERE name = ''tokyo''',
+                                  ST_MakeEnvelope(0, 0, side, side, 0), ST_MakePoint(side / 2, side / 2), NULL,
+                                  '{"seed": 1, "rotation": false, "max_edges": 2000000}') AS g;
+  END IF;
+  seconds := extract(epoch FROM clock_timestamp() - t0);
+END
+$$;
+SQL
+for side in 1200 2600 4800; do
+  psql -X -q -At -v ON_ERROR_STOP=1 -c "
+    SELECT format('side %s m: grow_patches %s edges %s km in %s s (%s km/s); grow_example %s km in %s s (%s km/s); ratio of speeds patches/example %s',
+                  $side, p.edges, round(p.km::numeric, 1), round(p.seconds::numeric, 2), round((p.km / p.seconds)::numeric),
+                  round(e.km::numeric, 1), round(e.seconds::numeric, 2), round((e.km / e.seconds)::numeric),
+                  round(((p.km / p.seconds) / (e.km / e.seconds))::numeric, 2))
+      FROM square('patches', $side) p, square('example', $side) e"
+done
+echo "pictures: $out/*.png"
+echo "Road data: © OpenStreetMap contributors, ODbL 1.0 (example patches of Nishida et al. 2016)"

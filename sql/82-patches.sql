@@ -1,0 +1,221 @@
+-- Growing networks II: example patches (Nishida et al. 2016) with semantic tags (Teng & Bidarra
+-- 2017), and growth from them. extract_patches reads an example query (or model) into patch rows
+-- that a table can hold; grow_patches grows a network from such rows. One C call each; this file
+-- reads the queries and checks the params jsonb (unknown keys are rejected).
+
+CREATE FUNCTION streetgen._streetgen_extract_patches(example_geoms bytea[], example_classes text[],
+    example_ids bigint[], example_roundabouts boolean[], short_edge double precision,
+    cluster_distance double precision, detect_circles boolean, circle_min_diameter double precision,
+    circle_max_diameter double precision, circle_compactness double precision,
+    OUT patch_id bigint, OUT edge_index integer, OUT role text, OUT road_class text, OUT tags text[],
+    OUT edge_tags text[], OUT start_tags text[], OUT end_tags text[], OUT example_id bigint, OUT geom bytea)
+  RETURNS SETOF record
+  LANGUAGE c IMMUTABLE PARALLEL SAFE
+  COST 1000000 ROWS 1000
+  AS 'MODULE_PATHNAME', '_streetgen_extract_patches';
+
+CREATE FUNCTION streetgen._streetgen_grow_patches(patch_ids bigint[], roles text[], classes text[], geoms bytea[],
+    max_uses integer[], region bytea, seeds_x double precision[], seeds_y double precision[], obstacles bytea[],
+    seed bigint, max_edges integer, snap double precision, min_angle double precision, scale double precision,
+    max_distance double precision, angle_window double precision, tries integer, default_max_uses integer,
+    rotation double precision, fallback boolean, clearance double precision,
+    OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text, OUT geom bytea)
+  RETURNS SETOF record
+  LANGUAGE c IMMUTABLE PARALLEL SAFE
+  COST 1000000 ROWS 1000
+  AS 'MODULE_PATHNAME', '_streetgen_grow_patches';
+
+-- Reads `query` into one jsonb per row (its columns but geom) and the geometry, so optional
+-- columns need no variant of the query.
+CREATE FUNCTION streetgen._rows_with_geom(query text, what text)
+  RETURNS TABLE (j jsonb, geom geometry, n bigint)
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  AS $$
+BEGIN
+  RETURN QUERY EXECUTE format('SELECT to_jsonb(q) - ''geom'', q.geom::geometry, row_number() OVER () FROM (%s) AS q', query);
+EXCEPTION WHEN undefined_column THEN
+  RAISE EXCEPTION 'the % query must return a geometry column named geom', what USING ERRCODE = 'invalid_parameter_value',
+    DETAIL = SQLERRM;
+END
+$$;
+
+CREATE FUNCTION streetgen.extract_patches(example text, params jsonb DEFAULT '{}',
+    OUT patch_id bigint, OUT edge_index integer, OUT role text, OUT road_class text, OUT tags text[],
+    OUT edge_tags text[], OUT start_tags text[], OUT end_tags text[], OUT max_uses integer, OUT example_id bigint,
+    OUT geom geometry)
+  RETURNS SETOF record
+  LANGUAGE plpgsql VOLATILE
+  COST 1000000 ROWS 1000
+  SET search_path FROM CURRENT
+  SET jit = off
+  AS $$
+DECLARE
+  p jsonb := coalesce(params, '{}'::jsonb);
+  query text := example;
+  geoms bytea[];
+  classes text[];
+  ids bigint[];
+  rounds boolean[];
+  srids integer[];
+  k text;
+BEGIN
+  IF example IS NULL THEN
+    RAISE EXCEPTION 'example must not be null' USING ERRCODE = 'null_value_not_allowed';
+  END IF;
+  PERFORM streetgen._require_params(p, ARRAY['circle_compactness', 'circle_max_diameter', 'circle_min_diameter',
+                                             'cluster_distance', 'detect_circles', 'short_edge']);
+  FOREACH k IN ARRAY ARRAY['short_edge', 'cluster_distance', 'circle_min_diameter', 'circle_max_diameter',
+                           'circle_compactness'] LOOP
+    IF p ? k AND (jsonb_typeof(p -> k) <> 'number' OR (p ->> k)::double precision < 0) THEN
+      RAISE EXCEPTION '% must be a number >= 0', k USING ERRCODE = 'invalid_parameter_value',
+        DETAIL = format('It is %s.', p -> k);
+    END IF;
+  END LOOP;
+  IF p ? 'detect_circles' AND jsonb_typeof(p -> 'detect_circles') <> 'boolean' THEN
+    RAISE EXCEPTION 'detect_circles must be true or false' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It is %s.', p -> 'detect_circles');
+  END IF;
+  IF EXISTS (SELECT 1 FROM streetgen.model m WHERE m.name = query) THEN
+    query := format('SELECT id, road_class, geom FROM %I.axis', query);
+  END IF;
+  -- road_class, else the example files' type, else an OSM highway column; id; roundabout.
+  SELECT array_agg(ST_AsEWKB(r.geom) ORDER BY r.n),
+         array_agg(coalesce(r.j ->> 'road_class', r.j ->> 'type', r.j ->> 'highway') ORDER BY r.n),
+         array_agg(CASE WHEN r.j ->> 'id' ~ '^-?[0-9]{1,18}$' THEN (r.j ->> 'id')::bigint END ORDER BY r.n),
+         array_agg(coalesce(lower(r.j ->> 'roundabout') IN ('true', 't', 'yes', '1'), false) ORDER BY r.n),
+         array_agg(DISTINCT ST_SRID(r.geom))
+    INTO geoms, classes, ids, rounds, srids
+    FROM streetgen._rows_with_geom(query, 'example') AS r WHERE r.geom IS NOT NULL;
+  IF geoms IS NULL THEN
+    RAISE EXCEPTION 'example has no edges' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = 'The example query returned no geometry.', HINT = 'Pass a query (or model) whose rows hold the example''s road edges.';
+  END IF;
+  IF cardinality(srids) > 1 THEN
+    RAISE EXCEPTION 'example edges must share one SRID' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('The query returns SRIDs %s.', array_to_string(srids, ', '));
+  END IF;
+  RETURN QUERY
+  SELECT x.patch_id, x.edge_index, x.role, x.road_class, x.tags, x.edge_tags, x.start_tags, x.end_tags, NULL::integer,
+         x.example_id, ST_GeomFromEWKB(x.geom)
+    FROM streetgen._streetgen_extract_patches(
+           geoms, classes, ids, rounds, coalesce((p ->> 'short_edge')::double precision, 0),
+           coalesce((p ->> 'cluster_distance')::double precision, 0), coalesce((p ->> 'detect_circles')::boolean, true),
+           coalesce((p ->> 'circle_min_diameter')::double precision, 8),
+           coalesce((p ->> 'circle_max_diameter')::double precision, 100),
+           coalesce((p ->> 'circle_compactness')::double precision, 0.85)) AS x;
+END
+$$;
+COMMENT ON FUNCTION streetgen.extract_patches(text, jsonb) IS
+  'Decomposes an example road network into patches (Nishida et al. 2016): roundabouts (the example''s roundabout column, or small compact faces found by polygonize) and clusters of 3 or more junctions closer than cluster_distance are detected first, then each structure and every other junction is grown by its streets shorter than short_edge. One row per patch edge: role inner, connector (shared with the neighbouring patch, oriented outwards) or dead_end (towards the dead end); semantic tags (Teng & Bidarra) per patch (roundabout, cluster, loop, cul-de-sac, curved, straight, terminal, initial, main, local), per edge (main, local, connector, dead-end, snappable, curved, straight, roundabout) and per end vertex (intersection, connectable, dead-end); max_uses NULL (set it to limit a patch''s uses in grow_patches). example: a query (geom, optionally road_class or type, id, roundabout) or a model name. params: short_edge (m, 0.4 x the median street length), cluster_distance (m, short_edge), detect_circles (true), circle_min_diameter (m, 8), circle_max_diameter (m, 100), circle_compactness (0.85)';
+
+CREATE FUNCTION streetgen.grow_patches(patches text, region geometry, seeds geometry, obstacles geometry DEFAULT NULL,
+    params jsonb DEFAULT '{}',
+    OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text,
+    OUT geom geometry)
+  RETURNS SETOF record
+  LANGUAGE plpgsql VOLATILE
+  COST 1000000 ROWS 1000
+  SET search_path FROM CURRENT
+  SET jit = off
+  AS $$
+DECLARE
+  p jsonb := coalesce(params, '{}'::jsonb);
+  pids bigint[];
+  roles text[];
+  classes text[];
+  geoms bytea[];
+  uses integer[];
+  srids integer[];
+  xs double precision[];
+  ys double precision[];
+  obstacle_geoms bytea[];
+  seed_types text[];
+  k text;
+  complete boolean;
+BEGIN
+  IF patches IS NULL THEN
+    RAISE EXCEPTION 'patches must not be null' USING ERRCODE = 'null_value_not_allowed';
+  END IF;
+  IF region IS NULL THEN
+    RAISE EXCEPTION 'region must not be null' USING ERRCODE = 'null_value_not_allowed';
+  END IF;
+  IF seeds IS NULL THEN
+    RAISE EXCEPTION 'seeds must not be null' USING ERRCODE = 'null_value_not_allowed';
+  END IF;
+  PERFORM streetgen._require_params(p, ARRAY['angle_window', 'clearance', 'fallback', 'max_distance', 'max_edges', 'max_uses',
+                                             'min_angle', 'rotation', 'scale', 'seed', 'snap', 'tries']);
+  FOREACH k IN ARRAY ARRAY['scale', 'snap', 'max_distance', 'angle_window', 'clearance'] LOOP
+    IF p ? k AND NOT coalesce(jsonb_typeof(p -> k) = 'number' AND (p ->> k)::double precision > 0, false) THEN
+      RAISE EXCEPTION '% must be a number > 0', k USING ERRCODE = 'invalid_parameter_value',
+        DETAIL = format('It is %s.', p -> k);
+    END IF;
+  END LOOP;
+  PERFORM streetgen._require_metric_srid(ST_SRID(region), 'region SRID');
+  IF ST_SRID(seeds) <> ST_SRID(region) THEN
+    RAISE EXCEPTION 'seeds must have the SRID of the region' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('The seeds have SRID %s, the region %s.', ST_SRID(seeds), ST_SRID(region));
+  END IF;
+  IF obstacles IS NOT NULL AND ST_SRID(obstacles) <> ST_SRID(region) THEN
+    RAISE EXCEPTION 'obstacles must have the SRID of the region' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('The obstacles have SRID %s, the region %s.', ST_SRID(obstacles), ST_SRID(region));
+  END IF;
+  SELECT array_agg(DISTINCT ST_GeometryType(d.geom)) INTO seed_types
+    FROM ST_Dump(seeds) AS d WHERE ST_GeometryType(d.geom) <> 'ST_Point';
+  IF seed_types IS NOT NULL THEN
+    RAISE EXCEPTION 'seeds must be points' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('They hold %s.', array_to_string(seed_types, ', '));
+  END IF;
+  SELECT array_agg(ST_X(d.geom) ORDER BY d.path), array_agg(ST_Y(d.geom) ORDER BY d.path) INTO xs, ys
+    FROM ST_Dump(seeds) AS d;
+  SELECT array_agg(ST_AsEWKB(d.geom) ORDER BY d.path) INTO obstacle_geoms FROM ST_Dump(obstacles) AS d;
+  -- The patch rows: patch_id, role and geom; optionally road_class, max_uses, edge_index (order).
+  -- Rows of extract_patches (all columns there) are read directly, others through jsonb.
+  BEGIN
+    EXECUTE format('SELECT array_agg(q.patch_id::bigint ORDER BY q.patch_id, q.edge_index),
+                           array_agg(q.role::text ORDER BY q.patch_id, q.edge_index),
+                           array_agg(q.road_class::text ORDER BY q.patch_id, q.edge_index),
+                           array_agg(ST_AsEWKB(q.geom::geometry) ORDER BY q.patch_id, q.edge_index),
+                           array_agg(q.max_uses::integer ORDER BY q.patch_id, q.edge_index),
+                           array_agg(DISTINCT ST_SRID(q.geom::geometry)) FILTER (WHERE q.geom IS NOT NULL)
+                      FROM (%s) AS q', patches)
+      INTO pids, roles, classes, geoms, uses, srids;
+  EXCEPTION WHEN undefined_column THEN
+    SELECT array_agg((r.j ->> 'patch_id')::bigint ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg(r.j ->> 'role' ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg(r.j ->> 'road_class' ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg(ST_AsEWKB(r.geom) ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg((r.j ->> 'max_uses')::integer ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg(DISTINCT ST_SRID(r.geom)) FILTER (WHERE r.geom IS NOT NULL),
+           bool_and(r.j ? 'patch_id' AND r.j ? 'role')
+      INTO pids, roles, classes, geoms, uses, srids, complete
+      FROM streetgen._rows_with_geom(patches, 'patches') AS r;
+    IF NOT complete THEN
+      RAISE EXCEPTION 'the patches query must return the columns patch_id, role and geom'
+        USING ERRCODE = 'invalid_parameter_value', HINT = 'Use the rows of streetgen.extract_patches.';
+    END IF;
+  END;
+  IF pids IS NULL THEN
+    RAISE EXCEPTION 'patches has no rows' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = 'The patch query returned no patch edge.',
+      HINT = 'Fill the patch table with streetgen.extract_patches(example).';
+  END IF;
+  IF cardinality(srids) > 1 THEN
+    RAISE EXCEPTION 'patch edges must share one SRID' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('The query returns SRIDs %s.', array_to_string(srids, ', '));
+  END IF;
+  RETURN QUERY
+  SELECT g.id, g.from_node, g.to_node, g.road_class, g.origin, ST_GeomFromEWKB(g.geom)
+    FROM streetgen._streetgen_grow_patches(
+           pids, roles, classes, geoms, uses, ST_AsEWKB(region), coalesce(xs, '{}'), coalesce(ys, '{}'),
+           coalesce(obstacle_geoms, '{}'), coalesce((p ->> 'seed')::bigint, 0),
+           coalesce((p ->> 'max_edges')::integer, 10000), coalesce((p ->> 'snap')::double precision, 0),
+           coalesce((p ->> 'min_angle')::double precision, 20), coalesce((p ->> 'scale')::double precision, 0.1),
+           coalesce((p ->> 'max_distance')::double precision, 0), coalesce((p ->> 'angle_window')::double precision, 30),
+           coalesce((p ->> 'tries')::integer, 24), coalesce((p ->> 'max_uses')::integer, 0),
+           coalesce((p ->> 'rotation')::double precision, 0), coalesce((p ->> 'fallback')::boolean, true),
+           coalesce((p ->> 'clearance')::double precision, 0)) AS g;
+END
+$$;
+COMMENT ON FUNCTION streetgen.grow_patches(text, geometry, geometry, geometry, jsonb) IS
+  'Grows a road network inside region from seeds with example patches (Nishida et al. 2016): fronts are processed breadth first; at each, a patch is drawn with probability proportional to exp(-d / scale), d the smallest Hausdorff distance between one of its connectors (inner end on the front) and the front''s streets, among the patches that pass the legality checks (inside region, outside obstacles, no crossing, min_angle, degree); its vertices within snap of nodes are merged, its connectors become new fronts. Where no patch is legal, growth I''s parametric rule with the patch streets'' length statistics (origin grow_parametric). patches: a query with patch_id, role, geom (optionally road_class, max_uses, edge_index): the rows of extract_patches. params: seed (0), max_edges (10000), snap (m, 0.45 x the mean segment), min_angle (deg, 20), scale (m, 0.1), max_distance (m, a quarter of the mean street), angle_window (deg, 30), tries (24), max_uses (0: unlimited, for patches without their own), rotation (deg, 0), fallback (true), clearance (m, 4 % of the mean street: new patch streets keep this far from streets they do not meet). origin: grow_patches:<patch_id> or grow_parametric; the example-based share is count(*) FILTER (WHERE origin LIKE ''grow_patches:%'') / count(*)';

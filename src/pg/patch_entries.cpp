@@ -1,0 +1,325 @@
+// Patch-based growth (growing networks II): extract_patches turns an example into patch rows with
+// semantic tags; grow_patches grows a network from such rows. sql/82-patches.sql reads the
+// queries and the params jsonb; src/core/growth/patches.cpp and grow_example.cpp hold the method.
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/ewkb.hpp"
+#include "core/geometry_checks.hpp"
+#include "core/growth/grow_example.hpp"
+#include "core/growth/patches.hpp"
+#include "core/interrupts.hpp"
+#include "pg/array_args.hpp"
+#include "pg/boundary.hpp"
+#include "pg/grown_rows.hpp"
+#include "pg/owned_result.hpp"
+
+extern "C" {
+#include "catalog/pg_type.h"
+#include "utils/array.h"
+#include "utils/builtins.h"
+}
+
+using namespace streetgen;
+
+namespace {
+
+struct PatchRow {
+  std::int64_t patch_id;
+  int edge_index;
+  std::string role, road_class;
+  std::vector<std::string> tags, edge_tags, start_tags, end_tags;
+  std::int64_t example_id;
+  core::Bytes geom;
+};
+
+Datum text_array(const std::vector<std::string>& values) {
+  auto* elems = static_cast<Datum*>(palloc(sizeof(Datum) * (values.empty() ? 1 : values.size())));
+  for (std::size_t i = 0; i < values.size(); ++i) elems[i] = CStringGetTextDatum(values[i].c_str());
+  return PointerGetDatum(construct_array(elems, static_cast<int>(values.size()), TEXTOID, -1, false, TYPALIGN_INT));
+}
+
+enum ExtractArg {
+  kXGeoms, kXClasses, kXIds, kXRoundabouts, kXShortEdge, kXClusterDistance, kXCircles, kXCircleMin, kXCircleMax,
+  kXCompactness, kXArgs
+};
+
+enum GrowArg {
+  kGPatchIds, kGRoles, kGClasses, kGGeoms, kGMaxUses, kGRegion, kGSeedsX, kGSeedsY, kGObstacles, kGSeed, kGMaxEdges,
+  kGSnap, kGMinAngle, kGScale, kGMaxDistance, kGAngleWindow, kGTries, kGDefaultMaxUses, kGRotation, kGFallback, kGClearance, kGArgs
+};
+
+}  // namespace
+
+extern "C" {
+
+PG_FUNCTION_INFO_V1(_streetgen_extract_patches);
+// See enum ExtractArg; -> SETOF (patch_id, edge_index, role, road_class, tags, edge_tags, start_tags,
+// end_tags, example_id, geom bytea).
+Datum _streetgen_extract_patches(PG_FUNCTION_ARGS) {
+  // Phase 1.
+  pg::require_argument_count(fcinfo, kXArgs, "_streetgen_extract_patches");
+  static const char* const names[kXArgs] = {"example", "example road classes", "example ids", "example roundabouts",
+                                            "short_edge", "cluster_distance", "detect_circles",
+                                            "circle_min_diameter", "circle_max_diameter", "circle_compactness"};
+  for (int a = kXShortEdge; a < kXArgs; ++a) {
+    if (PG_ARGISNULL(a)) pg::raise_null_argument(names[a]);
+  }
+  pg::ArrayArg geoms = pg::array_arg(fcinfo, kXGeoms, BYTEAOID, "example");
+  pg::ArrayArg classes = pg::array_arg(fcinfo, kXClasses, TEXTOID, "example road classes");
+  pg::ArrayArg ids = pg::array_arg(fcinfo, kXIds, INT8OID, "example ids");
+  pg::ArrayArg rounds = pg::array_arg(fcinfo, kXRoundabouts, BOOLOID, "example roundabouts");
+  if (classes.count != 0) pg::require_same_length(geoms, "example", classes, "example road classes");
+  if (ids.count != 0) pg::require_same_length(geoms, "example", ids, "example ids");
+  if (rounds.count != 0) pg::require_same_length(geoms, "example", rounds, "example roundabouts");
+  struct ExampleArg {
+    pg::ByteView geom;
+    const char* road_class;
+    std::int64_t id;
+    bool roundabout;
+  };
+  auto* example = static_cast<ExampleArg*>(palloc0(sizeof(ExampleArg) * (geoms.count > 0 ? geoms.count : 1)));
+  int example_count = 0;
+  for (int i = 0; i < geoms.count; ++i) {
+    if (geoms.nulls[i]) continue;
+    ExampleArg& e = example[example_count++];
+    e.geom = pg::byte_view(geoms.values[i]);
+    e.road_class = classes.count != 0 && !classes.nulls[i] ? TextDatumGetCString(classes.values[i]) : "unclassified";
+    e.id = ids.count != 0 && !ids.nulls[i] ? DatumGetInt64(ids.values[i]) : i + 1;
+    e.roundabout = rounds.count != 0 && !rounds.nulls[i] && DatumGetBool(rounds.values[i]);
+  }
+  core::PatchParams params;
+  params.short_edge = PG_GETARG_FLOAT8(kXShortEdge);
+  params.cluster_distance = PG_GETARG_FLOAT8(kXClusterDistance);
+  params.detect_circles = PG_GETARG_BOOL(kXCircles);
+  params.circle_min_diameter = PG_GETARG_FLOAT8(kXCircleMin);
+  params.circle_max_diameter = PG_GETARG_FLOAT8(kXCircleMax);
+  params.circle_compactness = PG_GETARG_FLOAT8(kXCompactness);
+  InitMaterializedSRF(fcinfo, 0);
+  auto rows = pg::OwnedResult<std::vector<PatchRow>>::create();
+  std::size_t patch_count = 0, streets = 0, junctions = 0;
+  double short_edge = 0.0;
+
+  // Phase 2.
+  pg::CallError error;
+  pg::guarded_call(error, [&] {
+    core::GeosContext& geos = pg::backend_geos();
+    std::vector<core::PatchInputEdge> input;
+    int srid = 0;
+    core::InterruptPoller poller(1024);
+    for (int i = 0; i < example_count; ++i) {
+      poller.tick();
+      std::string name = "example edge " + std::to_string(i + 1);
+      core::SridGeometry g = core::read_ewkb(geos, example[i].geom.data, example[i].geom.size, name.c_str());
+      if (i == 0) srid = g.srid;
+      std::vector<core::Polyline> lines;
+      core::append_linestrings(geos, g.geom.get(), name, "example edges must be LineStrings or MultiLineStrings", "", lines);
+      for (core::Polyline& line : lines) input.push_back({std::move(line), example[i].road_class, example[i].id, example[i].roundabout});
+    }
+    core::PatchExtraction x = core::extract_patches(geos, input, params);
+    patch_count = x.patches.size();
+    streets = x.streets;
+    junctions = x.junctions;
+    short_edge = x.short_edge;
+    std::vector<PatchRow> out;
+    for (const core::Patch& p : x.patches) {
+      int k = 0;
+      for (const core::PatchEdge& e : p.edges) {
+        out.push_back({p.id, ++k, core::role_name(e.role), e.road_class, p.tags, e.tags, e.start_tags, e.end_tags,
+                       e.example_id, core::write_ewkb_polyline(core::WkbType::line_string, e.line, srid)});
+      }
+    }
+    rows.emplace(std::move(out));
+  });
+  pg::raise_if_failed(error);
+
+  // Phase 3.
+  ereport(DEBUG1, (errmsg("extract_patches: %zu streets, %zu junctions, %zu patches, short_edge %.1f m", streets,
+                          junctions, patch_count, short_edge)));
+  auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
+  for (const PatchRow& row : *rows) {
+    Datum v[10];
+    bool null[10] = {false, false, false, false, false, false, false, false, false, false};
+    v[0] = Int64GetDatum(row.patch_id);
+    v[1] = Int32GetDatum(row.edge_index);
+    v[2] = CStringGetTextDatum(row.role.c_str());
+    v[3] = CStringGetTextDatum(row.road_class.c_str());
+    v[4] = text_array(row.tags);
+    v[5] = text_array(row.edge_tags);
+    v[6] = text_array(row.start_tags);
+    v[7] = text_array(row.end_tags);
+    v[8] = Int64GetDatum(row.example_id);
+    v[9] = PointerGetDatum(pg::to_bytea(row.geom));
+    tuplestore_putvalues(rsinfo->setResult, rsinfo->setDesc, v, null);
+  }
+  rows.release();
+  PG_RETURN_NULL();
+}
+
+PG_FUNCTION_INFO_V1(_streetgen_grow_patches);
+// See enum GrowArg; -> SETOF (id, from_node, to_node, road_class, origin, geom bytea).
+Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
+  // Phase 1.
+  pg::require_argument_count(fcinfo, kGArgs, "_streetgen_grow_patches");
+  static const char* const names[kGArgs] = {
+      "patch ids", "roles", "road classes", "patch edges", "max_uses", "region", "seeds x", "seeds y", "obstacles",
+      "seed", "max_edges", "snap", "min_angle", "scale", "max_distance", "angle_window", "tries", "max_uses",
+      "rotation", "fallback", "clearance"};
+  for (int a = kGRegion; a < kGArgs; ++a) {
+    if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && PG_ARGISNULL(a)) pg::raise_null_argument(names[a]);
+  }
+  pg::ArrayArg pids = pg::array_arg(fcinfo, kGPatchIds, INT8OID, "patch ids");
+  pg::ArrayArg roles = pg::array_arg(fcinfo, kGRoles, TEXTOID, "roles");
+  pg::ArrayArg classes = pg::array_arg(fcinfo, kGClasses, TEXTOID, "road classes");
+  pg::ArrayArg geoms = pg::array_arg(fcinfo, kGGeoms, BYTEAOID, "patch edges");
+  pg::ArrayArg uses = pg::array_arg(fcinfo, kGMaxUses, INT4OID, "max_uses");
+  pg::require_same_length(geoms, "patch edges", pids, "patch ids");
+  pg::require_same_length(geoms, "patch edges", roles, "roles");
+  if (classes.count != 0) pg::require_same_length(geoms, "patch edges", classes, "road classes");
+  if (uses.count != 0) pg::require_same_length(geoms, "patch edges", uses, "max_uses");
+  pg::ArrayArg xs = pg::array_arg(fcinfo, kGSeedsX, FLOAT8OID, "seeds x");
+  pg::ArrayArg ys = pg::array_arg(fcinfo, kGSeedsY, FLOAT8OID, "seeds y");
+  pg::require_same_length(xs, "seeds x", ys, "seeds y");
+  pg::ArrayArg obstacle_arg = pg::array_arg(fcinfo, kGObstacles, BYTEAOID, "obstacles");
+  struct EdgeArg {
+    std::int64_t patch_id;
+    core::PatchEdgeRole role;
+    const char* road_class;
+    int max_uses;
+    pg::ByteView geom;
+  };
+  auto* edges = static_cast<EdgeArg*>(palloc0(sizeof(EdgeArg) * (geoms.count > 0 ? geoms.count : 1)));
+  for (int i = 0; i < geoms.count; ++i) {
+    if (pids.nulls[i]) {
+      ereport(ERROR, (errcode(ERRCODE_NULL_VALUE_NOT_ALLOWED), errmsg("patch_id must not be null"),
+                      errdetail("Patch row %d has no patch_id.", i + 1)));
+    }
+    EdgeArg& e = edges[i];
+    e.patch_id = DatumGetInt64(pids.values[i]);
+    if (geoms.nulls[i]) {
+      ereport(ERROR, (errcode(ERRCODE_NULL_VALUE_NOT_ALLOWED), errmsg("patch edge geometry must not be null"),
+                      errdetail("Patch row %d (patch_id %lld) has no geom.", i + 1, static_cast<long long>(e.patch_id))));
+    }
+    const char* role = roles.nulls[i] ? "" : TextDatumGetCString(roles.values[i]);
+    if (strcmp(role, "inner") == 0) {
+      e.role = core::PatchEdgeRole::inner;
+    } else if (strcmp(role, "connector") == 0) {
+      e.role = core::PatchEdgeRole::connector;
+    } else if (strcmp(role, "dead_end") == 0) {
+      e.role = core::PatchEdgeRole::dead_end;
+    } else {
+      ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE),
+                      errmsg("patch edge role must be 'inner', 'connector' or 'dead_end'"),
+                      errdetail("Patch row %d (patch_id %lld) has role %s.", i + 1, static_cast<long long>(e.patch_id),
+                                roles.nulls[i] ? "NULL" : quote_literal_cstr(role))));
+    }
+    e.road_class = classes.count != 0 && !classes.nulls[i] ? TextDatumGetCString(classes.values[i]) : "unclassified";
+    e.max_uses = uses.count != 0 && !uses.nulls[i] ? DatumGetInt32(uses.values[i]) : 0;
+    if (e.max_uses < 0) {
+      ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("max_uses must be >= 0"),
+                      errdetail("Patch row %d (patch_id %lld) has max_uses %d.", i + 1,
+                                static_cast<long long>(e.patch_id), e.max_uses)));
+    }
+    e.geom = pg::byte_view(geoms.values[i]);
+  }
+  int edge_count = geoms.count;
+  int seed_count = 0;
+  double* seed_xy = pg::xy_pairs(xs, ys, "a seed coordinate", &seed_count);
+  int obstacle_count = 0;
+  pg::ByteView* obstacles = pg::byte_views(obstacle_arg, &obstacle_count);
+  pg::ByteView region = pg::byte_view(PG_GETARG_DATUM(kGRegion));
+  core::GrowParams params;
+  params.use_patches = true;
+  params.seed = static_cast<std::uint64_t>(PG_GETARG_INT64(kGSeed));
+  int max_edges = PG_GETARG_INT32(kGMaxEdges);
+  if (max_edges <= 0) {
+    ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("max_edges must be > 0"),
+                    errdetail("It is %d.", max_edges)));
+  }
+  params.max_edges = static_cast<std::size_t>(max_edges);
+  params.snap = PG_GETARG_FLOAT8(kGSnap);
+  params.min_angle = PG_GETARG_FLOAT8(kGMinAngle);
+  params.patch.scale = PG_GETARG_FLOAT8(kGScale);
+  params.patch.max_distance = PG_GETARG_FLOAT8(kGMaxDistance);
+  params.patch.angle_window = PG_GETARG_FLOAT8(kGAngleWindow);
+  params.patch.tries = PG_GETARG_INT32(kGTries);
+  params.patch.max_uses = PG_GETARG_INT32(kGDefaultMaxUses);
+  params.patch.rotation = PG_GETARG_FLOAT8(kGRotation);
+  params.fallback = PG_GETARG_BOOL(kGFallback);
+  params.patch.clearance = PG_GETARG_FLOAT8(kGClearance);
+  params.rotation = true;  // the fallback's streets turn from the front's street, as Nishida's (about 90°)
+  InitMaterializedSRF(fcinfo, 0);
+  auto rows = pg::OwnedResult<std::vector<pg::GrownRow>>::create();
+  core::GrowStats stats;
+  std::size_t from_patches = 0, total = 0;
+  double length_patches = 0.0, length_total = 0.0;
+
+  // Phase 2.
+  pg::CallError error;
+  pg::guarded_call(error, [&] {
+    core::GeosContext& geos = pg::backend_geos();
+    core::GrowInput input;
+    core::InterruptPoller poller(1024);
+    // Rows of one patch_id make one patch, in the order given.
+    std::map<std::int64_t, std::size_t> index;  // patch_id -> position in input.patches
+    for (int i = 0; i < edge_count; ++i) {
+      poller.tick();
+      const EdgeArg& e = edges[i];
+      std::string name = "patch row " + std::to_string(i + 1) + " (patch_id " + std::to_string(e.patch_id) + ")";
+      core::SridGeometry g = core::read_ewkb(geos, e.geom.data, e.geom.size, name.c_str());
+      std::vector<core::Polyline> lines;
+      core::append_linestrings(geos, g.geom.get(), name, "patch edges must be LineStrings", "", lines);
+      if (lines.size() != 1) core::throw_invalid_argument(name + " must be one LineString");
+      auto [it, added] = index.emplace(e.patch_id, input.patches.size());
+      if (added) {
+        input.patches.push_back({});
+        input.patches.back().id = e.patch_id;
+      }
+      core::Patch& patch = input.patches[it->second];
+      patch.max_uses = std::max(patch.max_uses, e.max_uses);
+      core::PatchEdge pe;
+      pe.line = std::move(lines[0]);
+      pe.role = e.role;
+      pe.road_class = e.road_class;
+      pe.example_id = e.patch_id;
+      patch.edges.push_back(std::move(pe));
+    }
+    std::vector<core::SridGeometry> region_and_obstacles;
+    int srid = pg::read_region_and_obstacles(geos, region, obstacles, obstacle_count, input, region_and_obstacles);
+    for (int i = 0; i < seed_count; ++i) input.seeds.push_back({seed_xy[2 * i], seed_xy[2 * i + 1]});
+    core::GrowResult result = core::grow_example(geos, input, params);
+    stats = result.stats;
+    std::vector<pg::GrownRow> out;
+    out.reserve(result.edges.size());
+    for (const core::GrownEdge& e : result.edges) {
+      double len = core::distance(e.a, e.b);
+      ++total;
+      length_total += len;
+      if (e.example >= 0) {
+        ++from_patches;
+        length_patches += len;
+      }
+      std::string origin = e.example < 0 ? std::string("grow_parametric") : "grow_patches:" + std::to_string(e.example_id);
+      out.push_back(pg::grown_row(e, std::move(origin), srid));
+    }
+    rows.emplace(std::move(out));
+  });
+  pg::raise_if_failed(error);
+
+  // Phase 3.
+  ereport(DEBUG1, (errmsg("grow_patches: %zu steps, %zu patches placed, %zu statistical fallback, %zu candidates, "
+                          "%zu illegal, %zu self-crossing patches dropped, %zu restarts; example-based share "
+                          "%.1f %% of the edges, %.1f %% of the length",
+                          stats.steps, stats.patches_placed, stats.fallback, stats.patch_candidates, stats.patch_illegal,
+                          stats.patches_dropped, stats.restarts, total > 0 ? 100.0 * from_patches / total : 0.0,
+                          length_total > 0 ? 100.0 * length_patches / length_total : 0.0)));
+  pg::emit_grown_rows(fcinfo, *rows);
+  rows.release();
+  PG_RETURN_NULL();
+}
+
+}  // extern "C"

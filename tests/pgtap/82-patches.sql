@@ -1,0 +1,244 @@
+-- Growing networks II: extract_patches and grow_patches on real example patches of
+-- ../shared/data/examples/patches (Nishida et al.'s crops of OpenStreetMap, © OpenStreetMap
+-- contributors, ODbL 1.0): patches, roundabouts, tags, shared connectors; planarity, region and
+-- obstacle, determinism, example-based share of the growth; every bad input by SQLSTATE.
+BEGIN;
+SELECT * FROM no_plan();
+
+CREATE TEMP TABLE ex AS
+SELECT n AS name, row_number() OVER (PARTITION BY n) AS id, f -> 'properties' ->> 'type' AS road_class,
+       (f -> 'properties' ->> 'roundabout')::boolean AS roundabout,
+       ST_SetSRID(ST_GeomFromGeoJSON(f -> 'geometry'), 0) AS geom
+  FROM unnest(ARRAY['tokyo', 'canberra_south_large']) AS n,
+       jsonb_array_elements(pg_read_file(current_setting('streetgen_test.shared_data') || '/examples/patches/' || n
+                                         || '.geojson')::jsonb -> 'features') AS f;
+SELECT ok((SELECT count(DISTINCT name) = 2 AND count(*) > 2000 AND count(*) FILTER (WHERE roundabout) > 10 FROM ex),
+          'two real example patches loaded, canberra with roundabouts');
+
+CREATE TEMP TABLE pt AS
+SELECT n AS name, x.*
+  FROM unnest(ARRAY['tokyo', 'canberra_south_large']) AS n,
+       streetgen.extract_patches(format('SELECT id, road_class, roundabout, geom FROM ex WHERE name = %L', n)) AS x;
+
+-- Extraction.
+SELECT ok((SELECT count(DISTINCT patch_id) FROM pt WHERE name = 'tokyo') > 500, 'tokyo: more than 500 patches');
+SELECT ok((SELECT count(DISTINCT patch_id) FROM pt WHERE name = 'canberra_south_large') > 100,
+          'canberra: more than 100 patches');
+SELECT is((SELECT count(*) FROM pt WHERE geom IS NULL OR ST_GeometryType(geom) <> 'ST_LineString' OR ST_SRID(geom) <> 0
+                                      OR ST_Length(geom) = 0), 0::bigint, 'every patch edge is a LineString in the example''s SRID');
+SELECT is((SELECT count(*) FROM pt WHERE role NOT IN ('inner', 'connector', 'dead_end')), 0::bigint,
+          'roles are inner, connector or dead_end');
+SELECT ok((SELECT count(DISTINCT patch_id) FROM pt WHERE name = 'canberra_south_large' AND 'roundabout' = ANY (tags)) >= 3,
+          'canberra: its roundabouts are patches tagged roundabout');
+SELECT is((SELECT count(DISTINCT patch_id) FROM pt WHERE name = 'tokyo' AND 'roundabout' = ANY (tags)), 0::bigint,
+          'tokyo (a grid without roundabouts): no roundabout patch');
+SELECT ok((SELECT count(DISTINCT x.patch_id) FILTER (WHERE 'roundabout' = ANY (x.tags))
+             FROM streetgen.extract_patches('SELECT id, road_class, geom FROM ex WHERE name = ''canberra_south_large''') AS x) >= 3,
+          'canberra without the roundabout column: roundabouts found as small compact faces');
+SELECT ok((SELECT bool_and(rb) FROM (SELECT patch_id, bool_or('roundabout' = ANY (edge_tags)) AND bool_or(role = 'connector') AND
+                                                          'loop' = ANY (min(tags)) AS rb
+                                       FROM pt WHERE name = 'canberra_south_large' AND 'roundabout' = ANY (tags)
+                                      GROUP BY patch_id) r),
+          'a roundabout patch holds its ring (edges tagged roundabout, a loop) and connectors to its approaches');
+-- Tags.
+SELECT is((SELECT count(*) FROM pt WHERE NOT (tags && ARRAY['main', 'local']) OR NOT (tags && ARRAY['curved', 'straight'])
+                                      OR NOT (edge_tags && ARRAY['main', 'local'])), 0::bigint,
+          'every patch is main and/or local, curved or straight; every edge main or local');
+SELECT is((SELECT count(*) FROM pt WHERE role = 'connector' AND NOT ('connectable' = ANY (end_tags) AND 'connector' = ANY (edge_tags))),
+          0::bigint, 'connectors end at a connectable vertex and are tagged connector');
+SELECT ok((SELECT count(*) FROM pt WHERE role = 'dead_end' AND 'dead-end' = ANY (edge_tags) AND 'dead-end' = ANY (end_tags)) > 20
+          AND (SELECT count(*) FROM pt WHERE role = 'dead_end' AND NOT ('cul-de-sac' = ANY (tags))) = 0,
+          'dead-end edges end at the dead end and make their patch a cul-de-sac');
+SELECT ok((SELECT count(DISTINCT patch_id) FROM pt WHERE name = 'canberra_south_large' AND 'curved' = ANY (tags)) > 50
+          AND (SELECT count(DISTINCT patch_id) FROM pt WHERE name = 'canberra_south_large' AND 'initial' = ANY (tags)) > 0
+          AND (SELECT count(DISTINCT patch_id) FROM pt WHERE 'terminal' = ANY (tags)) > 0,
+          'curved, initial and terminal patches are found');
+SELECT is((SELECT count(*) FROM pt WHERE 'intersection' = ANY (start_tags) AND role <> 'inner'
+             AND NOT ('snappable' = ANY (edge_tags))), 0::bigint, 'edges at an intersection are snappable');
+-- Connectors are shared: each is, reversed, a connector of exactly one other patch.
+SELECT is((SELECT count(*) FROM pt a WHERE a.role = 'connector' AND (
+             SELECT count(*) FROM pt b WHERE b.name = a.name AND b.role = 'connector' AND b.patch_id <> a.patch_id
+                AND ST_Equals(b.geom, ST_Reverse(a.geom))) <> 1), 0::bigint,
+          'every connector is shared with the neighbouring patch (reversed)');
+SELECT ok((SELECT count(*) FROM pt WHERE role = 'connector') > 1000, 'connectors are found');
+SELECT is((SELECT count(*) FROM (SELECT name, patch_id FROM pt GROUP BY name, patch_id
+                                  HAVING count(DISTINCT tags) > 1) d), 0::bigint, 'a patch has one tag set');
+
+-- Growth.
+CREATE TEMP TABLE region AS
+SELECT name, ST_ConvexHull(ST_Collect(geom)) AS geom, ST_PointOnSurface(ST_ConvexHull(ST_Collect(geom))) AS centre
+  FROM ex GROUP BY name;
+CREATE TEMP TABLE lake AS
+SELECT ST_Buffer(ST_Translate(centre, 300, 200), 200) AS geom FROM region WHERE name = 'canberra_south_large';
+CREATE FUNCTION pg_temp.grow(which text, params jsonb, obstacle boolean DEFAULT true) RETURNS SETOF record LANGUAGE sql AS $$
+  SELECT g.* FROM region r, streetgen.grow_patches(format('SELECT * FROM pt WHERE name = %L', which), r.geom,
+                                                    CASE WHEN which = 'tokyo' THEN r.centre
+                                                         ELSE ST_Collect(r.centre, ST_Translate(r.centre, -500, -200)) END,
+                                                    CASE WHEN obstacle THEN (SELECT geom FROM lake) END, params) AS g
+   WHERE r.name = which
+$$;
+CREATE TEMP TABLE grown AS
+SELECT 'tokyo'::text AS name, g.* FROM pg_temp.grow('tokyo', '{"seed": 7, "max_edges": 3000}')
+  AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry)
+UNION ALL
+SELECT 'canberra_south_large', g.* FROM pg_temp.grow('canberra_south_large', '{"seed": 7, "max_edges": 3000}')
+  AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry);
+CREATE INDEX ON grown USING gist (geom);
+ANALYZE grown;
+
+SELECT ok((SELECT bool_and(n >= 1000) AND count(*) = 2 FROM (SELECT count(*) AS n FROM grown GROUP BY name) c),
+          'each example grows at least 1000 edges');
+SELECT is((SELECT max(n) FROM (SELECT count(*) AS n FROM grown GROUP BY name) c) <= 3000, true, 'max_edges bounds the output');
+SELECT is((SELECT count(*) FROM grown WHERE geom IS NULL OR ST_GeometryType(geom) <> 'ST_LineString' OR ST_Length(geom) = 0
+                                        OR ST_SRID(geom) <> 0), 0::bigint, 'every edge is a non-degenerate LineString');
+SELECT is((SELECT count(*) FROM grown a JOIN grown b ON a.name = b.name AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
+          0::bigint, 'planarity: no two edges cross or touch without a shared node');
+SELECT is((SELECT count(*) FROM grown a JOIN grown b ON a.name = b.name AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE ST_Dimension(ST_Intersection(a.geom, b.geom)) > 0 OR ST_NPoints(ST_Intersection(a.geom, b.geom)) > 1),
+          0::bigint, 'planarity: edges sharing a node do not overlap');
+SELECT is((SELECT count(*) FROM grown g JOIN region r USING (name) WHERE NOT ST_CoveredBy(g.geom, r.geom)), 0::bigint,
+          'no edge leaves the region');
+SELECT is((SELECT count(*) FROM grown g, lake l WHERE g.name = 'canberra_south_large' AND ST_Intersects(g.geom, l.geom)),
+          0::bigint, 'no edge enters the obstacle');
+SELECT ok((SELECT count(*) FROM grown g, lake l WHERE g.name = 'canberra_south_large' AND ST_DWithin(g.geom, l.geom, 40)) > 0,
+          'the obstacle was in the way (edges reach up to it)');
+SELECT is((SELECT count(*) FROM (
+             SELECT name, node FROM (SELECT name, from_node AS node, ST_StartPoint(geom) AS p FROM grown
+                                     UNION ALL SELECT name, to_node, ST_EndPoint(geom) FROM grown) e
+              GROUP BY name, node HAVING count(DISTINCT ST_AsBinary(p)) > 1) bad), 0::bigint, 'each node id has one position');
+SELECT is((SELECT count(*) FROM grown WHERE origin !~ '^(grow_patches:[0-9]+|grow_parametric)$'), 0::bigint,
+          'origin names the patch (grow_patches:<patch_id>) or the statistical fallback (grow_parametric)');
+SELECT is((SELECT count(*) FROM grown g WHERE g.origin LIKE 'grow_patches:%'
+             AND NOT EXISTS (SELECT 1 FROM pt WHERE pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin)), 0::bigint,
+          'every patch origin is a patch of that example');
+SELECT ok((SELECT bool_and(share > 0.6) FROM (SELECT count(*) FILTER (WHERE origin LIKE 'grow_patches:%')::float8 / count(*) AS share
+                                                FROM grown GROUP BY name) s),
+          'the example-based share (edges copied from patches) is above 60 % on both examples');
+SELECT ok((SELECT count(*) FROM grown WHERE origin = 'grow_parametric') > 0,
+          'the statistical fallback fires where no patch is legal');
+SELECT is((SELECT count(*) FROM grown g WHERE g.road_class NOT IN (SELECT DISTINCT road_class FROM ex)), 0::bigint,
+          'road classes come from the example');
+SELECT ok((SELECT count(DISTINCT g.origin) FROM grown g JOIN pt ON pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin
+            WHERE g.name = 'canberra_south_large' AND 'cul-de-sac' = ANY (pt.tags)) > 5,
+          'cul-de-sac patches are used on canberra');
+SELECT ok((SELECT count(DISTINCT g.origin) FROM grown g JOIN pt ON pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin
+            WHERE g.name = 'canberra_south_large' AND 'roundabout' = ANY (pt.tags)) >= 2,
+          'roundabouts reappear: canberra''s roundabout patches are used');
+SELECT is((SELECT count(*) FROM grown g JOIN pt ON pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin
+            WHERE g.name = 'tokyo' AND 'roundabout' = ANY (pt.tags)), 0::bigint, 'and none appear from tokyo''s grid');
+-- Determinism.
+SELECT is((SELECT count(*) FROM (
+             (SELECT id, from_node, to_node, road_class, origin, ST_AsEWKB(geom) FROM grown WHERE name = 'canberra_south_large'
+              EXCEPT
+              SELECT id, from_node, to_node, road_class, origin, ST_AsEWKB(geom)
+                FROM pg_temp.grow('canberra_south_large', '{"seed": 7, "max_edges": 3000}')
+                  AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry))
+             UNION ALL
+             (SELECT id, from_node, to_node, road_class, origin, ST_AsEWKB(geom)
+                FROM pg_temp.grow('canberra_south_large', '{"seed": 7, "max_edges": 3000}')
+                  AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry)
+              EXCEPT
+              SELECT id, from_node, to_node, road_class, origin, ST_AsEWKB(geom) FROM grown WHERE name = 'canberra_south_large')) d),
+          0::bigint, 'the same seed gives the same rows');
+SELECT ok((SELECT count(*) FROM (
+             SELECT ST_AsEWKB(geom) FROM grown WHERE name = 'canberra_south_large'
+             EXCEPT
+             SELECT ST_AsEWKB(geom) FROM pg_temp.grow('canberra_south_large', '{"seed": 8, "max_edges": 3000}')
+               AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry)) d) > 100,
+          'another seed gives another network');
+-- max_uses: with max_uses 1 no patch gives more road than it holds (a split keeps the length; a
+-- dead end joined to the network counts as statistical growth).
+SELECT is((SELECT count(*) FROM (
+             SELECT g.origin, sum(ST_Length(g.geom)) AS len
+               FROM pg_temp.grow('tokyo', '{"seed": 7, "max_edges": 1500, "max_uses": 1}')
+                 AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry)
+              GROUP BY g.origin) u
+            JOIN (SELECT 'grow_patches:' || patch_id AS origin, sum(ST_Length(geom)) AS len FROM pt WHERE name = 'tokyo'
+                   GROUP BY patch_id) l USING (origin)
+           WHERE u.len > l.len + 1e-6), 0::bigint, 'max_uses 1: no patch is copied twice');
+SELECT ok((SELECT count(*) FROM (
+             SELECT g.origin, sum(ST_Length(g.geom)) AS len
+               FROM pg_temp.grow('tokyo', '{"seed": 7, "max_edges": 1500}')
+                 AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry)
+              GROUP BY g.origin) u
+            JOIN (SELECT 'grow_patches:' || patch_id AS origin, sum(ST_Length(geom)) AS len FROM pt WHERE name = 'tokyo'
+                   GROUP BY patch_id) l USING (origin)
+           WHERE u.len > l.len + 1e-6) > 0, 'without max_uses some patches are copied more than once');
+
+-- Straight into a model's axes (surfaces follow in the same transaction), and from a model as
+-- the example.
+SELECT streetgen.create_model('patch_example', 0);
+INSERT INTO patch_example.axis (geom, roadway_width, speed_kmh, road_class)
+SELECT geom, 8, 30, road_class FROM ex WHERE name = 'tokyo';
+CREATE TEMP TABLE model_patches AS SELECT * FROM streetgen.extract_patches('patch_example');
+SELECT is((SELECT count(DISTINCT patch_id) FROM model_patches), (SELECT count(DISTINCT patch_id) FROM pt WHERE name = 'tokyo'),
+          'a model name is accepted as the example (its axes give the same patches)');
+SELECT streetgen.create_model('grown_patches', 0);
+INSERT INTO grown_patches.axis (geom, roadway_width, speed_kmh, road_class, source)
+SELECT geom, CASE road_class WHEN 'avenue' THEN 12 ELSE 6 END, CASE road_class WHEN 'avenue' THEN 50 ELSE 30 END,
+       road_class, origin
+  FROM streetgen.grow_patches('SELECT * FROM model_patches', 'POLYGON((2500 0, 3100 0, 3100 600, 2500 600, 2500 0))',
+                              'POINT(2800 300)', NULL, '{"seed": 2, "max_edges": 200}');
+SELECT ok((SELECT count(*) FROM grown_patches.axis) BETWEEN 100 AND 200, 'grown edges inserted into a model''s axis table');
+SELECT ok((SELECT count(*) FROM grown_patches.section) >= (SELECT count(*) FROM grown_patches.axis),
+          'and the model''s sections follow');
+
+-- Bad input.
+SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT geom FROM ex WHERE false')$$, '22023',
+                 'example has no edges', 'extract_patches: an empty example (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.extract_patches(NULL)$$, '22004', NULL, 'extract_patches: NULL example (22004)');
+SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT 1 AS x')$$, '22023',
+                 'the example query must return a geometry column named geom', 'extract_patches: no geom column (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT ''POINT(1 1)''::geometry AS geom')$$, '22023', NULL,
+                 'extract_patches: points are not edges (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT geom FROM ex', '{"short_edge": -1}')$$, '22023',
+                 'short_edge must be a number >= 0', 'extract_patches: negative short_edge (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT geom FROM ex', '{"shortedge": 1}')$$, '22023', NULL,
+                 'extract_patches: unknown params key (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE false', 'POLYGON((0 0, 100 0, 100 100, 0 0))',
+                   'POINT(50 20)')$$, '22023', 'patches has no rows', 'grow_patches: an empty patch table (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT patch_id, ''inner'' AS role, geom FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'))$$,
+                 '22023', 'no patch has a connector', 'grow_patches: patches without connectors (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT patch_id, ''bridge'' AS role, geom FROM pt',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'))$$,
+                 '22023', 'patch edge role must be ''inner'', ''connector'' or ''dead_end''', 'grow_patches: an unknown role (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT geom FROM pt',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'))$$,
+                 '22023', 'the patches query must return the columns patch_id, role and geom', 'grow_patches: not a patch query (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches(NULL, (SELECT geom FROM region WHERE name = 'tokyo'),
+                   (SELECT centre FROM region WHERE name = 'tokyo'))$$, '22004', NULL, 'grow_patches: NULL patches (22004)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"scale": 0}')$$, '22023', 'scale must be a number > 0', 'grow_patches: scale 0 (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"epsilon": 10}')$$, '22023', NULL, 'grow_patches: grow_example''s params are unknown keys (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"tries": 0}')$$, '22023', 'tries must be > 0', 'grow_patches: tries 0 (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), 'POINT(-1e6 0)')$$, '22023', 'seed 1 is outside the region',
+                 'grow_patches: a seed outside the region (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT patch_id, role, ST_Buffer(geom, 1) AS geom FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'))$$,
+                 '22023', NULL, 'grow_patches: polygons are not patch edges (22023)');
+
+-- A long growth is cancelled by statement_timeout with 57014 (the C++ loop polls once per front),
+-- and the session grows again.
+CREATE TEMP TABLE outcome (state text, seconds double precision);
+SET LOCAL statement_timeout = '200ms';
+INSERT INTO outcome SELECT * FROM test_helpers.sqlstate_and_seconds(
+  $$SELECT count(*) FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+      'POLYGON((-20000 -20000, 20000 -20000, 20000 20000, -20000 20000, -20000 -20000))', 'POINT(0 0)', NULL,
+      '{"max_edges": 1000000}')$$);
+RESET statement_timeout;
+SELECT is((SELECT state FROM outcome), '57014', 'statement_timeout cancels a long patch growth with 57014');
+SELECT cmp_ok((SELECT seconds FROM outcome), '<', 2.0::double precision, 'within the growth, not after it');
+SELECT is((SELECT count(*) FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+             (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+             '{"max_edges": 50}')) BETWEEN 20 AND 50, true, 'and the session grows again');
+
+SELECT * FROM finish();
+ROLLBACK;

@@ -1,0 +1,271 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "core/error.hpp"
+#include "core/growth/grow_example.hpp"
+#include "core/growth/patches.hpp"
+#include "test_support.hpp"
+
+using namespace streetgen::core;
+using streetgen::test::wkt;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+bool has(const std::vector<std::string>& tags, const char* tag) {
+  return std::find(tags.begin(), tags.end(), tag) != tags.end();
+}
+
+// A 5 x 5 node grid of 100 m blocks ("avenue" on the outer ring, "street" inside) whose junction
+// at (200, 200) is a roundabout of radius 20 m, plus a dead end leaving the corner (0, 0).
+std::vector<PatchInputEdge> grid_with_roundabout(bool flag) {
+  std::vector<PatchInputEdge> out;
+  std::int64_t id = 0;
+  const Point centre{200, 200};
+  const double r = 20.0;
+  auto end_at = [&](Point p) {  // streets into the roundabout stop on its ring
+    if (distance(p, centre) < 1e-9) return p;
+    return p;
+  };
+  for (int i = 0; i <= 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const char* cls = (i == 0 || i == 4) ? "avenue" : "street";
+      Point a{j * 100.0, i * 100.0}, b{(j + 1) * 100.0, i * 100.0};
+      Point c{i * 100.0, j * 100.0}, d{i * 100.0, (j + 1) * 100.0};
+      for (auto [p, q] : {std::pair{a, b}, std::pair{c, d}}) {
+        if (distance(p, centre) < 1e-9) p = p + r * unit(q - p);
+        if (distance(q, centre) < 1e-9) q = q + r * unit(p - q);
+        out.push_back({{end_at(p), end_at(q)}, cls, ++id, false});
+      }
+    }
+  }
+  for (int quarter = 0; quarter < 4; ++quarter) {  // the ring, four arcs of 8 chords
+    Polyline arc;
+    for (int k = 0; k <= 8; ++k) {
+      double t = (quarter + k / 8.0) * 0.5 * kPi;
+      arc.push_back({centre.x + r * std::cos(t), centre.y + r * std::sin(t)});
+    }
+    out.push_back({arc, "street", ++id, flag});
+  }
+  out.push_back({{{0, 0}, {-30, -40}}, "street", ++id, false});
+  return out;
+}
+
+}  // namespace
+
+TEST(ExtractPatches, GridWithRoundaboutAndDeadEnd) {
+  for (bool flag : {true, false}) {  // from the example's flag, or found as a compact face
+    GeosContext geos;
+    PatchExtraction x = extract_patches(geos, grid_with_roundabout(flag), PatchParams{});
+    ASSERT_GT(x.patches.size(), 10u);
+    std::size_t roundabouts = 0, cul_de_sacs = 0;
+    std::map<std::pair<std::pair<long, long>, std::pair<long, long>>, int> connector_ends;
+    auto key = [](Point p) { return std::pair<long, long>{std::lround(p.x * 1000), std::lround(p.y * 1000)}; };
+    for (const Patch& p : x.patches) {
+      if (has(p.tags, "roundabout")) {
+        ++roundabouts;
+        EXPECT_TRUE(has(p.tags, "loop"));
+        EXPECT_TRUE(has(p.tags, "curved"));
+        std::size_t ring = 0, connectors = 0;
+        for (const PatchEdge& e : p.edges) {
+          ring += has(e.tags, "roundabout");
+          connectors += e.role == PatchEdgeRole::connector;
+        }
+        EXPECT_EQ(ring, 4u);
+        EXPECT_EQ(connectors, 4u);  // the four approaches
+      }
+      if (has(p.tags, "cul-de-sac")) {
+        ++cul_de_sacs;
+        bool dead = false;
+        for (const PatchEdge& e : p.edges) {
+          if (e.role == PatchEdgeRole::dead_end) {
+            dead = true;
+            EXPECT_TRUE(has(e.tags, "dead-end"));
+            EXPECT_TRUE(has(e.end_tags, "dead-end"));
+            EXPECT_NEAR(e.line.back().x, -30.0, 1e-9);  // oriented towards the dead end
+          }
+        }
+        EXPECT_TRUE(dead);
+      }
+      EXPECT_TRUE(has(p.tags, "main") || has(p.tags, "local"));
+      EXPECT_TRUE(has(p.tags, "curved") != has(p.tags, "straight"));
+      for (const PatchEdge& e : p.edges) {
+        if (e.role != PatchEdgeRole::connector) continue;
+        EXPECT_TRUE(has(e.end_tags, "connectable"));
+        EXPECT_TRUE(has(e.tags, "connector"));
+        connector_ends[{key(e.line.front()), key(e.line.back())}] += 1;
+      }
+    }
+    EXPECT_EQ(roundabouts, 1u) << "flag " << flag;
+    EXPECT_EQ(cul_de_sacs, 1u);
+    // Connectors are shared: each one appears reversed in the neighbouring patch.
+    ASSERT_FALSE(connector_ends.empty());
+    for (const auto& [ends, count] : connector_ends) {
+      EXPECT_EQ(count, 1);
+      EXPECT_EQ(connector_ends.count({ends.second, ends.first}), 1u);
+    }
+    // Every street belongs to one patch, or to two as a connector.
+    std::map<std::int64_t, int> uses;
+    for (const Patch& p : x.patches) {
+      for (const PatchEdge& e : p.edges) uses[e.example_id] += e.role == PatchEdgeRole::connector ? 1 : 2;
+    }
+    for (const auto& [id, n] : uses) EXPECT_EQ(n, 2) << "street " << id;
+  }
+}
+
+TEST(ExtractPatches, ShortEdgesJoinJunctionsIntoOnePatch) {
+  // Two junctions 10 m apart (a staggered crossing) are one patch, not two.
+  std::vector<PatchInputEdge> ex = {
+      {{{0, 0}, {100, 0}}, "street", 1, false},    {{{100, 0}, {110, 0}}, "street", 2, false},
+      {{{110, 0}, {210, 0}}, "street", 3, false},  {{{100, 0}, {100, 100}}, "street", 4, false},
+      {{{110, 0}, {110, -100}}, "street", 5, false}, {{{0, 0}, {0, 100}}, "street", 6, false},
+      {{{0, 0}, {0, -100}}, "street", 7, false},     {{{0, 100}, {100, 100}}, "street", 8, false}};
+  GeosContext geos;
+  PatchParams params;
+  params.short_edge = 30.0;
+  params.detect_circles = false;
+  PatchExtraction x = extract_patches(geos, ex, params);
+  bool joined = false;
+  for (const Patch& p : x.patches) {
+    for (const PatchEdge& e : p.edges) joined = joined || (e.example_id == 2 && e.role == PatchEdgeRole::inner);
+  }
+  EXPECT_TRUE(joined);
+}
+
+TEST(ExtractPatches, RowOrderAndDirectionDoNotMatter) {
+  GeosContext geos;
+  std::vector<PatchInputEdge> ex = grid_with_roundabout(false);
+  PatchExtraction a = extract_patches(geos, ex, PatchParams{});
+  std::reverse(ex.begin(), ex.end());
+  for (std::size_t i = 0; i < ex.size(); i += 3) std::reverse(ex[i].line.begin(), ex[i].line.end());
+  PatchExtraction b = extract_patches(geos, ex, PatchParams{});
+  ASSERT_EQ(a.patches.size(), b.patches.size());
+  for (std::size_t i = 0; i < a.patches.size(); ++i) {
+    ASSERT_EQ(a.patches[i].edges.size(), b.patches[i].edges.size());
+    EXPECT_EQ(a.patches[i].tags, b.patches[i].tags);
+    for (std::size_t k = 0; k < a.patches[i].edges.size(); ++k) {
+      EXPECT_EQ(a.patches[i].edges[k].line.size(), b.patches[i].edges[k].line.size());
+      EXPECT_EQ(a.patches[i].edges[k].line.front().x, b.patches[i].edges[k].line.front().x);
+      EXPECT_EQ(a.patches[i].edges[k].line.back().y, b.patches[i].edges[k].line.back().y);
+    }
+  }
+}
+
+TEST(ExtractPatches, BadInputIsRejected) {
+  GeosContext geos;
+  EXPECT_THROW(extract_patches(geos, {}, PatchParams{}), Error);
+  EXPECT_THROW(extract_patches(geos, {{{{1, 1}, {1, 1}}, "street", 1, false}}, PatchParams{}), Error);
+  PatchParams p;
+  p.short_edge = -1;
+  EXPECT_THROW(extract_patches(geos, grid_with_roundabout(false), p), Error);
+  p = PatchParams{};
+  p.circle_compactness = 0;
+  EXPECT_THROW(extract_patches(geos, grid_with_roundabout(false), p), Error);
+}
+
+namespace {
+struct PatchFixture {
+  GeosContext geos;
+  GeomPtr region = wkt(geos, "POLYGON((-500 -500, 1500 -500, 1500 1500, -500 1500, -500 -500))");
+  GeomPtr lake = wkt(geos, "POLYGON((800 800, 1100 800, 1100 1100, 800 1100, 800 800))");
+  GrowInput input() {
+    GrowInput in;
+    in.patches = extract_patches(geos, grid_with_roundabout(true), PatchParams{}).patches;
+    in.region = region.get();
+    in.obstacles = {lake.get()};
+    in.seeds = {{500.0, 500.0}};
+    return in;
+  }
+};
+
+bool crosses_without_node(const GrownEdge& a, const GrownEdge& b) {
+  bool shared = a.from_node == b.from_node || a.from_node == b.to_node || a.to_node == b.from_node ||
+                a.to_node == b.to_node;
+  if (shared) return false;
+  auto orient = [](Point p, Point q, Point r) { return cross(q - p, r - p); };
+  double d1 = orient(a.a, a.b, b.a), d2 = orient(a.a, a.b, b.b);
+  double d3 = orient(b.a, b.b, a.a), d4 = orient(b.a, b.b, a.b);
+  return d1 * d2 <= 0 && d3 * d4 <= 0 &&
+         std::max(std::min(a.a.x, a.b.x), std::min(b.a.x, b.b.x)) <= std::min(std::max(a.a.x, a.b.x), std::max(b.a.x, b.b.x)) &&
+         std::max(std::min(a.a.y, a.b.y), std::min(b.a.y, b.b.y)) <= std::min(std::max(a.a.y, a.b.y), std::max(b.a.y, b.b.y));
+}
+}  // namespace
+
+TEST(GrowPatches, PlanarInsideTheRegionMostlyFromPatches) {
+  PatchFixture f;
+  GrowInput in = f.input();
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 3;
+  p.max_edges = 1500;
+  GrowResult r = grow_example(f.geos, in, p);
+  ASSERT_GT(r.edges.size(), 200u);
+  std::size_t from_patches = 0;
+  for (const GrownEdge& e : r.edges) {
+    from_patches += e.example >= 0;
+    for (Point q : {e.a, e.b}) {
+      EXPECT_TRUE(q.x >= -500 && q.x <= 1500 && q.y >= -500 && q.y <= 1500);
+      EXPECT_FALSE(q.x > 800 && q.x < 1100 && q.y > 800 && q.y < 1100) << q.x << " " << q.y;
+    }
+  }
+  EXPECT_GE(from_patches, r.stats.patch_edges);  // a split patch edge counts twice in the output
+  EXPECT_GT(r.stats.patches_placed, 20u);
+  EXPECT_GT(static_cast<double>(from_patches) / r.edges.size(), 0.5);
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < r.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < r.edges.size(); ++j) bad += crosses_without_node(r.edges[i], r.edges[j]);
+  }
+  EXPECT_EQ(bad, 0u);
+}
+
+TEST(GrowPatches, SameSeedSameOutput) {
+  PatchFixture f;
+  GrowInput in = f.input();
+  GrowParams p;
+  p.use_patches = true;
+  p.max_edges = 600;
+  p.seed = 5;
+  GrowResult a = grow_example(f.geos, in, p);
+  GrowResult b = grow_example(f.geos, in, p);
+  ASSERT_EQ(a.edges.size(), b.edges.size());
+  for (std::size_t i = 0; i < a.edges.size(); ++i) {
+    EXPECT_EQ(a.edges[i].a.x, b.edges[i].a.x);
+    EXPECT_EQ(a.edges[i].b.y, b.edges[i].b.y);
+    EXPECT_EQ(a.edges[i].example_id, b.edges[i].example_id);
+  }
+  p.seed = 6;
+  GrowResult c = grow_example(f.geos, in, p);
+  bool differ = c.edges.size() != a.edges.size();
+  for (std::size_t i = 0; !differ && i < a.edges.size(); ++i) differ = a.edges[i].example_id != c.edges[i].example_id;
+  EXPECT_TRUE(differ);
+}
+
+TEST(GrowPatches, BadPatchesAreRejected) {
+  PatchFixture f;
+  GrowInput in = f.input();
+  GrowParams p;
+  p.use_patches = true;
+  GrowInput empty = in;
+  empty.patches.clear();
+  EXPECT_THROW(grow_example(f.geos, empty, p), Error);
+  GrowInput closed = in;
+  for (Patch& patch : closed.patches) {
+    for (PatchEdge& e : patch.edges) {
+      if (e.role == PatchEdgeRole::connector) e.role = PatchEdgeRole::inner;
+    }
+  }
+  try {
+    grow_example(f.geos, closed, p);
+    FAIL() << "no connector accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::invalid_argument);
+    EXPECT_NE(std::string(e.what()).find("connector"), std::string::npos);
+  }
+  p.patch.scale = 0;
+  EXPECT_THROW(grow_example(f.geos, in, p), Error);
+}
