@@ -70,6 +70,20 @@ DELETE FROM liechtenstein_junction.axis WHERE id = 670;
 SELECT is_empty($$SELECT * FROM streetgen.outdated('liechtenstein_junction')$$,
                 'a junction sidewalk in scope gives way to a junction within its reach whose sections lie beyond it');
 
+-- The check after every local refresh: a written sidewalk that overlaps a roadway or another
+-- sidewalk names the axes around both (here as the old search left it: the junction sidewalk of
+-- 434 and 437 grown over the junction of 435 and 443), and a local refresh of those axes
+-- repairs it.
+SELECT streetgen._empty_work_tables();
+INSERT INTO pg_temp._sg_scope_nodes SELECT id FROM liechtenstein_junction.node WHERE axis_ids = '{434,437}';
+SELECT is(streetgen._axes_of_overlapping_sidewalks('liechtenstein_junction'), NULL, 'check: no written sidewalk overlaps anything');
+UPDATE liechtenstein_junction.sidewalk w SET geom = ST_Multi(ST_Buffer(w.geom, 2))
+  FROM liechtenstein_junction.node n WHERE n.axis_ids = '{434,437}' AND w.node_id = n.id;
+SELECT ok(streetgen._axes_of_overlapping_sidewalks('liechtenstein_junction') @> '{434,435,437,443}',
+          'check: a junction sidewalk over its neighbour names the axes of both junctions');
+SELECT streetgen._refresh('liechtenstein_junction', streetgen._axes_of_overlapping_sidewalks('liechtenstein_junction'), '{}', false);
+SELECT is_empty($$SELECT * FROM streetgen.outdated('liechtenstein_junction')$$, 'check: a local refresh of those axes repairs it');
+
 -- An axis that closes a ring far from most of its lines (a soak on Liechtenstein inserted one
 -- between two open ends: a 9.9 km2 face, its block never written). The refresh's box around the
 -- insertion holds only the ends of the ring: the face must be found all the same.
