@@ -1963,6 +1963,16 @@ class Grower {
     // within snap of the network).
     plan.erase(std::remove_if(plan.begin(), plan.end(), [&](const Planned& pl) { return redundant(pl.line); }), plan.end());
     if (plan.empty()) return false;
+    // Levels: the local phase makes local streets only; a local patch whose arterial streets do
+    // not double the arterials already there is not placed (it belongs on an arterial).
+    if (hierarchy_ && !phase_arterial_) {
+      for (const Planned& pl : plan) {
+        if (level_is_main(pl.level)) {
+          ++stats_.patch_illegal;
+          return false;
+        }
+      }
+    }
     // Region and obstacles: clip open connectors to their longest legal prefix.
     for (Planned& pl : plan) {
       for (std::size_t k = 0; k + 1 < pl.line.size(); ++k) {
