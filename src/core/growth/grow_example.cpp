@@ -1561,12 +1561,23 @@ class Grower {
         }
       }
     }
-    // Each level's fallback takes its own streets' statistics and junction mix.
+    // Each level's fallback takes its own streets' statistics, junction mix and commonest class.
     for (int level = 0; level < 2; ++level) {
       std::vector<const Polyline*> streets;
+      std::map<int, std::size_t> classes;
       for (const LibPatch& lp : library_) {
         if (lp.arterial != (level == 0)) continue;
-        for (const LibEdge& e : lp.edges) streets.push_back(&e.line);
+        for (const LibEdge& e : lp.edges) {
+          streets.push_back(&e.line);
+          if (level_is_main(e.level) == (level == 0)) ++classes[e.level];
+        }
+      }
+      std::size_t most = 0;
+      for (const auto& [l, n] : classes) {
+        if (n > most) {
+          most = n;
+          phase_level_[level] = l;
+        }
       }
       level_stats_[level] = street_statistics(streets);
       level_degree_cdf_[level] = degree_cdf_of(streets);
@@ -1624,6 +1635,7 @@ class Grower {
     Point anchor;         // its junction in patch coordinates
   };
   bool hierarchy_ = false, phase_arterial_ = false;
+  int phase_level_[2] = {0, 0};  // the fallback's road class (level) in each phase
   StreetStatistics level_stats_[2];
   std::vector<double> level_degree_cdf_[2];
   std::vector<LocalSeed> pending_local_;
@@ -1782,7 +1794,7 @@ class Grower {
       }
       if (!params_.fallback) return;
       ++stats_.fallback;
-      parametric_step(v, 0, NAN);
+      parametric_step(v, hierarchy_ ? phase_level_[phase_arterial_ ? 0 : 1] : 0, NAN);
       return;
     }
     // Fronts: every connector leaving within angle_window of one of v's streets, placed with its
@@ -1880,6 +1892,8 @@ class Grower {
       return;
     }
     ++stats_.fallback;
+    // Levels: the local phase's streets are local streets, also where they continue an arterial.
+    if (hierarchy_ && !phase_arterial_ && level_is_main(level)) level = phase_level_[1];
     parametric_step(v, level, NAN);
   }
   struct BestPair {
