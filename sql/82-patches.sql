@@ -6,7 +6,8 @@
 CREATE FUNCTION streetgen._streetgen_extract_patches(example_geoms bytea[], example_classes text[],
     example_ids bigint[], example_roundabouts boolean[], short_edge double precision,
     cluster_distance double precision, detect_circles boolean, circle_min_diameter double precision,
-    circle_max_diameter double precision, circle_compactness double precision,
+    circle_max_diameter double precision, circle_compactness double precision, crop_margin double precision,
+    levels boolean,
     OUT patch_id bigint, OUT edge_index integer, OUT role text, OUT road_class text, OUT tags text[],
     OUT edge_tags text[], OUT start_tags text[], OUT end_tags text[], OUT example_id bigint, OUT geom bytea)
   RETURNS SETOF record
@@ -18,7 +19,7 @@ CREATE FUNCTION streetgen._streetgen_grow_patches(patch_ids bigint[], roles text
     max_uses integer[], region bytea, seeds_x double precision[], seeds_y double precision[], obstacles bytea[],
     seed bigint, max_edges integer, snap double precision, min_angle double precision, scale double precision,
     max_distance double precision, angle_window double precision, tries integer, default_max_uses integer,
-    rotation double precision, fallback boolean, clearance double precision,
+    rotation double precision, fallback boolean, clearance double precision, arterials boolean[], levels boolean,
     OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text, OUT geom bytea)
   RETURNS SETOF record
   LANGUAGE c IMMUTABLE PARALLEL SAFE
@@ -64,18 +65,21 @@ BEGIN
     RAISE EXCEPTION 'example must not be null' USING ERRCODE = 'null_value_not_allowed';
   END IF;
   PERFORM streetgen._require_params(p, ARRAY['circle_compactness', 'circle_max_diameter', 'circle_min_diameter',
-                                             'cluster_distance', 'detect_circles', 'short_edge']);
+                                             'cluster_distance', 'crop_margin', 'detect_circles', 'levels',
+                                             'short_edge']);
   FOREACH k IN ARRAY ARRAY['short_edge', 'cluster_distance', 'circle_min_diameter', 'circle_max_diameter',
-                           'circle_compactness'] LOOP
+                           'circle_compactness', 'crop_margin'] LOOP
     IF p ? k AND (jsonb_typeof(p -> k) <> 'number' OR (p ->> k)::double precision < 0) THEN
       RAISE EXCEPTION '% must be a number >= 0', k USING ERRCODE = 'invalid_parameter_value',
         DETAIL = format('It is %s.', p -> k);
     END IF;
   END LOOP;
-  IF p ? 'detect_circles' AND jsonb_typeof(p -> 'detect_circles') <> 'boolean' THEN
-    RAISE EXCEPTION 'detect_circles must be true or false' USING ERRCODE = 'invalid_parameter_value',
-      DETAIL = format('It is %s.', p -> 'detect_circles');
-  END IF;
+  FOREACH k IN ARRAY ARRAY['detect_circles', 'levels'] LOOP
+    IF p ? k AND jsonb_typeof(p -> k) <> 'boolean' THEN
+      RAISE EXCEPTION '% must be true or false', k USING ERRCODE = 'invalid_parameter_value',
+        DETAIL = format('It is %s.', p -> k);
+    END IF;
+  END LOOP;
   IF EXISTS (SELECT 1 FROM streetgen.model m WHERE m.name = query) THEN
     query := format('SELECT id, road_class, geom FROM %I.axis', query);
   END IF;
@@ -103,11 +107,12 @@ BEGIN
            coalesce((p ->> 'cluster_distance')::double precision, 0), coalesce((p ->> 'detect_circles')::boolean, true),
            coalesce((p ->> 'circle_min_diameter')::double precision, 8),
            coalesce((p ->> 'circle_max_diameter')::double precision, 100),
-           coalesce((p ->> 'circle_compactness')::double precision, 0.85)) AS x;
+           coalesce((p ->> 'circle_compactness')::double precision, 0.85),
+           coalesce((p ->> 'crop_margin')::double precision, 0), coalesce((p ->> 'levels')::boolean, true)) AS x;
 END
 $$;
 COMMENT ON FUNCTION streetgen.extract_patches(text, jsonb) IS
-  'Decomposes an example road network into patches (Nishida et al. 2016): roundabouts (the example''s roundabout column, or small compact faces found by polygonize) and clusters of 3 or more junctions closer than cluster_distance are detected first, then each structure and every other junction is grown by its streets shorter than short_edge. One row per patch edge: role inner, connector (shared with the neighbouring patch, oriented outwards) or dead_end (towards the dead end); semantic tags (Teng & Bidarra) per patch (roundabout, cluster, loop, cul-de-sac, curved, straight, terminal, initial, main, local), per edge (main, local, connector, dead-end, snappable, curved, straight, roundabout) and per end vertex (intersection, connectable, dead-end); max_uses NULL (set it to limit a patch''s uses in grow_patches). example: a query (geom, optionally road_class or type, id, roundabout) or a model name. params: short_edge (m, 0.4 x the median street length), cluster_distance (m, short_edge), detect_circles (true), circle_min_diameter (m, 8), circle_max_diameter (m, 100), circle_compactness (0.85)';
+  'Decomposes an example road network into patches (Nishida et al. 2016): roundabouts (the example''s roundabout column, or small compact faces found by polygonize) and clusters of 3 or more junctions closer than cluster_distance are detected first, then each structure and every other junction is grown by its streets shorter than short_edge. One row per patch edge: role inner, connector (shared with the neighbouring patch, oriented outwards) or dead_end (towards the dead end); semantic tags (Teng & Bidarra) per patch (roundabout, cluster, loop, cul-de-sac, curved, straight, terminal, initial, main, local), per edge (main, local, connector, dead-end, snappable, curved, straight, roundabout) and per end vertex (intersection, connectable, dead-end); max_uses NULL (set it to limit a patch''s uses in grow_patches). Levels (when the example has main and local streets): arterial patches (tag arterial) from the graph of the main streets alone, then local patches around the junctions where a local street meets. example: a query (geom, optionally road_class or type, id, roundabout) or a model name. params: short_edge (m, 0.4 x the median street length), cluster_distance (m, short_edge), detect_circles (true), circle_min_diameter (m, 8), circle_max_diameter (m, 100), circle_compactness (0.85), levels (true), crop_margin (m, 0 = off: a dead end this close to the example''s convex hull is a street the crop cut, a connector tagged cut)';
 
 CREATE FUNCTION streetgen.grow_patches(patches text, region geometry, seeds geometry, obstacles geometry DEFAULT NULL,
     params jsonb DEFAULT '{}',
@@ -126,6 +131,7 @@ DECLARE
   classes text[];
   geoms bytea[];
   uses integer[];
+  arterials boolean[];
   srids integer[];
   xs double precision[];
   ys double precision[];
@@ -143,8 +149,12 @@ BEGIN
   IF seeds IS NULL THEN
     RAISE EXCEPTION 'seeds must not be null' USING ERRCODE = 'null_value_not_allowed';
   END IF;
-  PERFORM streetgen._require_params(p, ARRAY['angle_window', 'clearance', 'fallback', 'max_distance', 'max_edges', 'max_uses',
-                                             'min_angle', 'rotation', 'scale', 'seed', 'snap', 'tries']);
+  PERFORM streetgen._require_params(p, ARRAY['angle_window', 'clearance', 'fallback', 'levels', 'max_distance', 'max_edges',
+                                             'max_uses', 'min_angle', 'rotation', 'scale', 'seed', 'snap', 'tries']);
+  IF p ? 'levels' AND jsonb_typeof(p -> 'levels') <> 'boolean' THEN
+    RAISE EXCEPTION 'levels must be true or false' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It is %s.', p -> 'levels');
+  END IF;
   FOREACH k IN ARRAY ARRAY['scale', 'snap', 'max_distance', 'angle_window', 'clearance'] LOOP
     IF p ? k AND NOT coalesce(jsonb_typeof(p -> k) = 'number' AND (p ->> k)::double precision > 0, false) THEN
       RAISE EXCEPTION '% must be a number > 0', k USING ERRCODE = 'invalid_parameter_value',
@@ -169,7 +179,8 @@ BEGIN
   SELECT array_agg(ST_X(d.geom) ORDER BY d.path), array_agg(ST_Y(d.geom) ORDER BY d.path) INTO xs, ys
     FROM ST_Dump(seeds) AS d;
   SELECT array_agg(ST_AsEWKB(d.geom) ORDER BY d.path) INTO obstacle_geoms FROM ST_Dump(obstacles) AS d;
-  -- The patch rows: patch_id, role and geom; optionally road_class, max_uses, edge_index (order).
+  -- The patch rows: patch_id, role and geom; optionally road_class, max_uses, edge_index (order),
+  -- tags (a patch tagged arterial grows in the first phase).
   -- Rows of extract_patches (all columns there) are read directly, others through jsonb.
   BEGIN
     EXECUTE format('SELECT array_agg(q.patch_id::bigint ORDER BY q.patch_id, q.edge_index),
@@ -177,18 +188,21 @@ BEGIN
                            array_agg(q.road_class::text ORDER BY q.patch_id, q.edge_index),
                            array_agg(ST_AsEWKB(q.geom::geometry) ORDER BY q.patch_id, q.edge_index),
                            array_agg(q.max_uses::integer ORDER BY q.patch_id, q.edge_index),
+                           array_agg(coalesce(''arterial'' = ANY (q.tags::text[]), false) ORDER BY q.patch_id, q.edge_index),
                            array_agg(DISTINCT ST_SRID(q.geom::geometry)) FILTER (WHERE q.geom IS NOT NULL)
                       FROM (%s) AS q', patches)
-      INTO pids, roles, classes, geoms, uses, srids;
+      INTO pids, roles, classes, geoms, uses, arterials, srids;
   EXCEPTION WHEN undefined_column THEN
     SELECT array_agg((r.j ->> 'patch_id')::bigint ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
            array_agg(r.j ->> 'role' ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
            array_agg(r.j ->> 'road_class' ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
            array_agg(ST_AsEWKB(r.geom) ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
            array_agg((r.j ->> 'max_uses')::integer ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg(coalesce(jsonb_typeof(r.j -> 'tags') = 'array' AND (r.j -> 'tags') ? 'arterial', false)
+                     ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
            array_agg(DISTINCT ST_SRID(r.geom)) FILTER (WHERE r.geom IS NOT NULL),
            bool_and(r.j ? 'patch_id' AND r.j ? 'role')
-      INTO pids, roles, classes, geoms, uses, srids, complete
+      INTO pids, roles, classes, geoms, uses, arterials, srids, complete
       FROM streetgen._rows_with_geom(patches, 'patches') AS r;
     IF NOT complete THEN
       RAISE EXCEPTION 'the patches query must return the columns patch_id, role and geom'
@@ -214,8 +228,8 @@ BEGIN
            coalesce((p ->> 'max_distance')::double precision, 0), coalesce((p ->> 'angle_window')::double precision, 30),
            coalesce((p ->> 'tries')::integer, 24), coalesce((p ->> 'max_uses')::integer, 0),
            coalesce((p ->> 'rotation')::double precision, 0), coalesce((p ->> 'fallback')::boolean, true),
-           coalesce((p ->> 'clearance')::double precision, 0)) AS g;
+           coalesce((p ->> 'clearance')::double precision, 0), arterials, coalesce((p ->> 'levels')::boolean, true)) AS g;
 END
 $$;
 COMMENT ON FUNCTION streetgen.grow_patches(text, geometry, geometry, geometry, jsonb) IS
-  'Grows a road network inside region from seeds with example patches (Nishida et al. 2016): fronts are processed breadth first; at each, a patch is drawn with probability proportional to exp(-d / scale), d the smallest Hausdorff distance between one of its connectors (inner end on the front) and the front''s streets, among the patches that pass the legality checks (inside region, outside obstacles, no crossing, min_angle, degree); its vertices within snap of nodes are merged, its connectors become new fronts. Where no patch is legal, growth I''s parametric rule with the patch streets'' length statistics (origin grow_parametric). patches: a query with patch_id, role, geom (optionally road_class, max_uses, edge_index): the rows of extract_patches. params: seed (0), max_edges (10000), snap (m, 0.45 x the mean segment), min_angle (deg, 20), scale (m, 0.1), max_distance (m, a quarter of the mean street), angle_window (deg, 30), tries (24), max_uses (0: unlimited, for patches without their own), rotation (deg, 0), fallback (true), clearance (m, 4 % of the mean street: new patch streets keep this far from streets they do not meet). origin: grow_patches:<patch_id> or grow_parametric; the example-based share is count(*) FILTER (WHERE origin LIKE ''grow_patches:%'') / count(*)';
+  'Grows a road network inside region from seeds with example patches (Nishida et al. 2016): fronts are processed breadth first; at each, a patch is drawn with probability proportional to exp(-d / scale), d the smallest Hausdorff distance between one of its connectors (inner end on the front) and the front''s streets, among the patches that pass the legality checks (inside region, outside obstacles, no crossing, min_angle, degree); its vertices within snap of nodes are merged, its connectors become new fronts. Where no patch is legal, growth I''s parametric rule with the patch streets'' length statistics (origin grow_parametric). patches: a query with patch_id, role, geom (optionally road_class, max_uses, edge_index): the rows of extract_patches. params: seed (0), max_edges (10000), snap (m, 0.45 x the mean segment), min_angle (deg, 20), scale (m, 0.1), max_distance (m, a quarter of the mean street), angle_window (deg, 30), tries (24), max_uses (0: unlimited, for patches without their own), rotation (deg, 0), fallback (true), clearance (m, 4 % of the mean street: new patch streets keep this far from streets they do not meet), levels (true: patches tagged arterial grow first, without the fallback; then local streets from the example''s local junctions along the arterial streets, with those junctions'' patches, local streets only). origin: grow_patches:<patch_id> or grow_parametric; the example-based share is count(*) FILTER (WHERE origin LIKE ''grow_patches:%'') / count(*)';

@@ -13,7 +13,9 @@
 #    compare each with the example by compare_networks, inside the hull shrunk by 50 m, degree-2
 #    chains merged (as bench/growth/run.sh): the eight headline metrics and their median per
 #    pair (the issue's per-pair median), the 4-way and dead-end shares in percentage points, and
-#    whether roundabouts (patches tagged roundabout) and cul-de-sacs were used.
+#    whether roundabouts (patches tagged roundabout) and cul-de-sacs were used. Patches are
+#    extracted with extract_patches' defaults (levels: arterial patches grow first), or with
+#    EXTRACT_PARAMS (e.g. EXTRACT_PARAMS='{"levels": false}' for one level).
 # 2. Speed: km of road per second of one SQL call (one core) for squares grown from tokyo, for
 #    grow_patches and for grow_example in the same run, and their ratio; a 300 km square is the
 #    issue's benchmark (< 3 s).
@@ -24,6 +26,7 @@ data="$(cd "$data" && pwd)"
 port="${STREETGEN_BENCH_PORT:-54337}"
 out="${OUT:-$repo/build/bench-patches}"
 params="${PARAMS:-{\}}"
+extract_params="${EXTRACT_PARAMS:-{\}}"
 seeds="${SEEDS:-1 2 3}"
 names="${NAMES:-tokyo canberra_south_large barcelona_east new-york strasbourg quito}"
 mkdir -p "$out"
@@ -48,11 +51,12 @@ SQL
 echo "== patches per example"
 for name in $names; do
   psql -X -q -v ON_ERROR_STOP=1 -c "INSERT INTO patch SELECT '$name', * FROM streetgen.extract_patches(
-    format('SELECT * FROM example WHERE name = %L', '$name'))"
+    format('SELECT * FROM example WHERE name = %L', '$name'), '$extract_params')"
 done
 psql -X -v ON_ERROR_STOP=1 <<'SQL'
 \pset footer off
-SELECT name, count(DISTINCT patch_id) AS patches, count(*) FILTER (WHERE role = 'connector') AS connectors,
+SELECT name, count(DISTINCT patch_id) AS patches, count(DISTINCT patch_id) FILTER (WHERE 'arterial' = ANY (tags)) AS arterial,
+       count(*) FILTER (WHERE role = 'connector') AS connectors,
        count(DISTINCT patch_id) FILTER (WHERE 'roundabout' = ANY (tags)) AS roundabout,
        count(DISTINCT patch_id) FILTER (WHERE 'cul-de-sac' = ANY (tags)) AS cul_de_sac,
        count(DISTINCT patch_id) FILTER (WHERE 'loop' = ANY (tags)) AS loop,

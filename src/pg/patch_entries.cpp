@@ -45,12 +45,13 @@ Datum text_array(const std::vector<std::string>& values) {
 
 enum ExtractArg {
   kXGeoms, kXClasses, kXIds, kXRoundabouts, kXShortEdge, kXClusterDistance, kXCircles, kXCircleMin, kXCircleMax,
-  kXCompactness, kXArgs
+  kXCompactness, kXCropMargin, kXLevels, kXArgs
 };
 
 enum GrowArg {
   kGPatchIds, kGRoles, kGClasses, kGGeoms, kGMaxUses, kGRegion, kGSeedsX, kGSeedsY, kGObstacles, kGSeed, kGMaxEdges,
-  kGSnap, kGMinAngle, kGScale, kGMaxDistance, kGAngleWindow, kGTries, kGDefaultMaxUses, kGRotation, kGFallback, kGClearance, kGArgs
+  kGSnap, kGMinAngle, kGScale, kGMaxDistance, kGAngleWindow, kGTries, kGDefaultMaxUses, kGRotation, kGFallback, kGClearance,
+  kGArterials, kGLevels, kGArgs
 };
 
 }  // namespace
@@ -65,7 +66,8 @@ Datum _streetgen_extract_patches(PG_FUNCTION_ARGS) {
   pg::require_argument_count(fcinfo, kXArgs, "_streetgen_extract_patches");
   static const char* const names[kXArgs] = {"example", "example road classes", "example ids", "example roundabouts",
                                             "short_edge", "cluster_distance", "detect_circles",
-                                            "circle_min_diameter", "circle_max_diameter", "circle_compactness"};
+                                            "circle_min_diameter", "circle_max_diameter", "circle_compactness",
+                                            "crop_margin", "levels"};
   for (int a = kXShortEdge; a < kXArgs; ++a) {
     if (PG_ARGISNULL(a)) pg::raise_null_argument(names[a]);
   }
@@ -99,9 +101,11 @@ Datum _streetgen_extract_patches(PG_FUNCTION_ARGS) {
   params.circle_min_diameter = PG_GETARG_FLOAT8(kXCircleMin);
   params.circle_max_diameter = PG_GETARG_FLOAT8(kXCircleMax);
   params.circle_compactness = PG_GETARG_FLOAT8(kXCompactness);
+  params.crop_margin = PG_GETARG_FLOAT8(kXCropMargin);
+  params.levels = PG_GETARG_BOOL(kXLevels);
   InitMaterializedSRF(fcinfo, 0);
   auto rows = pg::OwnedResult<std::vector<PatchRow>>::create();
-  std::size_t patch_count = 0, streets = 0, junctions = 0;
+  std::size_t patch_count = 0, streets = 0, junctions = 0, arterial = 0;
   double short_edge = 0.0;
 
   // Phase 2.
@@ -124,6 +128,7 @@ Datum _streetgen_extract_patches(PG_FUNCTION_ARGS) {
     patch_count = x.patches.size();
     streets = x.streets;
     junctions = x.junctions;
+    arterial = x.arterial_patches;
     short_edge = x.short_edge;
     std::vector<PatchRow> out;
     for (const core::Patch& p : x.patches) {
@@ -138,8 +143,8 @@ Datum _streetgen_extract_patches(PG_FUNCTION_ARGS) {
   pg::raise_if_failed(error);
 
   // Phase 3.
-  ereport(DEBUG1, (errmsg("extract_patches: %zu streets, %zu junctions, %zu patches, short_edge %.1f m", streets,
-                          junctions, patch_count, short_edge)));
+  ereport(DEBUG1, (errmsg("extract_patches: %zu streets, %zu junctions, %zu patches (%zu arterial), short_edge %.1f m",
+                          streets, junctions, patch_count, arterial, short_edge)));
   auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
   for (const PatchRow& row : *rows) {
     Datum v[10];
@@ -168,19 +173,23 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   static const char* const names[kGArgs] = {
       "patch ids", "roles", "road classes", "patch edges", "max_uses", "region", "seeds x", "seeds y", "obstacles",
       "seed", "max_edges", "snap", "min_angle", "scale", "max_distance", "angle_window", "tries", "max_uses",
-      "rotation", "fallback", "clearance"};
+      "rotation", "fallback", "clearance", "arterials", "levels"};
   for (int a = kGRegion; a < kGArgs; ++a) {
-    if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && PG_ARGISNULL(a)) pg::raise_null_argument(names[a]);
+    if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && a != kGArterials && PG_ARGISNULL(a)) {
+      pg::raise_null_argument(names[a]);
+    }
   }
   pg::ArrayArg pids = pg::array_arg(fcinfo, kGPatchIds, INT8OID, "patch ids");
   pg::ArrayArg roles = pg::array_arg(fcinfo, kGRoles, TEXTOID, "roles");
   pg::ArrayArg classes = pg::array_arg(fcinfo, kGClasses, TEXTOID, "road classes");
   pg::ArrayArg geoms = pg::array_arg(fcinfo, kGGeoms, BYTEAOID, "patch edges");
   pg::ArrayArg uses = pg::array_arg(fcinfo, kGMaxUses, INT4OID, "max_uses");
+  pg::ArrayArg arterials = pg::array_arg(fcinfo, kGArterials, BOOLOID, "arterials");
   pg::require_same_length(geoms, "patch edges", pids, "patch ids");
   pg::require_same_length(geoms, "patch edges", roles, "roles");
   if (classes.count != 0) pg::require_same_length(geoms, "patch edges", classes, "road classes");
   if (uses.count != 0) pg::require_same_length(geoms, "patch edges", uses, "max_uses");
+  if (arterials.count != 0) pg::require_same_length(geoms, "patch edges", arterials, "arterials");
   pg::ArrayArg xs = pg::array_arg(fcinfo, kGSeedsX, FLOAT8OID, "seeds x");
   pg::ArrayArg ys = pg::array_arg(fcinfo, kGSeedsY, FLOAT8OID, "seeds y");
   pg::require_same_length(xs, "seeds x", ys, "seeds y");
@@ -190,6 +199,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
     core::PatchEdgeRole role;
     const char* road_class;
     int max_uses;
+    bool arterial;
     pg::ByteView geom;
   };
   auto* edges = static_cast<EdgeArg*>(palloc0(sizeof(EdgeArg) * (geoms.count > 0 ? geoms.count : 1)));
@@ -224,6 +234,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                       errdetail("Patch row %d (patch_id %lld) has max_uses %d.", i + 1,
                                 static_cast<long long>(e.patch_id), e.max_uses)));
     }
+    e.arterial = arterials.count != 0 && !arterials.nulls[i] && DatumGetBool(arterials.values[i]);
     e.geom = pg::byte_view(geoms.values[i]);
   }
   int edge_count = geoms.count;
@@ -251,6 +262,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   params.patch.rotation = PG_GETARG_FLOAT8(kGRotation);
   params.fallback = PG_GETARG_BOOL(kGFallback);
   params.patch.clearance = PG_GETARG_FLOAT8(kGClearance);
+  params.patch.levels = PG_GETARG_BOOL(kGLevels);
   params.rotation = true;  // the fallback's streets turn from the front's street, as Nishida's (about 90°)
   InitMaterializedSRF(fcinfo, 0);
   auto rows = pg::OwnedResult<std::vector<pg::GrownRow>>::create();
@@ -281,6 +293,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       }
       core::Patch& patch = input.patches[it->second];
       patch.max_uses = std::max(patch.max_uses, e.max_uses);
+      if (e.arterial && patch.tags.empty()) patch.tags.emplace_back("arterial");
       core::PatchEdge pe;
       pe.line = std::move(lines[0]);
       pe.role = e.role;
@@ -312,10 +325,12 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
 
   // Phase 3.
   ereport(DEBUG1, (errmsg("grow_patches: %zu steps, %zu patches placed, %zu statistical fallback, %zu candidates, "
-                          "%zu illegal, %zu self-crossing patches dropped, %zu restarts; example-based share "
+                          "%zu illegal, %zu self-crossing patches dropped, %zu restarts; levels: %zu arterial patches "
+                          "placed, %zu local seeds (%zu with their example patch), %zu local streets ended on arterials; example-based share "
                           "%.1f %% of the edges, %.1f %% of the length",
                           stats.steps, stats.patches_placed, stats.fallback, stats.patch_candidates, stats.patch_illegal,
-                          stats.patches_dropped, stats.restarts, total > 0 ? 100.0 * from_patches / total : 0.0,
+                          stats.patches_dropped, stats.restarts, stats.arterial_patches_placed, stats.local_seeds,
+                          stats.local_seeds_used, stats.ended_on_arterial, total > 0 ? 100.0 * from_patches / total : 0.0,
                           length_total > 0 ? 100.0 * length_patches / length_total : 0.0)));
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();

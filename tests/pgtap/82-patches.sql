@@ -55,11 +55,49 @@ SELECT ok((SELECT count(DISTINCT patch_id) FROM pt WHERE name = 'canberra_south_
           'curved, initial and terminal patches are found');
 SELECT is((SELECT count(*) FROM pt WHERE 'intersection' = ANY (start_tags) AND role <> 'inner'
              AND NOT ('snappable' = ANY (edge_tags))), 0::bigint, 'edges at an intersection are snappable');
--- Connectors are shared: each is, reversed, a connector of exactly one other patch.
+-- Connectors are shared: each is, reversed, a connector of exactly one other patch of its level,
+-- except a local patch's arterial street that ends at an arterial junction (the arterial level's).
 SELECT is((SELECT count(*) FROM pt a WHERE a.role = 'connector' AND (
              SELECT count(*) FROM pt b WHERE b.name = a.name AND b.role = 'connector' AND b.patch_id <> a.patch_id
+                AND ('arterial' = ANY (b.tags)) = ('arterial' = ANY (a.tags)) AND ST_Equals(b.geom, ST_Reverse(a.geom))) <> 1
+             AND NOT (NOT 'arterial' = ANY (a.tags) AND EXISTS (
+               SELECT 1 FROM pt c WHERE c.name = a.name AND 'arterial' = ANY (c.tags)
+                  AND ST_Equals(ST_StartPoint(c.geom), ST_EndPoint(a.geom))))),
+          0::bigint, 'every connector is shared with the neighbouring patch of its level (reversed), or reaches an arterial junction');
+-- Levels (Nishida et al.): arterial patches from the main streets' graph, local patches around
+-- the junctions where local streets meet.
+SELECT ok((SELECT count(DISTINCT patch_id) FROM pt WHERE name = n AND 'arterial' = ANY (tags)) > 10
+          AND (SELECT count(DISTINCT patch_id) FROM pt WHERE name = n AND NOT 'arterial' = ANY (tags)) > 50,
+          n || ': arterial and local patches')
+  FROM unnest(ARRAY['tokyo', 'canberra_south_large']) AS n;
+SELECT is((SELECT count(*) FROM pt WHERE 'arterial' = ANY (tags) AND road_class <> 'avenue'), 0::bigint,
+          'arterial patches hold main streets only (the example files'' avenues)');
+SELECT ok((SELECT count(*) FROM pt a WHERE 'arterial' = ANY (a.tags) AND a.role = 'connector' AND EXISTS (
+             SELECT 1 FROM pt b WHERE b.name = a.name AND NOT 'arterial' = ANY (b.tags)
+                AND ST_Intersects(ST_StartPoint(b.geom), a.geom)
+                AND NOT ST_Intersects(ST_StartPoint(b.geom), ST_Boundary(a.geom)))) > 20,
+          'arterial streets run on through the local junctions along them');
+CREATE TEMP TABLE pt_flat AS
+SELECT * FROM streetgen.extract_patches('SELECT id, road_class, roundabout, geom FROM ex WHERE name = ''tokyo''',
+                                        '{"levels": false}');
+SELECT is((SELECT count(*) FROM pt_flat WHERE 'arterial' = ANY (tags)), 0::bigint, 'levels false: no arterial patch');
+SELECT is((SELECT count(*) FROM pt_flat a WHERE a.role = 'connector' AND (
+             SELECT count(*) FROM pt_flat b WHERE b.role = 'connector' AND b.patch_id <> a.patch_id
                 AND ST_Equals(b.geom, ST_Reverse(a.geom))) <> 1), 0::bigint,
-          'every connector is shared with the neighbouring patch (reversed)');
+          'levels false: every connector is shared with the neighbouring patch (reversed)');
+-- crop_margin: dead ends at the example's hull are streets the crop cut: connectors tagged cut.
+CREATE TEMP TABLE pt_crop AS
+SELECT * FROM streetgen.extract_patches('SELECT id, road_class, roundabout, geom FROM ex WHERE name = ''tokyo''',
+                                        '{"crop_margin": 30}');
+SELECT ok((SELECT count(*) FROM pt_crop WHERE 'cut' = ANY (edge_tags)) > 20
+          AND (SELECT count(*) FROM pt_crop WHERE role = 'dead_end')
+              < (SELECT count(*) FROM pt WHERE name = 'tokyo' AND role = 'dead_end'),
+          'crop_margin: cut streets found, fewer dead ends');
+SELECT is((SELECT count(*) FROM pt_crop p, (SELECT ST_ConvexHull(ST_Collect(geom)) AS geom FROM ex WHERE name = 'tokyo') h
+            WHERE 'cut' = ANY (p.edge_tags)
+              AND NOT (p.role = 'connector' AND 'cut' = ANY (p.end_tags)
+                       AND ST_DWithin(ST_EndPoint(p.geom), ST_Boundary(h.geom), 30 + 1e-6))),
+          0::bigint, 'a cut street is a connector ending within crop_margin of the example''s hull');
 SELECT ok((SELECT count(*) FROM pt WHERE role = 'connector') > 1000, 'connectors are found');
 SELECT is((SELECT count(*) FROM (SELECT name, patch_id FROM pt GROUP BY name, patch_id
                                   HAVING count(DISTINCT tags) > 1) d), 0::bigint, 'a patch has one tag set');
@@ -127,6 +165,28 @@ SELECT ok((SELECT count(DISTINCT g.origin) FROM grown g JOIN pt ON pt.name = g.n
           'roundabouts reappear: canberra''s roundabout patches are used');
 SELECT is((SELECT count(*) FROM grown g JOIN pt ON pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin
             WHERE g.name = 'tokyo' AND 'roundabout' = ANY (pt.tags)), 0::bigint, 'and none appear from tokyo''s grid');
+-- Levels: arterials first (the rows come in growth order), then local streets seeded along them.
+SELECT ok((SELECT bool_and(before >= 0.8 * avenues AND first_street > 20) FROM (
+             SELECT g.name, count(*) FILTER (WHERE g.road_class = 'avenue' AND g.id < s.first_street) AS before,
+                    count(*) FILTER (WHERE g.road_class = 'avenue') AS avenues, min(s.first_street) AS first_street
+               FROM grown g JOIN (SELECT name, min(id) AS first_street FROM grown WHERE road_class = 'street' GROUP BY name) s
+                    USING (name) GROUP BY g.name) c),
+          'levels: the arterial phase comes first (80 % of the avenue edges before the first street)');
+SELECT is((SELECT count(*) FROM grown g
+             JOIN (SELECT name, min(id) AS first_street FROM grown WHERE road_class = 'street' GROUP BY name) s USING (name)
+            WHERE g.id > s.first_street AND g.road_class = 'avenue'
+              AND NOT EXISTS (SELECT 1 FROM pt WHERE pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin
+                                                 AND 'arterial' = ANY (pt.tags))), 0::bigint,
+          'levels: the local phase makes no arterial street (avenue rows after the first street are pieces of split arterials)');
+SELECT is((SELECT count(*) FROM grown g
+             JOIN (SELECT name, min(id) AS first_street FROM grown WHERE road_class = 'street' GROUP BY name) s USING (name)
+            WHERE g.id < s.first_street AND g.origin LIKE 'grow_patches:%'
+              AND NOT EXISTS (SELECT 1 FROM pt WHERE pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin
+                                                 AND 'arterial' = ANY (pt.tags))), 0::bigint,
+          'levels: before the first street, every row comes from an arterial patch');
+SELECT ok((SELECT min(id) FROM pg_temp.grow('tokyo', '{"seed": 7, "max_edges": 3000, "levels": false}')
+             AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry)
+            WHERE road_class = 'street') <= 20, 'levels false: streets grow from the start');
 -- Determinism.
 SELECT is((SELECT count(*) FROM (
              (SELECT id, from_node, to_node, road_class, origin, ST_AsEWKB(geom) FROM grown WHERE name = 'canberra_south_large'
@@ -196,6 +256,13 @@ SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT geom FROM ex'
                  'short_edge must be a number >= 0', 'extract_patches: negative short_edge (22023)');
 SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT geom FROM ex', '{"shortedge": 1}')$$, '22023', NULL,
                  'extract_patches: unknown params key (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT geom FROM ex', '{"crop_margin": -5}')$$, '22023',
+                 'crop_margin must be a number >= 0', 'extract_patches: negative crop_margin (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT geom FROM ex', '{"levels": "yes"}')$$, '22023',
+                 'levels must be true or false', 'extract_patches: levels not a boolean (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"levels": 1}')$$, '22023', 'levels must be true or false', 'grow_patches: levels not a boolean (22023)');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE false', 'POLYGON((0 0, 100 0, 100 100, 0 0))',
                    'POINT(50 20)')$$, '22023', 'patches has no rows', 'grow_patches: an empty patch table (22023)');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT patch_id, ''inner'' AS role, geom FROM pt WHERE name = ''tokyo''',

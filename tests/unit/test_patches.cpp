@@ -269,3 +269,134 @@ TEST(GrowPatches, BadPatchesAreRejected) {
   p.patch.scale = 0;
   EXPECT_THROW(grow_example(f.geos, in, p), Error);
 }
+
+namespace {
+// A 7 x 7 node grid of 100 m blocks (one row per block): avenues along x = 100, x = 400, y = 100
+// and y = 400 (crossing at four arterial junctions), streets elsewhere.
+std::vector<PatchInputEdge> avenue_grid() {
+  std::vector<PatchInputEdge> out;
+  std::int64_t id = 0;
+  auto avenue = [](int k) { return k == 1 || k == 4; };
+  for (int i = 0; i <= 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+      out.push_back({{{j * 100.0, i * 100.0}, {(j + 1) * 100.0, i * 100.0}}, avenue(i) ? "avenue" : "street", ++id, false});
+      out.push_back({{{i * 100.0, j * 100.0}, {i * 100.0, (j + 1) * 100.0}}, avenue(i) ? "avenue" : "street", ++id, false});
+    }
+  }
+  return out;
+}
+}  // namespace
+
+TEST(ExtractPatches, LevelsSplitArterialAndLocalPatches) {
+  GeosContext geos;
+  PatchExtraction x = extract_patches(geos, avenue_grid(), PatchParams{});
+  std::size_t arterial = 0, local = 0;
+  for (const Patch& p : x.patches) {
+    bool is_arterial = has(p.tags, "arterial");
+    arterial += is_arterial;
+    local += !is_arterial;
+    for (const PatchEdge& e : p.edges) {
+      if (!is_arterial) {
+        // Local patches' streets end at junctions (an avenue crossing is the arterial level's,
+        // still a connector); the grid has no dead end.
+        EXPECT_NE(e.role, PatchEdgeRole::dead_end);
+        continue;
+      }
+      EXPECT_EQ(e.road_class, "avenue");  // the arterial level holds main streets only
+      // Its streets run on through the local junctions: avenue to avenue, 300 m.
+      if (e.role == PatchEdgeRole::connector) {
+        EXPECT_NEAR(length(e.line), 300.0, 1e-6);
+      }
+    }
+  }
+  EXPECT_EQ(arterial, 4u);  // the four avenue crossings
+  EXPECT_EQ(x.arterial_patches, 4u);
+  // Local patches: every junction where a street meets (the 7 x 7 nodes but the four corners and
+  // the four avenue crossings).
+  EXPECT_EQ(local, 49u - 4u - 4u);
+  // Without levels: one patch per junction, none arterial.
+  PatchParams flat;
+  flat.levels = false;
+  PatchExtraction y = extract_patches(geos, avenue_grid(), flat);
+  EXPECT_EQ(y.patches.size(), 49u - 4u);
+  for (const Patch& p : y.patches) EXPECT_FALSE(has(p.tags, "arterial"));
+  EXPECT_EQ(y.arterial_patches, 0u);
+}
+
+TEST(ExtractPatches, CropMarginTurnsDeadEndsAtTheHullIntoCutConnectors) {
+  GeosContext geos;
+  std::vector<PatchInputEdge> ex = grid_with_roundabout(true);
+  ex.push_back({{{400, 400}, {406, 408}}, "street", 999, false});  // a 10 m stub cut by the crop
+  auto count = [](const PatchExtraction& x, const char* edge_tag, PatchEdgeRole role) {
+    std::size_t n = 0;
+    for (const Patch& p : x.patches) {
+      for (const PatchEdge& e : p.edges) n += has(e.tags, edge_tag) && e.role == role;
+    }
+    return n;
+  };
+  PatchParams off;
+  off.levels = false;
+  PatchExtraction a = extract_patches(geos, ex, off);
+  EXPECT_EQ(count(a, "dead-end", PatchEdgeRole::dead_end), 2u);  // the 50 m dead end and the stub
+  EXPECT_EQ(count(a, "cut", PatchEdgeRole::connector), 0u);
+  PatchParams on = off;
+  on.crop_margin = 5.0;
+  PatchExtraction b = extract_patches(geos, ex, on);
+  EXPECT_EQ(count(b, "dead-end", PatchEdgeRole::dead_end), 0u);
+  EXPECT_EQ(count(b, "cut", PatchEdgeRole::connector), 2u);  // both ends lie on the hull
+  for (const Patch& p : b.patches) {
+    EXPECT_FALSE(has(p.tags, "cul-de-sac"));
+    for (const PatchEdge& e : p.edges) {
+      if (!has(e.tags, "cut")) continue;
+      EXPECT_TRUE(has(e.end_tags, "cut"));
+      EXPECT_FALSE(has(e.end_tags, "dead-end"));
+    }
+  }
+  on.crop_margin = -1.0;
+  EXPECT_THROW(extract_patches(geos, ex, on), Error);
+}
+
+TEST(GrowPatches, ArterialsFirstThenLocalStreetsFromTheirSeeds) {
+  GeosContext geos;
+  GeomPtr region = wkt(geos, "POLYGON((-600 -600, 1200 -600, 1200 1200, -600 1200, -600 -600))");
+  GrowInput in;
+  in.patches = extract_patches(geos, avenue_grid(), PatchParams{}).patches;
+  in.region = region.get();
+  in.seeds = {{300.0, 300.0}};
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 2;
+  p.max_edges = 3000;
+  GrowResult r = grow_example(geos, in, p);
+  ASSERT_GT(r.edges.size(), 100u);
+  EXPECT_GT(r.stats.arterial_patches_placed, 3u);
+  EXPECT_GT(r.stats.local_seeds, 10u);
+  EXPECT_GT(r.stats.local_seeds_used, 0u);
+  // The output is in growth order: the arterial phase's avenues first, then the streets.
+  std::size_t first_street = r.edges.size(), avenues = 0, avenues_before = 0;
+  for (std::size_t i = 0; i < r.edges.size(); ++i) {
+    if (r.edges[i].road_class == "street" && first_street == r.edges.size()) first_street = i;
+    if (r.edges[i].road_class == "avenue") {
+      ++avenues;
+      avenues_before += first_street == r.edges.size();
+    }
+  }
+  ASSERT_GT(avenues, 0u);
+  EXPECT_GT(first_street, 20u);
+  EXPECT_GE(static_cast<double>(avenues_before) / avenues, 0.9);
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < r.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < r.edges.size(); ++j) bad += crosses_without_node(r.edges[i], r.edges[j]);
+  }
+  EXPECT_EQ(bad, 0u);
+  // Levels off: one phase, streets from the first patch on.
+  p.patch.levels = false;
+  GrowResult flat = grow_example(geos, in, p);
+  EXPECT_EQ(flat.stats.arterial_patches_placed, 0u);
+  EXPECT_EQ(flat.stats.local_seeds, 0u);
+  std::size_t flat_first_street = flat.edges.size();
+  for (std::size_t i = 0; i < flat.edges.size() && flat_first_street == flat.edges.size(); ++i) {
+    if (flat.edges[i].road_class == "street") flat_first_street = i;
+  }
+  EXPECT_LT(flat_first_street, 20u);
+}

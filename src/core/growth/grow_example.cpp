@@ -222,6 +222,7 @@ class Grower {
     // segments crowds itself out) starts again from the seeds with the next random draws.
     for (int restart = 0;; ++restart) {
       grow();
+      if (start_local_phase()) grow();
       // A growth whose fronts all died before the region was covered starts again from a random
       // legal point farther than r from every edge (as a new seed), until none is found.
       for (int reseeds = 0; params_.fill && new_edges_ >= kMinGrowth && new_edges_ < params_.max_edges &&
@@ -244,6 +245,10 @@ class Grower {
       queue_head_ = 0;
       for (LibPatch& lp : library_) lp.uses = 0;
       new_edges_ = 0;
+      phase_arterial_ = hierarchy_;
+      use_level_shape();
+      pending_local_.clear();
+      local_hint_.clear();
       load_existing();
       place_seeds();
     }
@@ -1408,6 +1413,9 @@ class Grower {
     Polyline line;  // patch coordinates (turned by params.patch.rotation)
     int level;
     PatchEdgeRole role;
+    // Arterial patches: the vertices of this street where a local patch of the example has its
+    // junction (vertex index, library index of that local patch): the local phase's seeds.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> local_seeds = {};
   };
   struct LibPatch {
     std::int64_t id;
@@ -1415,6 +1423,7 @@ class Grower {
     std::vector<std::uint32_t> connectors;  // indices into edges
     int max_uses;
     int uses = 0;
+    bool arterial = false;  // levels: grown in the first phase
   };
   struct LibConnector {
     std::uint32_t patch, edge;
@@ -1463,6 +1472,7 @@ class Grower {
     std::size_t with_connectors = 0;
     for (const Patch& p : patches) {
       LibPatch lp{p.id, {}, {}, p.max_uses > 0 ? p.max_uses : params_.patch.max_uses};
+      lp.arterial = params_.patch.levels && std::find(p.tags.begin(), p.tags.end(), "arterial") != p.tags.end();
       for (const PatchEdge& e : p.edges) {
         if (e.line.size() < 2) continue;
         LibEdge le{e.line, level_of(e.road_class), e.role};
@@ -1493,30 +1503,7 @@ class Grower {
       for (const LibEdge& e : lp.edges) streets.push_back(&e.line);
     }
     street_stats_ = street_statistics(streets);
-    // The streets' degrees at their ends (each street once: a connector is in two patches), for
-    // the fallback's target degree: P(degree = k | k >= 2).
-    {
-      std::map<MillimetreKey, std::size_t> degree;
-      std::set<std::pair<MillimetreKey, MillimetreKey>> seen;
-      auto key = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
-      for (const Polyline* l : streets) {
-        MillimetreKey a = key(l->front()), b = key(l->back());
-        if (!seen.insert({std::min(a, b), std::max(a, b)}).second) continue;
-        ++degree[a];
-        ++degree[b];
-      }
-      std::vector<double> count(9, 0.0);
-      double total = 0.0;
-      for (const auto& [k, d] : degree) {
-        if (d < 2) continue;
-        count[std::min<std::size_t>(d, 8)] += 1.0;
-        total += 1.0;
-      }
-      if (total > 0.0) {
-        double acc = 0.0;
-        for (double c : count) degree_cdf_.push_back(acc += c / total);
-      }
-    }
+    degree_cdf_ = degree_cdf_of(streets);
     probe_ = 0.5 * street_stats_.length_mean;
     buckets_.assign(kBuckets, {});
     for (std::uint32_t i = 0; i < library_.size(); ++i) {
@@ -1540,6 +1527,144 @@ class Grower {
         if (!library_[i].connectors.empty()) seed_patches_.push_back(i);
       }
     }
+    prepare_levels();
+  }
+
+  // Levels (Nishida et al. 2016, sections 4.3-4.4): with arterial patches (and others) in the
+  // library, the arterial ones grow first; each arterial street then seeds the local phase at the
+  // vertices where the example has a local junction, with that junction's own patch.
+  void prepare_levels() {
+    bool any_arterial = false, any_local = false;
+    for (const LibPatch& lp : library_) {
+      if (lp.connectors.empty()) continue;
+      (lp.arterial ? any_arterial : any_local) = true;
+    }
+    hierarchy_ = any_arterial && any_local;
+    phase_arterial_ = hierarchy_;
+    if (!hierarchy_) return;
+    std::unordered_map<MillimetreKey, std::uint32_t, MillimetreKeyHash> junction;
+    auto key = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
+    for (std::uint32_t i = 0; i < library_.size(); ++i) {
+      const LibPatch& lp = library_[i];
+      if (lp.arterial) continue;
+      for (const LibEdge& e : lp.edges) {
+        junction.emplace(key(e.line.front()), i);
+        if (e.role == PatchEdgeRole::inner) junction.emplace(key(e.line.back()), i);
+      }
+    }
+    for (LibPatch& lp : library_) {
+      if (!lp.arterial) continue;
+      for (LibEdge& e : lp.edges) {
+        for (std::uint32_t k = 0; k < e.line.size(); ++k) {
+          auto it = junction.find(key(e.line[k]));
+          if (it != junction.end()) e.local_seeds.emplace_back(k, it->second);
+        }
+      }
+    }
+    // Each level's fallback takes its own streets' statistics, junction mix and commonest class.
+    for (int level = 0; level < 2; ++level) {
+      std::vector<const Polyline*> streets;
+      std::map<int, std::size_t> classes;
+      for (const LibPatch& lp : library_) {
+        if (lp.arterial != (level == 0)) continue;
+        for (const LibEdge& e : lp.edges) {
+          streets.push_back(&e.line);
+          if (level_is_main(e.level) == (level == 0)) ++classes[e.level];
+        }
+      }
+      std::size_t most = 0;
+      for (const auto& [l, n] : classes) {
+        if (n > most) {
+          most = n;
+          phase_level_[level] = l;
+        }
+      }
+      level_stats_[level] = street_statistics(streets);
+      level_degree_cdf_[level] = degree_cdf_of(streets);
+    }
+  }
+  bool in_phase(const LibPatch& lp) const { return !hierarchy_ || lp.arterial == phase_arterial_; }
+  bool level_is_main(int level) const {
+    return level >= 0 && static_cast<std::size_t>(level) < level_names_.size() && is_main_class(level_names_[level]);
+  }
+  // The fallback's statistics for the current phase.
+  void use_level_shape() {
+    if (!hierarchy_) return;
+    const int level = phase_arterial_ ? 0 : 1;
+    if (level_stats_[level].length_mean > 0.0) {
+      shape_.length = std::max(level_stats_[level].length_mean, 2.0 * min_length_);
+      shape_.length_deviation = std::min(0.5 * shape_.length, level_stats_[level].length_sd);
+      shape_.min_length = std::min(shape_.length, std::max(min_length_, 0.25 * shape_.length));
+    }
+    if (!level_degree_cdf_[level].empty()) degree_cdf_ = level_degree_cdf_[level];
+  }
+  // After the arterial phase: the local phase starts from the local seeds the arterial patches
+  // left on their streets (each with its example patch) and from the ends of arterial streets the
+  // fallback made.
+  bool start_local_phase() {
+    if (!hierarchy_ || !phase_arterial_) return false;
+    phase_arterial_ = false;
+    use_level_shape();
+    unfinished_.clear();
+    queue_head_ = 0;
+    for (const LocalSeed& ls : pending_local_) {
+      if (ls.node >= nodes_.size()) continue;
+      if (local_hint_.emplace(ls.node, ls).second) {
+        completed_[ls.node] = 0;
+        unfinished_.push_back(ls.node);
+        ++stats_.local_seeds;
+      }
+    }
+    std::vector<char> queued(nodes_.size(), 0);
+    for (const OEdge& e : edges_) {
+      if (e.level < 0 || e.source >= 0) continue;
+      for (std::uint32_t n : {e.a, e.b}) {
+        if (local_hint_.count(n) == 0 && !queued[n]) {
+          queued[n] = 1;
+          completed_[n] = 0;
+          unfinished_.push_back(n);
+        }
+      }
+    }
+    pending_local_.clear();
+    return !unfinished_.empty();
+  }
+  struct LocalSeed {
+    std::uint32_t node;
+    std::uint32_t patch;  // library index of the example's local patch there
+    Point anchor;         // its junction in patch coordinates
+  };
+  bool hierarchy_ = false, phase_arterial_ = false;
+  int phase_level_[2] = {0, 0};  // the fallback's road class (level) in each phase
+  StreetStatistics level_stats_[2];
+  std::vector<double> level_degree_cdf_[2];
+  std::vector<LocalSeed> pending_local_;
+  std::unordered_map<std::uint32_t, LocalSeed> local_hint_;
+  // The streets' degrees at their ends (each street once: a connector is in two patches), for
+  // the fallback's target degree: P(degree <= k | degree >= 2).
+  static std::vector<double> degree_cdf_of(const std::vector<const Polyline*>& streets) {
+    std::vector<double> cdf;
+    std::map<MillimetreKey, std::size_t> degree;
+    std::set<std::pair<MillimetreKey, MillimetreKey>> seen;
+    auto key = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
+    for (const Polyline* l : streets) {
+      MillimetreKey a = key(l->front()), b = key(l->back());
+      if (!seen.insert({std::min(a, b), std::max(a, b)}).second) continue;
+      ++degree[a];
+      ++degree[b];
+    }
+    std::vector<double> count(9, 0.0);
+    double total = 0.0;
+    for (const auto& [k, d] : degree) {
+      if (d < 2) continue;
+      count[std::min<std::size_t>(d, 8)] += 1.0;
+      total += 1.0;
+    }
+    if (total > 0.0) {
+      double acc = 0.0;
+      for (double c : count) cdf.push_back(acc += c / total);
+    }
+    return cdf;
   }
   static int bucket_of(double angle) {
     int b = static_cast<int>(std::floor((wrap(angle) + kPi) / (2.0 * kPi) * kBuckets));
@@ -1555,6 +1680,7 @@ class Grower {
     shape_.angle_deviation = 0.0;  // Nishida: new streets at about 90° to the front's street
     max_distance_ = params_.patch.max_distance > 0.0 ? params_.patch.max_distance : 0.25 * street_stats_.length_mean;
     clearance_ = params_.patch.clearance > 0.0 ? params_.patch.clearance : 0.04 * street_stats_.length_mean;
+    use_level_shape();
   }
 
   // Points every `step` metres along the line (its vertices included).
@@ -1631,6 +1757,21 @@ class Grower {
       return;
     }
     const Point p = nodes_[v].p;
+    // A local seed on an arterial street: the example's own local patch there first (its arterial
+    // edges double the street and are left out, its local streets leave from it).
+    if (!phase_arterial_ && !local_hint_.empty()) {
+      auto it = local_hint_.find(v);
+      if (it != local_hint_.end()) {
+        const LocalSeed ls = it->second;
+        local_hint_.erase(it);
+        const LibPatch& lp = library_[ls.patch];
+        if ((lp.max_uses == 0 || lp.uses < lp.max_uses) && place_patch(v, ls.patch, ls.anchor, UINT32_MAX, true)) {
+          ++stats_.local_seeds_used;
+          done_ = true;
+          return;
+        }
+      }
+    }
     if (nodes_[v].edges.empty()) {
       if (crowded(p, min_length_, v)) return;
       // A seed: a patch with two or more connectors, drawn at random, its first connector's inner
@@ -1642,6 +1783,10 @@ class Grower {
         if (tries++ >= params_.patch.tries) break;
         const LibPatch& lp = library_[j];
         if (lp.max_uses > 0 && lp.uses >= lp.max_uses) continue;
+        if (!in_phase(lp)) {
+          --tries;
+          continue;
+        }
         if (place_patch(v, j, lp.edges[lp.connectors[0]].line[0], UINT32_MAX)) {
           done_ = true;
           return;
@@ -1649,7 +1794,7 @@ class Grower {
       }
       if (!params_.fallback) return;
       ++stats_.fallback;
-      parametric_step(v, 0, NAN);
+      parametric_step(v, hierarchy_ ? phase_level_[phase_arterial_ ? 0 : 1] : 0, NAN);
       return;
     }
     // Fronts: every connector leaving within angle_window of one of v's streets, placed with its
@@ -1695,6 +1840,7 @@ class Grower {
           if (params_.match_levels && street_level >= 0 && c.level != street_level) continue;
           const LibPatch& lp = library_[c.patch];
           if (lp.max_uses > 0 && lp.uses >= lp.max_uses) continue;
+          if (!in_phase(lp)) continue;
           const Polyline& line = lp.edges[c.edge].line;
           double bound = best_stamp_[c.patch] == stamp_ ? std::min(best_[c.patch].d, max_distance_) : max_distance_;
           // Both start at v: the Hausdorff distance is at least the difference of their reaches.
@@ -1738,11 +1884,16 @@ class Grower {
     }
     // A front that two patches already reached is connected: the fallback only continues streets
     // that would otherwise end where the example did not end them.
-    if (!params_.fallback || nodes_[v].edges.size() >= 2) {
+    // Levels: an arterial street no arterial patch continues ends there (the local phase fills
+    // around it): the fallback's straight arterials measured a grid over the whole region
+    // (canberra_south_large: street density +150 % instead of +55 %).
+    if (!params_.fallback || nodes_[v].edges.size() >= 2 || (hierarchy_ && phase_arterial_)) {
       done_ = true;
       return;
     }
     ++stats_.fallback;
+    // Levels: the local phase's streets are local streets, also where they continue an arterial.
+    if (hierarchy_ && !phase_arterial_ && level_is_main(level)) level = phase_level_[1];
     parametric_step(v, level, NAN);
   }
   struct BestPair {
@@ -1760,7 +1911,7 @@ class Grower {
   // a street between merged nodes are left out; a connector leaving the region or touching an
   // obstacle is clipped, any other illegal edge rejects the patch. Nothing changes unless it is
   // legal as a whole.
-  bool place_patch(std::uint32_t v, std::uint32_t j, Point anchor, std::uint32_t skip) {
+  bool place_patch(std::uint32_t v, std::uint32_t j, Point anchor, std::uint32_t skip, bool local_only = false) {
     const LibPatch& lp = library_[j];
     const Point t = nodes_[v].p - anchor;
     // Patch vertices (edge ends): an existing node (>= 0), or a new one (-(index into fresh) - 1).
@@ -1797,6 +1948,9 @@ class Grower {
       bool open_end;  // a connector whose outer end is new: a front
       bool outer;     // a connector: its end b is the neighbouring patch's junction
       Point from, to; // where the ends were before merging or clipping
+      std::uint32_t edge = 0;  // index in the patch
+      bool clipped = false;
+      std::uint32_t on_edge = UINT32_MAX;  // its new end lies on this street (split when glued)
     };
     std::vector<Planned> plan;
     auto pos = [&](std::int64_t id) {
@@ -1805,13 +1959,14 @@ class Grower {
     for (std::uint32_t k = 0; k < lp.edges.size(); ++k) {
       if (k == skip) continue;
       const LibEdge& e = lp.edges[k];
+      if (local_only && level_is_main(e.level)) continue;
       std::int64_t a = vertex_of(e.line.front()), b = vertex_of(e.line.back());
       if (a == b && (a >= 0 || e.line.size() < 4)) continue;  // a loop street kept only when whole and new
       if (a >= 0 && b >= 0 && (a == b || connected_by_street(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b)))) {
         continue;
       }
       Planned pl{{}, a, b, e.level, e.role == PatchEdgeRole::connector && b < 0, e.role == PatchEdgeRole::connector,
-                 e.line.front() + t, e.line.back() + t};
+                 e.line.front() + t, e.line.back() + t, k, false};
       pl.line.reserve(e.line.size());
       for (Point q : e.line) pl.line.push_back(q + t);
       pl.line.front() = pos(a);
@@ -1822,6 +1977,16 @@ class Grower {
     // within snap of the network).
     plan.erase(std::remove_if(plan.begin(), plan.end(), [&](const Planned& pl) { return redundant(pl.line); }), plan.end());
     if (plan.empty()) return false;
+    // Levels: the local phase makes local streets only; a local patch whose arterial streets do
+    // not double the arterials already there is not placed (it belongs on an arterial).
+    if (hierarchy_ && !phase_arterial_) {
+      for (const Planned& pl : plan) {
+        if (level_is_main(pl.level)) {
+          ++stats_.patch_illegal;
+          return false;
+        }
+      }
+    }
     // Region and obstacles: clip open connectors to their longest legal prefix.
     for (Planned& pl : plan) {
       for (std::size_t k = 0; k + 1 < pl.line.size(); ++k) {
@@ -1840,6 +2005,7 @@ class Grower {
         Point end = a + lo * (b - a);
         if (distance(end, a) > kContact) pl.line.push_back(end);
         pl.open_end = false;
+        pl.clipped = true;
         if (pl.line.size() < 2 || length(pl.line) < min_length_) {
           pl.line.clear();  // too short to keep: dropped
         } else {
@@ -1851,6 +2017,48 @@ class Grower {
     }
     plan.erase(std::remove_if(plan.begin(), plan.end(), [](const Planned& pl) { return pl.line.empty(); }), plan.end());
     if (plan.empty()) return false;
+    // Levels: in the local phase, a local street whose new end falls within snap of an arterial
+    // street (and of no node) ends on it, as the example's local streets end on arterials
+    // (Nishida's local constraint "connect to a close edge"); the end stays a front.
+    std::vector<std::uint32_t> split_of(fresh.size(), UINT32_MAX);
+    if (hierarchy_ && !phase_arterial_) {
+      for (Planned& pl : plan) {
+        if (!pl.open_end || pl.b >= 0 || pl.line.size() < 2 || level_is_main(pl.level)) continue;
+        const Point end = pl.line.back(), before = pl.line[pl.line.size() - 2];
+        hits_.clear();
+        edge_tree_.query(bgi::intersects(box_around(end, snap_)), std::back_inserter(hits_));
+        std::uint32_t best = UINT32_MAX;
+        double best_d = snap_;
+        Point best_x{};
+        for (const BoxValue& hv : hits_) {
+          const OEdge& edge = edges_[hv.second];
+          if (!level_is_main(edge.level)) continue;
+          Point qa = nodes_[edge.a].p, qb = nodes_[edge.b].p;
+          double d = point_segment_distance(end, qa, qb);
+          if (d > best_d || (d == best_d && hv.second > best)) continue;
+          Point ab = qb - qa;
+          double t = std::clamp(dot(end - qa, ab) / std::max(dot(ab, ab), 1e-12), 0.0, 1.0);
+          best = hv.second;
+          best_d = d;
+          best_x = qa + t * ab;
+        }
+        if (best == UINT32_MAX) continue;
+        const OEdge& edge = edges_[best];
+        if (distance(best_x, nodes_[edge.a].p) <= clearance_ || distance(best_x, nodes_[edge.b].p) <= clearance_) continue;
+        if (distance(best_x, before) < min_length_) continue;
+        Point dir = nodes_[edge.b].p - nodes_[edge.a].p, in = best_x - before;
+        double angle = std::abs(std::atan2(cross(dir, in), dot(dir, in)));
+        if (std::min(angle, kPi - angle) < min_angle_) continue;
+        bool taken = false;
+        for (std::uint32_t e : split_of) taken = taken || e == best;
+        if (taken) continue;
+        const auto f = static_cast<std::size_t>(-pl.b - 1);
+        fresh[f] = best_x;
+        split_of[f] = best;
+        pl.line.back() = best_x;
+        pl.on_edge = best;
+      }
+    }
     std::size_t segments = 0;
     for (const Planned& pl : plan) segments += pl.line.size() - 1;
     if (new_edges_ + segments > params_.max_edges) return false;
@@ -1858,7 +2066,8 @@ class Grower {
     // other (away from the nodes they share with it).
     for (const Planned& pl : plan) {
       for (std::size_t k = 0; k + 1 < pl.line.size(); ++k) {
-        if (!clear_of_network(pl.line[k], pl.line[k + 1], clearance_, v, pl.a, pl.b)) {
+        const std::uint32_t on = k + 2 == pl.line.size() ? pl.on_edge : UINT32_MAX;
+        if (!clear_of_network(pl.line[k], pl.line[k + 1], clearance_, v, pl.a, pl.b, on)) {
           ++stats_.patch_illegal;
           return false;
         }
@@ -1907,8 +2116,9 @@ class Grower {
         std::uint32_t s1 = k == 0 && pl.a >= 0 ? static_cast<std::uint32_t>(pl.a) : UINT32_MAX;
         std::uint32_t s2 = k + 2 == pl.line.size() && pl.b >= 0 ? static_cast<std::uint32_t>(pl.b) : UINT32_MAX;
         if (s1 == UINT32_MAX && s2 != UINT32_MAX) std::swap(s1, s2);
-        bool hit = s1 == UINT32_MAX ? touches_network(pl.line[k], pl.line[k + 1])
-                                    : first_contact(pl.line[k], pl.line[k + 1], s1, s2).found;
+        const std::uint32_t on = k + 2 == pl.line.size() ? pl.on_edge : UINT32_MAX;
+        bool hit = s1 == UINT32_MAX && on == UINT32_MAX ? touches_network(pl.line[k], pl.line[k + 1])
+                                                         : first_contact(pl.line[k], pl.line[k + 1], s1, s2, on).found;
         if (hit) {
           ++stats_.patch_illegal;
           return false;
@@ -1944,14 +2154,17 @@ class Grower {
       if (id >= 0) return static_cast<std::uint32_t>(id);
       auto f = static_cast<std::size_t>(-id - 1);
       if (fresh_id[f] == UINT32_MAX) {
-        fresh_id[f] = add_node(fresh[f]);
+        fresh_id[f] = split_of[f] != UINT32_MAX ? split_edge(split_of[f], fresh[f]) : add_node(fresh[f]);
+        stats_.ended_on_arterial += split_of[f] != UINT32_MAX;
         completed_[fresh_id[f]] = 1;
         frames_[fresh_id[f]] = 0.0;
       }
       return fresh_id[f];
     };
+    const bool seeds_local = hierarchy_ && phase_arterial_;
     for (const Planned& pl : plan) {
       std::uint32_t prev = node_id(pl.a);
+      line_nodes_.assign(1, prev);
       for (std::size_t k = 1; k < pl.line.size(); ++k) {
         std::uint32_t next = k + 1 == pl.line.size() ? node_id(pl.b) : add_node(pl.line[k]);
         if (k + 1 < pl.line.size()) completed_[next] = 1;
@@ -1959,6 +2172,14 @@ class Grower {
         ++stats_.accepted;
         ++stats_.patch_edges;
         prev = next;
+        line_nodes_.push_back(next);
+      }
+      if (seeds_local) {  // the local junctions of the example along this arterial street
+        const LibEdge& le = lp.edges[pl.edge];
+        for (const auto& [vk, local] : le.local_seeds) {
+          if (vk >= line_nodes_.size() || (pl.clipped && vk + 1 == line_nodes_.size())) continue;
+          pending_local_.push_back({line_nodes_[vk], local, le.line[vk]});
+        }
       }
       if (pl.open_end) {
         completed_[prev] = 0;
@@ -1981,6 +2202,7 @@ class Grower {
     }
     ++library_[j].uses;
     ++stats_.patches_placed;
+    stats_.arterial_patches_placed += seeds_local;
     return true;
   }
 
@@ -2004,7 +2226,10 @@ class Grower {
   }
 
   // Segment p-q is at least d from every edge of the network not at v, a or b (node ids; < 0: none).
-  bool clear_of_network(Point p, Point q, double d, std::uint32_t v, std::int64_t a, std::int64_t b) {
+  // A segment ending on street `on` (q on it) is not held to d from it, nor from the streets at its
+  // ends closer than d to q.
+  bool clear_of_network(Point p, Point q, double d, std::uint32_t v, std::int64_t a, std::int64_t b,
+                        std::uint32_t on = UINT32_MAX) {
     hits_.clear();
     Box box = box_of(p, q);
     bg::expand(box, box_around(p, d));
@@ -2013,9 +2238,12 @@ class Grower {
     auto at = [&](std::uint32_t n) {
       return n == v || (a >= 0 && n == static_cast<std::uint32_t>(a)) || (b >= 0 && n == static_cast<std::uint32_t>(b));
     };
+    auto near_on = [&](std::uint32_t n) {
+      return on != UINT32_MAX && (n == edges_[on].a || n == edges_[on].b) && distance(nodes_[n].p, q) < d;
+    };
     for (const BoxValue& hv : hits_) {
       const OEdge& edge = edges_[hv.second];
-      if (at(edge.a) || at(edge.b)) continue;
+      if (at(edge.a) || at(edge.b) || hv.second == on || near_on(edge.a) || near_on(edge.b)) continue;
       if (segment_distance(p, q, nodes_[edge.a].p, nodes_[edge.b].p) < d) return false;
     }
     return true;
@@ -2035,6 +2263,7 @@ class Grower {
     return false;
   }
 
+  std::vector<std::uint32_t> line_nodes_;
   std::vector<LibPatch> library_;
   std::vector<LibConnector> connectors_;
   std::vector<std::vector<std::uint32_t>> buckets_;

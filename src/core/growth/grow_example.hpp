@@ -63,6 +63,8 @@ struct PatchGrowParams {
   double rotation = 0.0;      // degrees: every patch turned by this (Nishida: one rotation per growth)
   double clearance = 0.0;     // metres: new patch streets keep this far from streets they do not meet;
                               // 0: 4 % of the mean street length
+  bool levels = true;         // patches tagged arterial grow first, then the others from seeds along the
+                              // arterial streets (Nishida's section 4.4); false: all patches at once
 };
 
 struct GrowParams {
@@ -130,6 +132,10 @@ struct GrowStats {
   std::size_t patch_illegal = 0;   // drawn patches that failed a legality check
   std::size_t patch_edges = 0;     // output segments copied from patches
   std::size_t patches_dropped = 0; // library patches that cross themselves (never used)
+  std::size_t arterial_patches_placed = 0;  // levels: patches placed in the arterial phase
+  std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
+  std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
+  std::size_t ended_on_arterial = 0;  // levels: local streets whose new end was put on an arterial street
   double radius = 0.0;             // the r and snap distance used
   double snap = 0.0;
 };

@@ -203,67 +203,28 @@ StreetStatistics street_statistics(const std::vector<const Polyline*>& streets) 
   return s;
 }
 
-PatchExtraction extract_patches(GeosContext& geos, const std::vector<PatchInputEdge>& example, const PatchParams& params) {
-  auto check = [](double v, const char* name, bool zero_ok) {
-    if (!std::isfinite(v) || v < 0.0 || (!zero_ok && v == 0.0)) {
-      throw_invalid_argument(std::string(name) + " must be a finite number " + (zero_ok ? ">= 0" : "> 0"),
-                             "It is " + std::to_string(v) + ".");
-    }
-  };
-  check(params.short_edge, "short_edge", true);
-  check(params.cluster_distance, "cluster_distance", true);
-  check(params.circle_min_diameter, "circle_min_diameter", true);
-  check(params.circle_max_diameter, "circle_max_diameter", false);
-  if (params.circle_max_diameter < params.circle_min_diameter) {
-    throw_invalid_argument("circle_max_diameter must be >= circle_min_diameter");
-  }
-  if (!(params.circle_compactness > 0.0 && params.circle_compactness <= 1.0)) {
-    throw_invalid_argument("circle_compactness must be in (0, 1]", "It is " + std::to_string(params.circle_compactness) + ".");
-  }
-  for (const PatchInputEdge& e : example) {
-    for (Point p : e.line) {
-      if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
-        throw_invalid_argument("example edge " + std::to_string(e.id) + " has a non-finite coordinate");
-      }
-    }
-  }
-  // The patches depend on the example's content only, not on its row order or digitising
-  // direction: edges are put in a canonical order (and direction) first.
-  std::vector<PatchInputEdge> sorted = example;
-  auto less = [](Point a, Point b) { return a.x < b.x || (a.x == b.x && a.y < b.y); };
-  for (PatchInputEdge& e : sorted) {
-    if (e.line.size() >= 2 && less(e.line.back(), e.line.front())) e.line = reversed(std::move(e.line));
-  }
-  std::stable_sort(sorted.begin(), sorted.end(), [&](const PatchInputEdge& a, const PatchInputEdge& b) {
-    if (a.line.empty() || b.line.empty()) return a.line.size() < b.line.size();
-    if (less(a.line.front(), b.line.front())) return true;
-    if (less(b.line.front(), a.line.front())) return false;
-    if (less(a.line.back(), b.line.back())) return true;
-    if (less(b.line.back(), a.line.back())) return false;
-    if (a.line.size() != b.line.size()) return a.line.size() < b.line.size();
-    if (a.road_class != b.road_class) return a.road_class < b.road_class;
-    return a.id < b.id;
-  });
-  StreetGraph g = build_street_graph(sorted);
-  if (g.streets.empty()) {
-    throw_invalid_argument("example has no edges", "The example holds no line of two distinct points.",
-                           "Pass a query (or model) whose rows hold the example's road edges.");
-  }
+namespace {
+
+// One level's patches from its street graph (see extract_patches).
+enum class Level { all, arterial, local };
+template <typename Cropped>
+std::vector<Patch> extract_level(GeosContext& geos, const StreetGraph& g, const PatchParams& params, double short_edge,
+                                 double cluster_distance, Level level, Cropped cropped) {
   const std::size_t n = g.nodes.size();
   auto degree = [&](std::uint32_t v) { return g.incident[v].size(); };
 
-  PatchExtraction out;
-  out.streets = g.streets.size();
-  for (std::uint32_t v = 0; v < n; ++v) out.junctions += degree(v) >= 3;
-  double short_edge = params.short_edge;
-  if (short_edge == 0.0) {
-    std::vector<double> lengths;
-    for (const Street& s : g.streets) lengths.push_back(s.length);
-    std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
-    short_edge = 0.4 * lengths[lengths.size() / 2];
-  }
-  out.short_edge = short_edge;
-  const double cluster_distance = params.cluster_distance > 0.0 ? params.cluster_distance : short_edge;
+  // A junction of this level: any junction, or (local level) one where a local street meets.
+  auto eligible = [&](std::uint32_t v) {
+    if (degree(v) < 3) return false;
+    if (level != Level::local) return true;
+    for (std::uint32_t s : g.incident[v]) {
+      if (!is_main_class(g.streets[s].road_class)) return true;
+    }
+    return false;
+  };
+  // A dead end the crop of the example made (near its hull's edge): the street went on.
+  std::vector<char> cut(n, 0);
+  for (std::uint32_t v = 0; v < n; ++v) cut[v] = degree(v) == 1 && cropped(g.nodes[v]);
 
   // ---- detection: structures are sets of nodes, expanded first -------------------------------
   struct Structure {
@@ -282,9 +243,13 @@ PatchExtraction extract_patches(GeosContext& geos, const std::vector<PatchInputE
       flagged[g.streets[s].a] = flagged[g.streets[s].b] = 1;
       ring_street[s] = 1;
     }
+    std::vector<char> group_of_level(n, 0);
+    for (std::uint32_t v = 0; v < n; ++v) {
+      if (flagged[v] && eligible(v)) group_of_level[uf.find(v)] = 1;
+    }
     std::unordered_map<std::size_t, std::size_t> which;
     for (std::uint32_t v = 0; v < n; ++v) {
-      if (!flagged[v]) continue;
+      if (!flagged[v] || !group_of_level[uf.find(v)]) continue;
       auto [it, added] = which.emplace(uf.find(v), structures.size());
       if (added) structures.push_back({{}, true});
       structures[it->second].nodes.push_back(v);
@@ -330,9 +295,12 @@ PatchExtraction extract_patches(GeosContext& geos, const std::vector<PatchInputE
         if (in_structure[it->second]) taken = true;
         if (std::find(st.nodes.begin(), st.nodes.end(), it->second) == st.nodes.end()) st.nodes.push_back(it->second);
       }
-      std::size_t approaches = 0;
-      for (std::uint32_t v : st.nodes) approaches += degree(v) >= 3;
-      if (taken || approaches < 2) continue;  // flagged already, or a closed street with one way in
+      std::size_t approaches = 0, of_level = 0;
+      for (std::uint32_t v : st.nodes) {
+        approaches += degree(v) >= 3;
+        of_level += eligible(v);
+      }
+      if (taken || approaches < 2 || of_level == 0) continue;  // flagged already, a closed street with one way in, another level
       std::sort(st.nodes.begin(), st.nodes.end());
       for (std::uint32_t v : st.nodes) in_structure[v] = 1;
       // The ring's streets: both ends on the ring and the street on the face's boundary.
@@ -353,7 +321,7 @@ PatchExtraction extract_patches(GeosContext& geos, const std::vector<PatchInputE
   {  // tightly clustered junctions (interchanges, ramps): >= 3 within cluster_distance of each other
     std::vector<PointValue> values;
     for (std::uint32_t v = 0; v < n; ++v) {
-      if (degree(v) >= 3 && !in_structure[v]) values.emplace_back(BPoint(g.nodes[v].x, g.nodes[v].y), v);
+      if (eligible(v) && !in_structure[v]) values.emplace_back(BPoint(g.nodes[v].x, g.nodes[v].y), v);
     }
     bgi::rtree<PointValue, bgi::rstar<16>> tree(values.begin(), values.end());
     UnionFind uf(n);
@@ -411,7 +379,7 @@ PatchExtraction extract_patches(GeosContext& geos, const std::vector<PatchInputE
       for (std::uint32_t s : g.incident[v]) {
         const Street& st = g.streets[s];
         std::uint32_t u = st.a == v ? st.b : st.a;
-        if (owner[u] >= 0 || st.length >= short_edge) continue;
+        if (owner[u] >= 0 || st.length >= short_edge || cut[u]) continue;  // a cut street stays a connector
         owner[u] = id;
         w.nodes.push_back(u);
         q.push_back(u);
@@ -421,7 +389,7 @@ PatchExtraction extract_patches(GeosContext& geos, const std::vector<PatchInputE
   };
   for (Structure& s : structures) expand(s.nodes, s.roundabout, !s.roundabout);
   for (std::uint32_t v = 0; v < n; ++v) {
-    if (owner[v] < 0 && degree(v) >= 3) expand({v}, false, false);
+    if (owner[v] < 0 && eligible(v)) expand({v}, false, false);
   }
 
   // ---- edges, roles and tags -----------------------------------------------------------------
@@ -467,12 +435,15 @@ PatchExtraction extract_patches(GeosContext& geos, const std::vector<PatchInputE
         e.line = reversed(std::move(e.line));
       }
       bool outside = owner[to] != pid;
-      if (degree(to) == 1) {
+      if (degree(to) == 1 && !cut[to]) {
         e.role = PatchEdgeRole::dead_end;
         ++dead_ends;
       } else if (outside) {
-        e.role = owner[to] >= 0 ? PatchEdgeRole::connector : PatchEdgeRole::dead_end;
+        // The far end is another patch's junction, a junction of the other level (a local patch's
+        // arterial street reaching an arterial junction), or a street the crop cut.
+        e.role = owner[to] >= 0 || degree(to) >= 3 || cut[to] ? PatchEdgeRole::connector : PatchEdgeRole::dead_end;
         connectors += e.role == PatchEdgeRole::connector;
+        dead_ends += e.role == PatchEdgeRole::dead_end;
       } else {
         e.role = PatchEdgeRole::inner;
         if (uf.find(from) == uf.find(to)) loop = true;
@@ -487,11 +458,13 @@ PatchExtraction extract_patches(GeosContext& geos, const std::vector<PatchInputE
       add_tag(e.tags, main ? "main" : "local");
       if (e.role == PatchEdgeRole::connector) add_tag(e.tags, "connector");
       if (e.role == PatchEdgeRole::dead_end) add_tag(e.tags, "dead-end");
+      if (cut[to]) add_tag(e.tags, "cut");
       if (degree(from) >= 3 || degree(to) >= 3) add_tag(e.tags, "snappable");
       add_tag(e.tags, edge_curved ? "curved" : "straight");
       if (ring_street[patch_streets[p][k]]) add_tag(e.tags, "roundabout");
       e.start_tags = vertex_tags(from, false);
       e.end_tags = vertex_tags(to, e.role == PatchEdgeRole::connector);
+      if (cut[to]) std::replace(e.end_tags.begin(), e.end_tags.end(), std::string("dead-end"), std::string("cut"));
       patch.edges.push_back(std::move(e));
     }
     // Connectors first (the first one's inner end anchors a patch placed at a seed), then in
@@ -508,6 +481,120 @@ PatchExtraction extract_patches(GeosContext& geos, const std::vector<PatchInputE
     if (straight_main && any_local && connectors > 0) add_tag(patch.tags, "initial");
     if (any_main) add_tag(patch.tags, "main");
     if (any_local) add_tag(patch.tags, "local");
+    if (level == Level::arterial) add_tag(patch.tags, "arterial");
+  }
+  return patches;
+}
+
+}  // namespace
+
+PatchExtraction extract_patches(GeosContext& geos, const std::vector<PatchInputEdge>& example, const PatchParams& params) {
+  auto check = [](double v, const char* name, bool zero_ok) {
+    if (!std::isfinite(v) || v < 0.0 || (!zero_ok && v == 0.0)) {
+      throw_invalid_argument(std::string(name) + " must be a finite number " + (zero_ok ? ">= 0" : "> 0"),
+                             "It is " + std::to_string(v) + ".");
+    }
+  };
+  check(params.short_edge, "short_edge", true);
+  check(params.cluster_distance, "cluster_distance", true);
+  check(params.circle_min_diameter, "circle_min_diameter", true);
+  check(params.circle_max_diameter, "circle_max_diameter", false);
+  check(params.crop_margin, "crop_margin", true);
+  if (params.circle_max_diameter < params.circle_min_diameter) {
+    throw_invalid_argument("circle_max_diameter must be >= circle_min_diameter");
+  }
+  if (!(params.circle_compactness > 0.0 && params.circle_compactness <= 1.0)) {
+    throw_invalid_argument("circle_compactness must be in (0, 1]", "It is " + std::to_string(params.circle_compactness) + ".");
+  }
+  for (const PatchInputEdge& e : example) {
+    for (Point p : e.line) {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+        throw_invalid_argument("example edge " + std::to_string(e.id) + " has a non-finite coordinate");
+      }
+    }
+  }
+  // The patches depend on the example's content only, not on its row order or digitising
+  // direction: edges are put in a canonical order (and direction) first.
+  std::vector<PatchInputEdge> sorted = example;
+  auto less = [](Point a, Point b) { return a.x < b.x || (a.x == b.x && a.y < b.y); };
+  for (PatchInputEdge& e : sorted) {
+    if (e.line.size() >= 2 && less(e.line.back(), e.line.front())) e.line = reversed(std::move(e.line));
+  }
+  std::stable_sort(sorted.begin(), sorted.end(), [&](const PatchInputEdge& a, const PatchInputEdge& b) {
+    if (a.line.empty() || b.line.empty()) return a.line.size() < b.line.size();
+    if (less(a.line.front(), b.line.front())) return true;
+    if (less(b.line.front(), a.line.front())) return false;
+    if (less(a.line.back(), b.line.back())) return true;
+    if (less(b.line.back(), a.line.back())) return false;
+    if (a.line.size() != b.line.size()) return a.line.size() < b.line.size();
+    if (a.road_class != b.road_class) return a.road_class < b.road_class;
+    return a.id < b.id;
+  });
+  StreetGraph g = build_street_graph(sorted);
+  if (g.streets.empty()) {
+    throw_invalid_argument("example has no edges", "The example holds no line of two distinct points.",
+                           "Pass a query (or model) whose rows hold the example's road edges.");
+  }
+  const std::size_t n = g.nodes.size();
+  PatchExtraction out;
+  out.streets = g.streets.size();
+  for (std::uint32_t v = 0; v < n; ++v) out.junctions += g.incident[v].size() >= 3;
+  double short_edge = params.short_edge;
+  if (short_edge == 0.0) {
+    std::vector<double> lengths;
+    for (const Street& s : g.streets) lengths.push_back(s.length);
+    std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+    short_edge = 0.4 * lengths[lengths.size() / 2];
+  }
+  out.short_edge = short_edge;
+  const double cluster_distance = params.cluster_distance > 0.0 ? params.cluster_distance : short_edge;
+  // The crop's edge: the convex hull of the example (GEOS), a dead end within crop_margin of it
+  // is a street the crop cut.
+  const double crop_margin = params.crop_margin;
+  GEOSContextHandle_t h = geos.handle();
+  GeomPtr hull_edge{nullptr, GeomDeleter{geos.handle()}};
+  if (crop_margin > 0.0) {
+    std::vector<GEOSGeometry*> pts;
+    for (Point p : g.nodes) pts.push_back(GEOSGeom_createPointFromXY_r(h, p.x, p.y));
+    for (const Street& s : g.streets) {
+      for (Point p : s.line) pts.push_back(GEOSGeom_createPointFromXY_r(h, p.x, p.y));
+    }
+    if (std::find(pts.begin(), pts.end(), nullptr) != pts.end()) {
+      for (GEOSGeometry* pt : pts) {
+        if (pt != nullptr) GEOSGeom_destroy_r(h, pt);
+      }
+      geos.fail("hull point");
+    }
+    GeomPtr cloud = own(geos, GEOSGeom_createCollection_r(h, GEOS_MULTIPOINT, pts.data(), static_cast<unsigned>(pts.size())), "hull points");
+    GeomPtr hull = own(geos, GEOSConvexHull_r(h, cloud.get()), "convex hull");
+    hull_edge = own(geos, GEOSBoundary_r(h, hull.get()), "hull boundary");
+  }
+  auto cropped = [&](Point p) {
+    if (!hull_edge) return false;
+    GeomPtr pt = own(geos, GEOSGeom_createPointFromXY_r(h, p.x, p.y), "dead end");
+    double d = INFINITY;
+    if (GEOSDistance_r(h, hull_edge.get(), pt.get(), &d) == 0) geos.fail("distance to the hull");
+    return d <= crop_margin;
+  };
+  // Levels (Nishida et al. 2016, section 3): arterial patches from the graph of the main streets
+  // only (its streets run on through the junctions where local streets meet them), local patches
+  // from the whole graph around the junctions where a local street meets.
+  bool any_main = false, any_local = false;
+  for (const Street& s : g.streets) {
+    (is_main_class(s.road_class) ? any_main : any_local) = true;
+  }
+  std::vector<Patch> patches;
+  if (params.levels && any_main && any_local) {
+    std::vector<PatchInputEdge> main_edges;
+    for (const PatchInputEdge& e : sorted) {
+      if (is_main_class(e.road_class)) main_edges.push_back(e);
+    }
+    StreetGraph ga = build_street_graph(main_edges);
+    patches = extract_level(geos, ga, params, short_edge, cluster_distance, Level::arterial, cropped);
+    std::vector<Patch> local = extract_level(geos, g, params, short_edge, cluster_distance, Level::local, cropped);
+    for (Patch& p : local) patches.push_back(std::move(p));
+  } else {
+    patches = extract_level(geos, g, params, short_edge, cluster_distance, Level::all, cropped);
   }
   // A patch without an edge (a junction whose streets all went elsewhere cannot happen; kept
   // for safety) is dropped, and the ids stay dense.
@@ -515,6 +602,7 @@ PatchExtraction extract_patches(GeosContext& geos, const std::vector<PatchInputE
   for (Patch& patch : patches) {
     if (patch.edges.empty()) continue;
     patch.id = ++next;
+    out.arterial_patches += std::find(patch.tags.begin(), patch.tags.end(), "arterial") != patch.tags.end();
     out.patches.push_back(std::move(patch));
   }
   return out;

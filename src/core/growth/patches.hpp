@@ -36,6 +36,10 @@ struct PatchParams {
   double circle_min_diameter = 8.0;
   double circle_max_diameter = 120.0;
   double circle_compactness = 0.8;  // 4 pi area / perimeter^2 of the face, 1 for a circle
+  double crop_margin = 0.0;         // metres; 0: off. A dead end this close to the example's convex
+                                    // hull is a street the crop cut: a connector tagged cut
+  bool levels = true;               // arterial patches (tag arterial) from the main streets' graph, then
+                                    // local patches around the junctions where local streets meet
 };
 
 enum class PatchEdgeRole { inner, connector, dead_end };
@@ -63,6 +67,7 @@ struct PatchExtraction {
   double short_edge = 0.0;  // the threshold used
   std::size_t streets = 0;  // edges of the street graph
   std::size_t junctions = 0;
+  std::size_t arterial_patches = 0;  // levels: the first ones are the arterial level's
 };
 
 // OSM's arterial classes (Nishida's Table 1, plus motorway and trunk) and the example files'
