@@ -358,3 +358,207 @@ TEST(GrowExample, FillReseedsWhereTheFrontsDied) {
   }
   EXPECT_EQ(bad, 0u);
 }
+
+namespace {
+
+// A north-up raster over [0, 1000]² of 100 m cells, `bands` bands filled by f(band, x, y) at
+// each cell centre.
+template <typename F>
+GridField field_over_region(int bands, F&& f) {
+  GridField g;
+  g.origin_x = 0.0;
+  g.origin_y = 1000.0;
+  g.scale_x = 100.0;
+  g.scale_y = -100.0;
+  g.width = 10;
+  g.height = 10;
+  g.bands = bands;
+  for (int b = 0; b < bands; ++b) {
+    for (int row = 0; row < 10; ++row) {
+      for (int col = 0; col < 10; ++col) g.values.push_back(f(b, 50.0 + 100.0 * col, 950.0 - 100.0 * row));
+    }
+  }
+  return g;
+}
+
+// The share of edges (by length) within `tolerance` degrees of `azimuth` modulo 90° (a grid's
+// two directions), azimuths clockwise from north.
+double share_along(const std::vector<GrownEdge>& edges, double azimuth, double tolerance) {
+  double along = 0.0, all = 0.0;
+  for (const GrownEdge& e : edges) {
+    const double len = distance(e.a, e.b);
+    double az = std::atan2(e.b.x - e.a.x, e.b.y - e.a.y) * 180.0 / 3.14159265358979323846;
+    double off = std::fmod(std::fmod(az - azimuth, 90.0) + 90.0, 90.0);
+    along += std::min(off, 90.0 - off) <= tolerance ? len : 0.0;
+    all += len;
+  }
+  return along / all;
+}
+
+}  // namespace
+
+TEST(GrowExample, DirectionRasterSetsTheRotation) {
+  // A uniform field of azimuth 30° (and 210°, the same undirected line): the grid example grows
+  // turned onto it. Without the field and rotation off, the grid keeps the axes (0°).
+  Fixture f;
+  GrowInput in = f.input();
+  in.direction = field_over_region(1, [](int, double, double) { return 210.0; });
+  GrowParams p;
+  p.seed = 4;
+  p.max_edges = 400;
+  p.rotation = false;
+  GrowResult r = grow_example(f.geos, in, p);
+  ASSERT_GT(r.edges.size(), 150u);
+  EXPECT_GT(share_along(r.edges, 30.0, 3.0), 0.9);
+  EXPECT_GT(r.stats.directed, 0u);
+  EXPECT_GT(r.stats.guided, 0u);
+  GrowInput plain = f.input();
+  GrowResult q = grow_example(f.geos, plain, p);
+  EXPECT_GT(share_along(q.edges, 0.0, 3.0), 0.9);
+  EXPECT_LT(share_along(q.edges, 30.0, 3.0), 0.1);
+  // Parametric growth follows it too.
+  GrowInput par;
+  par.region = f.region.get();
+  par.seeds = {{500.0, 500.0}};
+  par.direction = in.direction;
+  GrowParams pp;
+  pp.parametric = true;
+  pp.seed = 5;
+  pp.snap = 20.0;
+  pp.min_angle = 70.0;
+  pp.shape.angle_deviation = 0.0;
+  pp.max_edges = 300;
+  GrowResult pr = grow_example(f.geos, par, pp);
+  ASSERT_GT(pr.edges.size(), 100u);
+  EXPECT_GT(share_along(pr.edges, 30.0, 3.0), 0.8);
+}
+
+TEST(GrowExample, DirectionRasterNodataFallsBackToNodeMatching) {
+  // The field covers the west half only (nodata in the east): edges in the west follow 30°, edges
+  // in the east keep the example's own axes (rotation off).
+  Fixture f;
+  GrowInput in = f.input();
+  in.seeds = {{250.0, 500.0}, {750.0, 500.0}};
+  in.direction = field_over_region(1, [](int, double x, double) { return x < 500.0 ? 30.0 : NAN; });
+  GrowParams p;
+  p.seed = 4;
+  p.max_edges = 600;
+  p.rotation = false;
+  GrowResult r = grow_example(f.geos, in, p);
+  std::vector<GrownEdge> west, east;
+  for (const GrownEdge& e : r.edges) {
+    const double x = 0.5 * (e.a.x + e.b.x);
+    if (x < 380.0) west.push_back(e);
+    if (x > 620.0) east.push_back(e);
+  }
+  ASSERT_GT(west.size(), 50u);
+  ASSERT_GT(east.size(), 50u);
+  EXPECT_GT(share_along(west, 30.0, 3.0), 0.8);
+  EXPECT_GT(share_along(east, 0.0, 3.0), 0.8);
+}
+
+TEST(GrowExample, WeightRasterChoosesTheExample) {
+  // Weights 1/0 in the west and 0/1 in the east: only example 0's edges in the west, only example
+  // 1's in the east (away from the 100 m wide bilinear seam and an edge's length).
+  Fixture f;
+  GrowInput in = f.input();
+  in.example = grid(8, 50.0);
+  for (ExampleEdge e : grid(4, 140.0)) {
+    e.example = 1;
+    in.example.push_back(e);
+  }
+  in.seeds = {{250.0, 500.0}, {750.0, 500.0}};
+  in.weights = field_over_region(2, [](int band, double x, double) { return (x < 500.0) == (band == 0) ? 1.0 : 0.0; });
+  GrowParams p;
+  p.seed = 6;
+  p.rotation = false;
+  p.max_edges = 600;
+  GrowResult r = grow_example(f.geos, in, p);
+  ASSERT_GT(r.edges.size(), 200u);
+  std::size_t west[2] = {0, 0}, east[2] = {0, 0};
+  for (const GrownEdge& e : r.edges) {
+    if (e.example < 0) continue;
+    const double x = 0.5 * (e.a.x + e.b.x);
+    if (x < 300.0) ++west[e.example];
+    if (x > 700.0) ++east[e.example];
+  }
+  EXPECT_GT(west[0], 50u);
+  EXPECT_EQ(west[1], 0u);
+  EXPECT_GT(east[1], 20u);
+  EXPECT_EQ(east[0], 0u);
+  EXPECT_GT(r.stats.weighted, 0u);
+  // The same raster swapped: the other way round, so the raster (not the seeds) decides.
+  in.weights = field_over_region(2, [](int band, double x, double) { return (x < 500.0) == (band == 1) ? 1.0 : 0.0; });
+  GrowResult s = grow_example(f.geos, in, p);
+  std::size_t swapped_west0 = 0;
+  for (const GrownEdge& e : s.edges) swapped_west0 += e.example == 0 && 0.5 * (e.a.x + e.b.x) < 300.0;
+  EXPECT_EQ(swapped_west0, 0u);
+}
+
+TEST(GrowExample, WeightRasterNodataFallsBackToTheBlend) {
+  // Weights (all example 1) on the west half only; the east half is nodata, where the gradient
+  // decides (mostly example 1 there too, as it runs to the last example in the east). Without a
+  // gradient, nodata means every example alike.
+  Fixture f;
+  GrowInput in = f.input();
+  in.example = grid(8, 50.0);
+  for (ExampleEdge e : grid(4, 140.0)) {
+    e.example = 1;
+    in.example.push_back(e);
+  }
+  in.seeds = {{250.0, 500.0}, {750.0, 500.0}};
+  in.weights = field_over_region(2, [](int band, double x, double) { return x < 500.0 ? (band == 1 ? 1.0 : 0.0) : NAN; });
+  GrowParams p;
+  p.seed = 6;
+  p.rotation = false;
+  p.max_edges = 600;
+  p.blend.mode = BlendParams::Mode::gradient;
+  p.blend.angle = 180.0;  // the first example in the east
+  GrowResult r = grow_example(f.geos, in, p);
+  std::size_t west[2] = {0, 0}, east[2] = {0, 0};
+  for (const GrownEdge& e : r.edges) {
+    if (e.example < 0) continue;
+    const double x = 0.5 * (e.a.x + e.b.x);
+    if (x < 300.0) ++west[e.example];
+    if (x > 800.0) ++east[e.example];
+  }
+  EXPECT_EQ(west[0], 0u);
+  EXPECT_GT(west[1], 10u);
+  EXPECT_GT(east[0], east[1]);
+  GrowParams none = p;
+  none.blend.mode = BlendParams::Mode::none;
+  EXPECT_NO_THROW(grow_example(f.geos, in, none));
+}
+
+TEST(GrowExample, BadControlRastersAreRejected) {
+  Fixture f;
+  GrowInput in = f.input();
+  in.example = grid(8, 50.0);
+  for (ExampleEdge e : grid(4, 140.0)) {
+    e.example = 1;
+    in.example.push_back(e);
+  }
+  GrowParams p;
+  p.max_edges = 50;
+  GrowInput bands = in;
+  bands.weights = field_over_region(3, [](int, double, double) { return 1.0; });
+  EXPECT_THROW(grow_example(f.geos, bands, p), Error);
+  GrowInput negative = in;
+  negative.weights = field_over_region(2, [](int, double x, double) { return x < 300.0 ? -1.0 : 1.0; });
+  EXPECT_THROW(grow_example(f.geos, negative, p), Error);
+  GrowInput away = in;
+  away.weights = field_over_region(2, [](int, double, double) { return 1.0; });
+  away.weights.origin_x = 5000.0;
+  EXPECT_THROW(grow_example(f.geos, away, p), Error);
+  GrowInput fine = in;
+  fine.weights = field_over_region(2, [](int, double, double) { return 1.0; });
+  EXPECT_NO_THROW(grow_example(f.geos, fine, p));  // a weight raster is a blend of its own
+  GrowInput direction = f.input();
+  direction.direction = field_over_region(2, [](int, double, double) { return 0.0; });
+  EXPECT_THROW(grow_example(f.geos, direction, p), Error);
+  direction.direction = field_over_region(1, [](int, double, double) { return INFINITY; });
+  EXPECT_THROW(grow_example(f.geos, direction, p), Error);
+  direction.direction = field_over_region(1, [](int, double, double) { return 0.0; });
+  direction.direction.origin_y = -5000.0;
+  EXPECT_THROW(grow_example(f.geos, direction, p), Error);
+}

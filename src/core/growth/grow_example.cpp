@@ -191,6 +191,7 @@ class Grower {
   Grower(GeosContext& geos, const GrowInput& input, const GrowParams& params)
       : geos_(geos), params_(params), rng_(params.seed), line_(geos) {
     check_params();
+    weights_ = &input.weights;
     if (params.parametric) {
       shape_ = params.shape;
       mean_length_ = shape_.length;
@@ -203,6 +204,7 @@ class Grower {
     }
     prepare_legal_area(input);
     prepare_guide(input.guide);
+    prepare_fields(input);
     radius_ = params.radius > 0.0 ? params.radius : 3.0 * mean_length_;
     snap_ = params.snap > 0.0 ? params.snap : 0.45 * mean_length_;
     min_length_ = params.parametric ? shape_.min_length : 0.15 * mean_length_;
@@ -438,9 +440,9 @@ class Grower {
     }
     examples_.clear();
     examples_.resize(static_cast<std::size_t>(count));
-    if (count > 1 && params_.blend.mode == BlendParams::Mode::none) {
+    if (count > 1 && params_.blend.mode == BlendParams::Mode::none && weights_->empty()) {
       throw_invalid_argument("several examples need a blend", "There are " + std::to_string(count) + " examples.",
-                             "Set params blend to 'gradient' or 'points'.");
+                             "Set params blend to 'gradient' or 'points', or pass a weight raster.");
     }
     if (params_.blend.mode == BlendParams::Mode::points && params_.blend.points.size() != examples_.size()) {
       throw_invalid_argument("blend_points must hold one point per example",
@@ -843,7 +845,7 @@ class Grower {
     }
     // A seed that an edge has come to pass closely would start a T without a node: leave it.
     if (incident.empty() && crowded(p, min_length_, v)) return;
-    const double guide = guide_angle(p);
+    const double guide = direction_angle(p);
     if (params_.parametric) {
       parametric_step(v, 0, guide);
       return;
@@ -971,7 +973,11 @@ class Grower {
     if (n < 2) return;
     std::vector<double> w(n, 0.0);
     const BlendParams& b = params_.blend;
-    if (b.mode == BlendParams::Mode::gradient) {
+    if (weights_from_raster(p, w)) {
+      ++stats_.weighted;
+    } else if (b.mode == BlendParams::Mode::none) {
+      std::fill(w.begin(), w.end(), 1.0);  // a weight raster's nodata without another blend: all alike
+    } else if (b.mode == BlendParams::Mode::gradient) {
       const double a = b.angle * kPi / 180.0;
       double u = (p.x * std::cos(a) + p.y * std::sin(a) - blend_min_) / std::max(blend_max_ - blend_min_, 1e-9);
       double t = std::clamp(u, 0.0, 1.0) * static_cast<double>(n - 1);
@@ -2352,6 +2358,74 @@ class Grower {
       blend_sigma_ = b.sigma > 0.0 ? b.sigma : 0.25 * distance({x0, y0}, {x1, y1});
     }
   }
+
+  // The weight and direction rasters: checked against the examples and the region, the
+  // direction's azimuths (degrees clockwise from north) turned into the growth's angles (radians
+  // counter-clockwise from east).
+  void prepare_fields(const GrowInput& input) {
+    GEOSContextHandle_t h = geos_.handle();
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    if (!input.weights.empty() || !input.direction.empty()) {
+      GeomPtr hull = own(geos_, GEOSEnvelope_r(h, region_geom_), "region envelope");
+      if (GEOSGeom_getXMin_r(h, hull.get(), &x0) == 0 || GEOSGeom_getYMin_r(h, hull.get(), &y0) == 0 ||
+          GEOSGeom_getXMax_r(h, hull.get(), &x1) == 0 || GEOSGeom_getYMax_r(h, hull.get(), &y1) == 0) {
+        geos_.fail("region extent");
+      }
+    }
+    if (!input.weights.empty()) {
+      check_weights(input.weights, "weights");
+      if (params_.parametric || params_.use_patches) throw_invalid_argument("weights need several examples");
+      if (static_cast<std::size_t>(input.weights.bands) != examples_.size()) {
+        throw_invalid_argument("weights raster must have one band per example",
+                               "It has " + std::to_string(input.weights.bands) + " band(s) for " +
+                                   std::to_string(examples_.size()) + " example(s).");
+      }
+      if (!overlaps(input.weights, x0, y0, x1, y1)) throw_invalid_argument("weights raster does not overlap the region");
+    }
+    if (!input.direction.empty()) {
+      check_directions(input.direction, "direction");
+      if (input.direction.bands != 1) {
+        throw_invalid_argument("direction raster must have one band",
+                               "It has " + std::to_string(input.direction.bands) + ".");
+      }
+      if (!overlaps(input.direction, x0, y0, x1, y1)) {
+        throw_invalid_argument("direction raster does not overlap the region");
+      }
+      direction_ = input.direction;
+      for (double& a : direction_.values) {
+        if (!std::isnan(a)) a = kPi / 2.0 - std::fmod(a, 360.0) * kPi / 180.0;
+      }
+    }
+  }
+
+  // The weight raster's weights at p; false where it does not decide (no raster, every band
+  // nodata, or all weights 0). A nodata band next to bands with values weighs 0.
+  bool weights_from_raster(Point p, std::vector<double>& w) const {
+    if (weights_->empty()) return false;
+    double sum = 0.0;
+    bool any = false;
+    for (std::size_t i = 0; i < w.size(); ++i) {
+      const double x = sample_bilinear(*weights_, static_cast<int>(i), p);
+      any = any || !std::isnan(x);
+      w[i] = std::isnan(x) ? 0.0 : x;
+      sum += w[i];
+    }
+    return any && sum > 0.0;
+  }
+
+  // θ's direction at p (radians, undirected): the direction raster's, else the guide's, else NaN.
+  double direction_angle(Point p) {
+    if (!direction_.empty()) {
+      const double a = sample_axial_bilinear(direction_, 0, p);
+      if (!std::isnan(a)) {
+        ++stats_.directed;
+        return a;
+      }
+    }
+    return guide_angle(p);
+  }
+  const GridField* weights_ = nullptr;
+  GridField direction_;
 
   // The guide's direction (radians, undirected) at p: the tangent of its nearest point; NaN
   // without a guide or farther than guide_reach from it.

@@ -18,6 +18,7 @@
 
 #include "core/geos_context.hpp"
 #include "core/growth/patches.hpp"
+#include "core/raster/grid_field.hpp"
 #include "core/streets/polyline.hpp"
 
 namespace streetgen::core {
@@ -102,6 +103,15 @@ struct GrowInput {
   std::vector<Polyline> guide;           // direction control: θ follows the tangent of the nearest guide
                                          // point (undirected) instead of node matching; may be empty
   std::vector<Patch> patches;            // use_patches: the patch library (extract_patches)
+  // Blending by a weight raster: band k is the weight of example k (>= 0), sampled bilinearly at
+  // the node; where every band is nodata, or all weights are 0, blend (gradient or points) decides,
+  // and without one every example is equally likely. Empty: no weight raster.
+  GridField weights;
+  // Direction control by a raster of angles in degrees clockwise from north (azimuths, as
+  // ST_Azimuth), undirected (a and a + 180 are one direction), sampled by axial bilinear
+  // interpolation; it sets θ like the guide does, and where it is nodata the guide (if any) and
+  // then node matching decide. Empty: no direction raster.
+  GridField direction;
 };
 
 struct GrownEdge {
@@ -118,7 +128,9 @@ struct GrowStats {
   std::size_t steps = 0;           // unfinished nodes processed
   std::size_t unmatched = 0;       // steps where no example node matched
   std::size_t fallback = 0;        // of those, steps grown parametrically instead
-  std::size_t guided = 0;          // steps whose θ the guide set
+  std::size_t guided = 0;          // steps whose θ the guide or the direction raster set
+  std::size_t directed = 0;        // of the steps, those where the direction raster had a value
+  std::size_t weighted = 0;        // steps whose example the weight raster chose
   std::size_t coherent = 0;        // steps that copied the example node their edge was copied to
   std::size_t proposals = 0;
   std::size_t accepted = 0;
@@ -148,7 +160,9 @@ struct GrowResult {
 // Throws invalid_argument for an example (unless params.parametric) without two distinct nodes, a region that is empty,
 // invalid or not polygonal, obstacles that are not polygonal, no seed, a seed outside the region
 // or inside an obstacle, and parameters out of range. Polls interrupts once per step.
-// Several examples (ExampleEdge::example) need params.blend; a guide needs at least one segment.
+// Several examples (ExampleEdge::example) need params.blend or a weight raster; a guide needs at
+// least one segment. A weight raster needs one band per example and finite weights >= 0, a
+// direction raster finite angles and one band; either must overlap the region's extent.
 GrowResult grow_example(GeosContext& geos, const GrowInput& input, const GrowParams& params);
 
 }  // namespace streetgen::core
