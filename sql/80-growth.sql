@@ -13,18 +13,65 @@ CREATE FUNCTION streetgen._streetgen_grow_example(example_geoms bytea[], example
     min_length double precision, min_degree integer, max_degree integer, angle_deviation double precision,
     road_class text, guide bytea, guide_reach double precision, blend text, blend_angle double precision,
     blend_x double precision[], blend_y double precision[], blend_sigma double precision,
+    weights_grid double precision[], weights_values double precision[], direction_grid double precision[],
+    direction_values double precision[],
     OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text, OUT geom bytea)
   RETURNS SETOF record
   LANGUAGE c IMMUTABLE PARALLEL SAFE
   COST 1000000 ROWS 1000
   AS 'MODULE_PATHNAME', '_streetgen_grow_example';
 
+-- A control raster (weights for blending, or a direction field) as plain arrays for the C call:
+-- grid = [upper-left x, upper-left y, scale x, scale y, width, height, bands] and every band's
+-- values (ST_DumpValues: band-major, row-major from the upper-left row, NULL for nodata). The
+-- raster must share the region's SRID, overlap it, have no skew, and stay below 16 million values
+-- (clip it to the region first: ST_Clip). Sampling (bilinear) happens in C++.
+CREATE FUNCTION streetgen._control_raster(rast raster, what text, region geometry,
+    OUT grid double precision[], OUT vals double precision[])
+  LANGUAGE plpgsql STABLE
+  SET search_path FROM CURRENT
+  AS $$
+DECLARE
+  m record;
+BEGIN
+  IF rast IS NULL THEN
+    RETURN;
+  END IF;
+  IF ST_IsEmpty(rast) OR ST_NumBands(rast) = 0 THEN
+    RAISE EXCEPTION '% raster is empty', what USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It has %s x %s cells and %s band(s).', ST_Width(rast), ST_Height(rast), ST_NumBands(rast));
+  END IF;
+  IF ST_SRID(rast) <> ST_SRID(region) THEN
+    RAISE EXCEPTION '% raster must have the SRID of the region', what USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('The raster has SRID %s, the region %s.', ST_SRID(rast), ST_SRID(region)),
+      HINT = 'ST_Transform the raster to the region''s SRID.';
+  END IF;
+  m := ST_MetaData(rast);
+  IF m.skewx <> 0 OR m.skewy <> 0 THEN
+    RAISE EXCEPTION '% raster must not be skewed', what USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('Its skew is (%s, %s).', m.skewx, m.skewy), HINT = 'ST_Rescale or ST_Transform it onto a north-up grid.';
+  END IF;
+  IF NOT ST_Intersects(ST_Envelope(rast), region) THEN
+    RAISE EXCEPTION '% raster does not overlap the region', what USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('The raster covers %s, the region %s.', ST_AsText(ST_Envelope(rast)), ST_AsText(ST_Envelope(region)));
+  END IF;
+  IF m.width::bigint * m.height * m.numbands > 16777216 THEN
+    RAISE EXCEPTION '% raster is too large', what USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It holds %s x %s cells in %s band(s), more than 16777216 values.', m.width, m.height, m.numbands),
+      HINT = 'ST_Clip it to the region or ST_Rescale it to larger cells.';
+  END IF;
+  grid := ARRAY[m.upperleftx, m.upperlefty, m.scalex, m.scaley, m.width, m.height, m.numbands]::double precision[];
+  SELECT array_agg(u.v ORDER BY d.nband, u.o) INTO vals
+    FROM ST_DumpValues(rast, NULL::integer[], true) AS d, unnest(d.valarray) WITH ORDINALITY AS u(v, o);
+END
+$$;
+
 -- The one reader and checker behind grow_example (one or several examples) and grow_parametric
 -- (examples NULL). An example is a query returning geom (LineStrings or MultiLineStrings),
 -- optionally road_class and id, or the name of a model (its axes). Queries run with the caller's
 -- rights.
 CREATE FUNCTION streetgen._grow(examples text[], region geometry, seeds geometry, obstacles geometry, params jsonb,
-    existing text, guide geometry,
+    existing text, guide geometry, direction raster DEFAULT NULL, weights raster DEFAULT NULL,
     OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text,
     OUT geom geometry)
   RETURNS SETOF record
@@ -62,6 +109,8 @@ DECLARE
   variant integer;
   existing_geoms bytea[];
   existing_srids integer[];
+  w record;
+  dir record;
 BEGIN
   IF NOT parametric AND (cardinality(examples) = 0 OR array_position(examples, NULL) IS NOT NULL) THEN
     RAISE EXCEPTION 'example must not be null' USING ERRCODE = 'null_value_not_allowed';
@@ -133,6 +182,26 @@ BEGIN
     RAISE EXCEPTION 'guide must have the SRID of the region' USING ERRCODE = 'invalid_parameter_value',
       DETAIL = format('The guide has SRID %s, the region %s.', ST_SRID(guide), ST_SRID(region));
   END IF;
+  IF weights IS NOT NULL AND (parametric OR cardinality(examples) < 2) THEN
+    RAISE EXCEPTION 'weights need several examples' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('There are %s.', coalesce(cardinality(examples), 0));
+  END IF;
+  IF weights IS NOT NULL AND ST_NumBands(weights) <> cardinality(examples) THEN
+    RAISE EXCEPTION 'weights raster must have one band per example' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It has %s band(s) for %s examples.', ST_NumBands(weights), cardinality(examples)),
+      HINT = 'Band k is the weight of example k (ST_AddBand).';
+  END IF;
+  IF direction IS NOT NULL AND ST_NumBands(direction) > 1 THEN
+    RAISE EXCEPTION 'direction raster must have one band' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It has %s.', ST_NumBands(direction)), HINT = 'ST_Band(rast, n) picks one.';
+  END IF;
+  w := streetgen._control_raster(weights, 'weights', region);
+  IF weights IS NOT NULL AND EXISTS (SELECT 1 FROM unnest(w.vals) AS v WHERE v < 0 OR v = 'infinity') THEN
+    RAISE EXCEPTION 'weights raster must hold finite weights >= 0' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It holds %s.', (SELECT min(v) FROM unnest(w.vals) AS v WHERE v < 0 OR v = 'infinity')),
+      HINT = 'Nodata cells mean no control there.';
+  END IF;
+  dir := streetgen._control_raster(direction, 'direction', region);
   SELECT array_agg(DISTINCT ST_GeometryType(d.geom)) INTO seed_types
     FROM ST_Dump(seeds) AS d WHERE ST_GeometryType(d.geom) <> 'ST_Point';
   IF seed_types IS NOT NULL THEN
@@ -213,12 +282,13 @@ BEGIN
            coalesce((p ->> 'max_degree')::integer, 4), coalesce((p ->> 'angle_deviation')::double precision, 10),
            coalesce(p ->> 'road_class', 'main'), ST_AsEWKB(guide), coalesce((p ->> 'guide_reach')::double precision, 0),
            coalesce(p ->> 'blend', 'none'), coalesce((p ->> 'blend_angle')::double precision, 0), bxs, bys,
-           coalesce((p ->> 'blend_sigma')::double precision, 0)) AS g;
+           coalesce((p ->> 'blend_sigma')::double precision, 0), w.grid, w.vals, dir.grid, dir.vals) AS g;
 END
 $$;
 
 CREATE FUNCTION streetgen.grow_example(examples text[], region geometry, seeds geometry,
     obstacles geometry DEFAULT NULL, params jsonb DEFAULT '{}', existing text DEFAULT NULL, guide geometry DEFAULT NULL,
+    direction raster DEFAULT NULL, weights raster DEFAULT NULL,
     OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text,
     OUT geom geometry)
   RETURNS SETOF record
@@ -226,13 +296,15 @@ CREATE FUNCTION streetgen.grow_example(examples text[], region geometry, seeds g
   COST 1000000 ROWS 1000
   SET search_path FROM CURRENT
   AS $$
-  SELECT * FROM streetgen._grow(coalesce(examples, ARRAY[NULL::text]), region, seeds, obstacles, params, existing, guide)
+  SELECT * FROM streetgen._grow(coalesce(examples, ARRAY[NULL::text]), region, seeds, obstacles, params, existing, guide,
+                                direction, weights)
 $$;
-COMMENT ON FUNCTION streetgen.grow_example(text[], geometry, geometry, geometry, jsonb, text, geometry) IS
-  'Grows a road network inside region from seeds by blending several examples (Yu & Steed): each step draws its example from the selection function at the node, params blend = gradient (first example at the region''s west, last at its east; blend_angle turns it) or points (blend_points: one [x, y] per example, Gaussian fall-off blend_sigma, m); otherwise as grow_example(text, ...). origin names the example: grow_example:<k>:<id>';
+COMMENT ON FUNCTION streetgen.grow_example(text[], geometry, geometry, geometry, jsonb, text, geometry, raster, raster) IS
+  'Grows a road network inside region from seeds by blending several examples (Yu & Steed): each step draws its example from the selection function at the node, params blend = gradient (first example at the region''s west, last at its east; blend_angle turns it) or points (blend_points: one [x, y] per example, Gaussian fall-off blend_sigma, m); weights: a raster in the region''s SRID whose band k is the weight (>= 0) of example k, sampled bilinearly (where every band is nodata or all weights are 0, blend decides, or without blend every example is alike); direction: as grow_example(text, ...); otherwise as grow_example(text, ...). origin names the example: grow_example:<k>:<id>';
 
 CREATE FUNCTION streetgen.grow_example(example text, region geometry, seeds geometry,
     obstacles geometry DEFAULT NULL, params jsonb DEFAULT '{}', existing text DEFAULT NULL, guide geometry DEFAULT NULL,
+    direction raster DEFAULT NULL,
     OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text,
     OUT geom geometry)
   RETURNS SETOF record
@@ -240,13 +312,13 @@ CREATE FUNCTION streetgen.grow_example(example text, region geometry, seeds geom
   COST 1000000 ROWS 1000
   SET search_path FROM CURRENT
   AS $$
-  SELECT * FROM streetgen._grow(ARRAY[example], region, seeds, obstacles, params, existing, guide)
+  SELECT * FROM streetgen._grow(ARRAY[example], region, seeds, obstacles, params, existing, guide, direction)
 $$;
-COMMENT ON FUNCTION streetgen.grow_example(text, geometry, geometry, geometry, jsonb, text, geometry) IS
-  'Grows a road network inside region from seeds by example (Yu & Steed): node matching of incident edge angles under a rotation within epsilon, neighbourhood matching by weighted line-segment Hausdorff distance within r, copied edges adapted to the region, obstacles, snapping, no crossings and example dead ends. example: a query (columns geom, optionally road_class, id) or a model name. params: epsilon (deg, 30), r (m, 3 x mean example segment), rotation (true), seed (0), max_edges (10000), match_levels (true), snap (m, 0.45 x mean segment), min_angle (deg, 20), candidates (16), fallback (true: a node no example node matches grows parametrically, origin grow_parametric), keep_frame (true: a node matches under the rotation of the match that made it), coherence (1: probability that a node first continues the example node it was copied to), crop_margin (m, mean segment: example dead ends this close to its hull are cut streets and grow on), fill (false; true: when all fronts died before the region is covered, grow on from a new seed farther than r from every edge), guide_reach (m, everywhere). existing: a query of a network to extend (column geom), respected and joined but not returned. guide: a (Multi)LineString whose nearest tangent sets the rotation instead of node matching. Returns rows for a model''s axis table';
+COMMENT ON FUNCTION streetgen.grow_example(text, geometry, geometry, geometry, jsonb, text, geometry, raster) IS
+  'Grows a road network inside region from seeds by example (Yu & Steed): node matching of incident edge angles under a rotation within epsilon, neighbourhood matching by weighted line-segment Hausdorff distance within r, copied edges adapted to the region, obstacles, snapping, no crossings and example dead ends. example: a query (columns geom, optionally road_class, id) or a model name. params: epsilon (deg, 30), r (m, 3 x mean example segment), rotation (true), seed (0), max_edges (10000), match_levels (true), snap (m, 0.45 x mean segment), min_angle (deg, 20), candidates (16), fallback (true: a node no example node matches grows parametrically, origin grow_parametric), keep_frame (true: a node matches under the rotation of the match that made it), coherence (1: probability that a node first continues the example node it was copied to), crop_margin (m, mean segment: example dead ends this close to its hull are cut streets and grow on), fill (false; true: when all fronts died before the region is covered, grow on from a new seed farther than r from every edge), guide_reach (m, everywhere). existing: a query of a network to extend (column geom), respected and joined but not returned. guide: a (Multi)LineString whose nearest tangent sets the rotation instead of node matching. direction: a one-band raster in the region''s SRID of azimuths (degrees clockwise from north, undirected) that sets the rotation where it has a value (axial bilinear interpolation), before the guide; where it is nodata the guide or node matching decides. Returns rows for a model''s axis table';
 
 CREATE FUNCTION streetgen.grow_parametric(region geometry, seeds geometry, obstacles geometry DEFAULT NULL,
-    params jsonb DEFAULT '{}', existing text DEFAULT NULL, guide geometry DEFAULT NULL,
+    params jsonb DEFAULT '{}', existing text DEFAULT NULL, guide geometry DEFAULT NULL, direction raster DEFAULT NULL,
     OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text,
     OUT geom geometry)
   RETURNS SETOF record
@@ -254,7 +326,7 @@ CREATE FUNCTION streetgen.grow_parametric(region geometry, seeds geometry, obsta
   COST 1000000 ROWS 1000
   SET search_path FROM CURRENT
   AS $$
-  SELECT * FROM streetgen._grow(NULL, region, seeds, obstacles, params, existing, guide)
+  SELECT * FROM streetgen._grow(NULL, region, seeds, obstacles, params, existing, guide, direction)
 $$;
-COMMENT ON FUNCTION streetgen.grow_parametric(geometry, geometry, geometry, jsonb, text, geometry) IS
-  'Grows a road network inside region from seeds by parameters (Teng & Bidarra), e.g. main streets: params length (m, 50), length_deviation (m, 10), min_length (m, 20), min_degree (2), max_degree (4), min_angle (deg, 70), angle_deviation (deg, 10), snap (m, 20), road_class (main), rotation (true; false aligns the lattice with the axes), seed (0), max_edges (10000), fill (false), guide_reach (m). Same local constraints as grow_example (region, obstacles, snapping, no crossing); guide: a (Multi)LineString the streets follow. origin is grow_parametric';
+COMMENT ON FUNCTION streetgen.grow_parametric(geometry, geometry, geometry, jsonb, text, geometry, raster) IS
+  'Grows a road network inside region from seeds by parameters (Teng & Bidarra), e.g. main streets: params length (m, 50), length_deviation (m, 10), min_length (m, 20), min_degree (2), max_degree (4), min_angle (deg, 70), angle_deviation (deg, 10), snap (m, 20), road_class (main), rotation (true; false aligns the lattice with the axes), seed (0), max_edges (10000), fill (false), guide_reach (m). Same local constraints as grow_example (region, obstacles, snapping, no crossing); guide: a (Multi)LineString the streets follow; direction: a raster of azimuths (degrees clockwise from north) they follow where it has a value. origin is grow_parametric';

@@ -1,6 +1,7 @@
 // Example-based growth: example edges in as parallel arrays (EWKB, road class, id), the region and
 // obstacles as EWKB, seeds as coordinates, parameters as plain values (sql/80-growth.sql reads and
 // checks the jsonb); grown edges out as rows ready for a model's axis table.
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -31,8 +32,67 @@ enum Arg {
   kExampleGeoms, kExampleClasses, kExampleIds, kExampleSources, kRegion, kSeedsX, kSeedsY, kObstacles, kEpsilon,
   kRadius, kRotation, kSeed, kMaxEdges, kMatchLevels, kSnap, kMinAngle, kCandidates, kExisting, kParametric,
   kFallback, kKeepFrame, kCoherence, kCropMargin, kFill, kLength, kLengthDeviation, kMinLength, kMinDegree, kMaxDegree, kAngleDeviation, kRoadClass, kGuide,
-  kGuideReach, kBlendMode, kBlendAngle, kBlendX, kBlendY, kBlendSigma, kArgs
+  kGuideReach, kBlendMode, kBlendAngle, kBlendX, kBlendY, kBlendSigma, kWeightsGrid, kWeightsValues, kDirectionGrid,
+  kDirectionValues, kArgs
 };
+
+// A raster read in SQL (ST_DumpValues): grid = [upper-left x, upper-left y, scale x, scale y,
+// width, height, bands], values band-major then row-major, NULL for nodata (NaN here). Both
+// arguments NULL: no raster.
+struct GridArg {
+  bool present = false;
+  double grid[7] = {0, 0, 0, 0, 0, 0, 0};
+  double* values = nullptr;
+  int count = 0;
+};
+
+GridArg grid_arg(FunctionCallInfo fcinfo, int grid_argno, int values_argno, const char* name) {
+  GridArg out;
+  if (PG_ARGISNULL(grid_argno) && PG_ARGISNULL(values_argno)) return out;
+  pg::ArrayArg grid = pg::array_arg(fcinfo, grid_argno, FLOAT8OID, name);
+  pg::ArrayArg values = pg::array_arg(fcinfo, values_argno, FLOAT8OID, name);
+  if (grid.count != 7) {
+    ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("%s raster georeference must hold 7 numbers", name),
+                    errdetail("It holds %d.", grid.count)));
+  }
+  for (int i = 0; i < 7; ++i) {
+    if (grid.nulls[i]) {
+      ereport(ERROR, (errcode(ERRCODE_NULL_VALUE_NOT_ALLOWED), errmsg("%s raster georeference holds a null", name)));
+    }
+    out.grid[i] = DatumGetFloat8(grid.values[i]);
+  }
+  for (int i = 4; i < 7; ++i) {
+    if (!(out.grid[i] >= 0.0 && out.grid[i] <= 65535.0) || out.grid[i] != static_cast<double>(static_cast<int>(out.grid[i]))) {
+      ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("%s raster size must be whole numbers in [0, 65535]", name)));
+    }
+  }
+  out.present = true;
+  out.count = values.count;
+  out.values = static_cast<double*>(palloc(sizeof(double) * (values.count > 0 ? values.count : 1)));
+  for (int i = 0; i < values.count; ++i) {
+    out.values[i] = values.nulls[i] ? NAN : DatumGetFloat8(values.values[i]);
+    // NaN stands for nodata in core: a NaN pixel that is not the band's nodata would silently
+    // mean "no control", so it is refused here, where NULL and NaN still differ.
+    if (!values.nulls[i] && std::isnan(out.values[i])) {
+      ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("%s raster holds NaN", name),
+                      errdetail("Cell %d (band-major, row-major) is NaN and not the band's nodata value.", i + 1),
+                      errhint("Make NaN cells nodata (ST_SetBandNoDataValue, ST_MapAlgebra) for no control there.")));
+    }
+  }
+  return out;
+}
+
+void to_field(const GridArg& a, core::GridField& f) {
+  if (!a.present) return;
+  f.origin_x = a.grid[0];
+  f.origin_y = a.grid[1];
+  f.scale_x = a.grid[2];
+  f.scale_y = a.grid[3];
+  f.width = static_cast<int>(a.grid[4]);
+  f.height = static_cast<int>(a.grid[5]);
+  f.bands = static_cast<int>(a.grid[6]);
+  f.values.assign(a.values, a.values + a.count);
+}
 
 }  // namespace
 
@@ -48,10 +108,11 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
       "obstacles", "epsilon", "r", "rotation", "seed", "max_edges", "match_levels", "snap", "min_angle",
       "candidates", "existing", "parametric", "fallback", "keep_frame", "coherence", "crop_margin", "fill", "length", "length_deviation", "min_length",
       "min_degree", "max_degree", "angle_deviation", "road_class", "guide", "guide_reach", "blend",
-      "blend_angle", "blend_points x", "blend_points y", "blend_sigma"};
+      "blend_angle", "blend_points x", "blend_points y", "blend_sigma", "weights grid", "weights", "direction grid",
+      "direction"};
   for (int a = kRegion; a < kArgs; ++a) {
     if (a != kSeedsX && a != kSeedsY && a != kObstacles && a != kExisting && a != kGuide && a != kBlendX &&
-        a != kBlendY && PG_ARGISNULL(a)) {
+        a != kBlendY && a < kWeightsGrid && PG_ARGISNULL(a)) {
       pg::raise_null_argument(names[a]);
     }
   }
@@ -104,6 +165,8 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   int obstacle_count = 0;
   pg::ByteView* obstacles = pg::byte_views(obstacle_arg, &obstacle_count);
   pg::ByteView region = pg::byte_view(PG_GETARG_DATUM(kRegion));
+  GridArg weights = grid_arg(fcinfo, kWeightsGrid, kWeightsValues, "weights");
+  GridArg direction = grid_arg(fcinfo, kDirectionGrid, kDirectionValues, "direction");
   bool has_guide = !PG_ARGISNULL(kGuide);
   pg::ByteView guide = has_guide ? pg::byte_view(PG_GETARG_DATUM(kGuide)) : pg::ByteView{nullptr, 0};
   core::GrowParams params;
@@ -190,6 +253,8 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
       core::append_linestrings(geos, g.geom.get(), "guide", "guide must be a LineString or MultiLineString", "",
                                input.guide);
     }
+    to_field(weights, input.weights);
+    to_field(direction, input.direction);
     core::GrowResult result = core::grow_example(geos, input, params);
     stats = result.stats;
     std::vector<pg::GrownRow> out;
@@ -208,10 +273,11 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   pg::raise_if_failed(error);
 
   // Phase 3.
-  ereport(DEBUG1, (errmsg("grow: %zu steps, %zu coherent, %zu unmatched, %zu parametric fallback, %zu guided, "
-                          "%zu proposals, %zu accepted, %zu snapped, %zu clipped, %zu rejected, %zu reseeds, "
+  ereport(DEBUG1, (errmsg("grow: %zu steps, %zu coherent, %zu unmatched, %zu parametric fallback, %zu guided (%zu by the direction raster), "
+                          "%zu chosen by the weight raster, %zu proposals, %zu accepted, %zu snapped, %zu clipped, %zu rejected, %zu reseeds, "
                           "%zu restarts",
-                          stats.steps, stats.coherent, stats.unmatched, stats.fallback, stats.guided, stats.proposals,
+                          stats.steps, stats.coherent, stats.unmatched, stats.fallback, stats.guided, stats.directed,
+                          stats.weighted, stats.proposals,
                           stats.accepted, stats.snapped, stats.clipped, stats.rejected, stats.reseeds, stats.restarts)));
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();

@@ -77,11 +77,12 @@ SELECT set_eq(
     ('streetgen.street_surfaces(text,jsonb)', 'SETOF record', 'v', false),
     ('streetgen.surface_quality(text)', 'record', 's', false),
     ('streetgen.lane_quality(text)', 'record', 's', false),
-    ('streetgen._streetgen_grow_example(bytea[],text[],bigint[],integer[],bytea,double precision[],double precision[],bytea[],double precision,double precision,boolean,bigint,integer,boolean,double precision,double precision,integer,bytea[],boolean,boolean,boolean,double precision,double precision,boolean,double precision,double precision,double precision,integer,integer,double precision,text,bytea,double precision,text,double precision,double precision[],double precision[],double precision)', 'SETOF record', 'i', false),
-    ('streetgen._grow(text[],geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
-    ('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
-    ('streetgen.grow_example(text[],geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
-    ('streetgen.grow_parametric(geometry,geometry,geometry,jsonb,text,geometry)', 'SETOF record', 'v', false),
+    ('streetgen._streetgen_grow_example(bytea[],text[],bigint[],integer[],bytea,double precision[],double precision[],bytea[],double precision,double precision,boolean,bigint,integer,boolean,double precision,double precision,integer,bytea[],boolean,boolean,boolean,double precision,double precision,boolean,double precision,double precision,double precision,integer,integer,double precision,text,bytea,double precision,text,double precision,double precision[],double precision[],double precision,double precision[],double precision[],double precision[],double precision[])', 'SETOF record', 'i', false),
+    ('streetgen._control_raster(raster,text,geometry)', 'record', 's', false),
+    ('streetgen._grow(text[],geometry,geometry,geometry,jsonb,text,geometry,raster,raster)', 'SETOF record', 'v', false),
+    ('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text,geometry,raster)', 'SETOF record', 'v', false),
+    ('streetgen.grow_example(text[],geometry,geometry,geometry,jsonb,text,geometry,raster,raster)', 'SETOF record', 'v', false),
+    ('streetgen.grow_parametric(geometry,geometry,geometry,jsonb,text,geometry,raster)', 'SETOF record', 'v', false),
     ('streetgen._streetgen_extract_patches(bytea[],text[],bigint[],boolean[],double precision,double precision,boolean,double precision,double precision,double precision,double precision,boolean)', 'SETOF record', 'i', false),
     ('streetgen._streetgen_grow_patches(bigint[],text[],text[],bytea[],integer[],bytea,double precision[],double precision[],bytea[],bigint,integer,double precision,double precision,double precision,double precision,double precision,integer,integer,double precision,boolean,double precision,boolean[],boolean)', 'SETOF record', 'i', false),
     ('streetgen._rows_with_geom(text,text)', 'TABLE(j jsonb, geom geometry, n bigint)', 'v', false),
@@ -123,15 +124,15 @@ SELECT is(pg_temp.argument_names('streetgen.lane_quality(text)'),
 SELECT is(pg_temp.argument_names('streetgen.detail_quality(text)'),
           'model,sidewalks,crossings,blocks,invalid_geometries,sidewalk_area,sidewalk_roadway_overlap_area,sidewalk_overlap_area,crossing_outside_area,face_area,overlap_area,roadway_overlap_area,gap_area',
           'detail_quality(model) -> (sidewalks, crossings, blocks, invalid_geometries, sidewalk_area, sidewalk_roadway_overlap_area, sidewalk_overlap_area, crossing_outside_area, face_area, overlap_area, roadway_overlap_area, gap_area)');
-SELECT is(pg_temp.argument_names('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text,geometry)'),
-          'example,region,seeds,obstacles,params,existing,guide,id,from_node,to_node,road_class,origin,geom',
-          'grow_example(example, region, seeds, obstacles, params, existing, guide) -> (id, from_node, to_node, road_class, origin, geom)');
-SELECT is(pg_temp.argument_names('streetgen.grow_example(text[],geometry,geometry,geometry,jsonb,text,geometry)'),
-          'examples,region,seeds,obstacles,params,existing,guide,id,from_node,to_node,road_class,origin,geom',
-          'grow_example(examples, region, seeds, obstacles, params, existing, guide) -> (id, from_node, to_node, road_class, origin, geom)');
-SELECT is(pg_temp.argument_names('streetgen.grow_parametric(geometry,geometry,geometry,jsonb,text,geometry)'),
-          'region,seeds,obstacles,params,existing,guide,id,from_node,to_node,road_class,origin,geom',
-          'grow_parametric(region, seeds, obstacles, params, existing, guide) -> (id, from_node, to_node, road_class, origin, geom)');
+SELECT is(pg_temp.argument_names('streetgen.grow_example(text,geometry,geometry,geometry,jsonb,text,geometry,raster)'),
+          'example,region,seeds,obstacles,params,existing,guide,direction,id,from_node,to_node,road_class,origin,geom',
+          'grow_example(example, region, seeds, obstacles, params, existing, guide, direction) -> (id, from_node, to_node, road_class, origin, geom)');
+SELECT is(pg_temp.argument_names('streetgen.grow_example(text[],geometry,geometry,geometry,jsonb,text,geometry,raster,raster)'),
+          'examples,region,seeds,obstacles,params,existing,guide,direction,weights,id,from_node,to_node,road_class,origin,geom',
+          'grow_example(examples, region, seeds, obstacles, params, existing, guide, direction, weights) -> (id, from_node, to_node, road_class, origin, geom)');
+SELECT is(pg_temp.argument_names('streetgen.grow_parametric(geometry,geometry,geometry,jsonb,text,geometry,raster)'),
+          'region,seeds,obstacles,params,existing,guide,direction,id,from_node,to_node,road_class,origin,geom',
+          'grow_parametric(region, seeds, obstacles, params, existing, guide, direction) -> (id, from_node, to_node, road_class, origin, geom)');
 
 SELECT is(pg_temp.argument_names('streetgen.extract_patches(text,jsonb)'),
           'example,params,patch_id,edge_index,role,road_class,tags,edge_tags,start_tags,end_tags,max_uses,example_id,geom',
