@@ -52,8 +52,8 @@ GridArg grid_arg(FunctionCallInfo fcinfo, int grid_argno, int values_argno, cons
   pg::ArrayArg grid = pg::array_arg(fcinfo, grid_argno, FLOAT8OID, name);
   pg::ArrayArg values = pg::array_arg(fcinfo, values_argno, FLOAT8OID, name);
   if (grid.count != 7) {
-    ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("%s raster georeference must hold 7 numbers", name),
-                    errdetail("It holds %d.", grid.count)));
+    ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE),
+                    errmsg("%s raster georeference must hold 7 numbers", name), errdetail("It holds %d.", grid.count)));
   }
   for (int i = 0; i < 7; ++i) {
     if (grid.nulls[i]) {
@@ -62,8 +62,10 @@ GridArg grid_arg(FunctionCallInfo fcinfo, int grid_argno, int values_argno, cons
     out.grid[i] = DatumGetFloat8(grid.values[i]);
   }
   for (int i = 4; i < 7; ++i) {
-    if (!(out.grid[i] >= 0.0 && out.grid[i] <= 65535.0) || out.grid[i] != static_cast<double>(static_cast<int>(out.grid[i]))) {
-      ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("%s raster size must be whole numbers in [0, 65535]", name)));
+    const double v = out.grid[i];
+    if (!(v >= 0.0 && v <= 65535.0) || v != std::floor(v)) {
+      ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE),
+                      errmsg("%s raster size must be whole numbers in [0, 65535]", name)));
     }
   }
   out.present = true;
@@ -273,9 +275,9 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   pg::raise_if_failed(error);
 
   // Phase 3.
-  ereport(DEBUG1, (errmsg("grow: %zu steps, %zu coherent, %zu unmatched, %zu parametric fallback, %zu guided (%zu by the direction raster), "
-                          "%zu chosen by the weight raster, %zu proposals, %zu accepted, %zu snapped, %zu clipped, %zu rejected, %zu reseeds, "
-                          "%zu restarts",
+  ereport(DEBUG1, (errmsg("grow: %zu steps, %zu coherent, %zu unmatched, %zu parametric fallback, %zu guided "
+                          "(%zu by the direction raster), %zu chosen by the weight raster, %zu proposals, "
+                          "%zu accepted, %zu snapped, %zu clipped, %zu rejected, %zu reseeds, %zu restarts",
                           stats.steps, stats.coherent, stats.unmatched, stats.fallback, stats.guided, stats.directed,
                           stats.weighted, stats.proposals,
                           stats.accepted, stats.snapped, stats.clipped, stats.rejected, stats.reseeds, stats.restarts)));

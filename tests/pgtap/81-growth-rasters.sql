@@ -198,4 +198,5 @@ SELECT throws_ok($$SELECT pg_temp.weigh(pg_temp.one_band(0, 15, 15, 0, 1500, 1),
                  'weights need several examples', 'a weight raster for one example');
 SELECT ok(pg_temp.weigh(ST_AddBand(pg_temp.one_band(0, 15, 15, 0, 1500, 0), '32BF'::text, 0::float8, NULL::float8)) > 0,
           'weights 0 everywhere: defined (no control, every example alike)');
+SELECT * FROM finish();
 ROLLBACK;

@@ -507,7 +507,8 @@ TEST(GrowExample, WeightRasterNodataFallsBackToTheBlend) {
     in.example.push_back(e);
   }
   in.seeds = {{250.0, 500.0}, {750.0, 500.0}};
-  in.weights = field_over_region(2, [](int band, double x, double) { return x < 500.0 ? (band == 1 ? 1.0 : 0.0) : NAN; });
+  in.weights =
+      field_over_region(2, [](int band, double x, double) { return x < 500.0 ? (band == 1 ? 1.0 : 0.0) : NAN; });
   GrowParams p;
   p.seed = 6;
   p.rotation = false;

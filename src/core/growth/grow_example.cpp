@@ -2380,7 +2380,9 @@ class Grower {
                                "It has " + std::to_string(input.weights.bands) + " band(s) for " +
                                    std::to_string(examples_.size()) + " example(s).");
       }
-      if (!overlaps(input.weights, x0, y0, x1, y1)) throw_invalid_argument("weights raster does not overlap the region");
+      if (!overlaps(input.weights, x0, y0, x1, y1)) {
+        throw_invalid_argument("weights raster does not overlap the region");
+      }
     }
     if (!input.direction.empty()) {
       check_directions(input.direction, "direction");
