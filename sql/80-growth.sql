@@ -23,7 +23,9 @@ CREATE FUNCTION streetgen._streetgen_grow_example(example_geoms bytea[], example
 
 -- A control raster (weights for blending, or a direction field) as plain arrays for the C call:
 -- grid = [upper-left x, upper-left y, scale x, scale y, width, height, bands] and every band's
--- values (ST_DumpValues: band-major, row-major from the upper-left row, NULL for nodata). The
+-- values as ST_DumpValues gives them (rows from the upper-left one, NULL for nodata): one band's
+-- 2-D array as it is, several bands stacked into a 3-D one (no unnest: it tripled the time on a
+-- 9-million-cell raster). The
 -- raster must share the region's SRID, overlap it, have no skew, and stay below 16 million values
 -- (clip it to the region first: ST_Clip). Sampling (bilinear) happens in C++.
 CREATE FUNCTION streetgen._control_raster(rast raster, what text, region geometry,
@@ -61,8 +63,11 @@ BEGIN
       HINT = 'ST_Clip it to the region or ST_Rescale it to larger cells.';
   END IF;
   grid := ARRAY[m.upperleftx, m.upperlefty, m.scalex, m.scaley, m.width, m.height, m.numbands]::double precision[];
-  SELECT array_agg(u.v ORDER BY d.nband, u.o) INTO vals
-    FROM ST_DumpValues(rast, NULL::integer[], true) AS d, unnest(d.valarray) WITH ORDINALITY AS u(v, o);
+  IF m.numbands = 1 THEN
+    vals := ST_DumpValues(rast, 1, true);
+  ELSE
+    SELECT array_agg(d.valarray ORDER BY d.nband) INTO vals FROM ST_DumpValues(rast, NULL::integer[], true) AS d;
+  END IF;
 END
 $$;
 

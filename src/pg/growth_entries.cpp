@@ -50,7 +50,6 @@ GridArg grid_arg(FunctionCallInfo fcinfo, int grid_argno, int values_argno, cons
   GridArg out;
   if (PG_ARGISNULL(grid_argno) && PG_ARGISNULL(values_argno)) return out;
   pg::ArrayArg grid = pg::array_arg(fcinfo, grid_argno, FLOAT8OID, name);
-  pg::ArrayArg values = pg::array_arg(fcinfo, values_argno, FLOAT8OID, name);
   if (grid.count != 7) {
     ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE),
                     errmsg("%s raster georeference must hold 7 numbers", name), errdetail("It holds %d.", grid.count)));
@@ -67,6 +66,30 @@ GridArg grid_arg(FunctionCallInfo fcinfo, int grid_argno, int values_argno, cons
       ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE),
                       errmsg("%s raster size must be whole numbers in [0, 65535]", name)));
     }
+  }
+  // The values as ST_DumpValues gives them: one band's height x width array, or several bands'
+  // stacked (bands x height x width), passed as they are because flattening millions of cells in
+  // SQL costs more than the growth; a flat array of the same length is read alike.
+  pg::ArrayArg values;
+  if (!PG_ARGISNULL(values_argno)) {
+    ArrayType* array = PG_GETARG_ARRAYTYPE_P(values_argno);
+    if (ARR_ELEMTYPE(array) != FLOAT8OID) {
+      ereport(ERROR, (errcode(ERRCODE_DATATYPE_MISMATCH), errmsg("%s raster values have the wrong element type", name)));
+    }
+    const int ndim = ARR_NDIM(array);
+    const int* dims = ARR_DIMS(array);
+    const int bands = static_cast<int>(out.grid[6]), height = static_cast<int>(out.grid[5]);
+    const int width = static_cast<int>(out.grid[4]);
+    const bool fits = ndim == 3   ? dims[0] == bands && dims[1] == height && dims[2] == width
+                      : ndim == 2 ? bands == 1 && dims[0] == height && dims[1] == width
+                                  : ndim <= 1;
+    if (!fits) {
+      ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("%s raster values do not match its size", name),
+                      errdetail("The values have %d dimension(s); the raster is %d band(s) of %d x %d cells.", ndim,
+                                bands, width, height)));
+    }
+    deconstruct_array(array, FLOAT8OID, sizeof(float8), FLOAT8PASSBYVAL, TYPALIGN_DOUBLE, &values.values,
+                      &values.nulls, &values.count);
   }
   out.present = true;
   out.count = values.count;

@@ -147,6 +147,23 @@ SELECT cmp_ok((SELECT first::double precision / edges FROM weight_share WHERE ki
 SELECT ok((SELECT first > 0 AND second > 0 FROM weight_share WHERE kind = 'none' AND quarter = 4)
           AND (SELECT first FROM weight_share WHERE kind = 'none' AND quarter = 1) = 0,
           'without blend, nodata means every example alike (both in the east), the raster still decides the west');
+-- North and south: the raster's first row is its north edge (ST_UpperLeftY), as the C++ side reads it.
+CREATE TEMP TABLE weighted_ns AS
+SELECT g.* FROM streetgen.grow_example(
+  ARRAY[$$SELECT id, road_class, geom FROM patch WHERE name = 'tokyo'$$,
+        $$SELECT id, road_class, geom FROM patch WHERE name = 'canberra_south_large'$$],
+  'POLYGON((0 0, 2000 0, 2000 1200, 0 1200, 0 0))', 'MULTIPOINT(700 200, 1300 1000)', NULL, '{"seed": 3, "max_edges": 2000}',
+  weights => ST_SetValues(ST_SetValues(ST_AddBand(ST_AddBand(ST_MakeEmptyRaster(20, 12, 0, 1200, 100, -100, 0, 0, 0),
+                                                             '32BF'::text, 0::float8, NULL::float8),
+                                                  '32BF'::text, 0::float8, NULL::float8),
+                                       1, 1, 1, 20, 6, 1::float8), 2, 1, 7, 20, 6, 1::float8)) AS g;
+SELECT ok((SELECT count(*) FILTER (WHERE origin LIKE 'grow_example:1:%') >= 50
+                  AND count(*) FILTER (WHERE origin LIKE 'grow_example:2:%') = 0
+             FROM weighted_ns WHERE ST_Y(ST_Centroid(geom)) > 900)
+          AND (SELECT count(*) FILTER (WHERE origin LIKE 'grow_example:2:%') >= 20
+                      AND count(*) FILTER (WHERE origin LIKE 'grow_example:1:%') = 0
+                 FROM weighted_ns WHERE ST_Y(ST_Centroid(geom)) < 300),
+          'weights by rows: tokyo alone in the north (the raster''s first rows), canberra alone in the south');
 SELECT is((SELECT count(*) FROM weighted a JOIN weighted b ON a.kind = b.kind AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
             WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
           0::bigint, 'growth blended by a weight raster stays planar');
