@@ -104,6 +104,8 @@ GridArg grid_arg(FunctionCallInfo fcinfo, int grid_argno, int values_argno, cons
                       errhint("Make NaN cells nodata (ST_SetBandNoDataValue, ST_MapAlgebra) for no control there.")));
     }
   }
+  if (values.values != nullptr) pfree(values.values);  // a raster can hold millions of cells
+  if (values.nulls != nullptr) pfree(values.nulls);
   return out;
 }
 

@@ -86,6 +86,10 @@ TEST(GridField, AxialInterpolationOfUndirectedAngles) {
   EXPECT_NEAR(std::sin(2.0 * a), 0.0, 1e-12);
   EXPECT_NEAR(std::cos(2.0 * a), 1.0, 1e-12);
   EXPECT_NEAR(sample_axial_bilinear(g, 0, {110, 205}), 30 * d, 1e-12);
+  // The same in degrees (a direction raster's unit), the result in radians.
+  g.values = {1, 179, 90, 30, 30, 0};
+  EXPECT_NEAR(std::sin(2.0 * sample_axial_bilinear(g, 0, {110, 215}, d)), 0.0, 1e-12);
+  EXPECT_NEAR(sample_axial_bilinear(g, 0, {110, 205}, d), 30 * d, 1e-12);
   // 0° and 90° cancel out halfway: the nearest cell's angle (cell 1 on a tie).
   g.values = {0, 90 * d, 0, 0, 90 * d, 0};
   EXPECT_NEAR(sample_axial_bilinear(g, 0, {110, 215}), 90 * d, 1e-12);

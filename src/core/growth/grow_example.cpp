@@ -192,6 +192,7 @@ class Grower {
       : geos_(geos), params_(params), rng_(params.seed), line_(geos) {
     check_params();
     weights_ = &input.weights;
+    direction_ = &input.direction;
     if (params.parametric) {
       shape_ = params.shape;
       mean_length_ = shape_.length;
@@ -2359,9 +2360,8 @@ class Grower {
     }
   }
 
-  // The weight and direction rasters: checked against the examples and the region, the
-  // direction's azimuths (degrees clockwise from north) turned into the growth's angles (radians
-  // counter-clockwise from east).
+  // The weight and direction rasters, checked against the examples and the region; both are
+  // read in place (a raster can hold millions of cells).
   void prepare_fields(const GrowInput& input) {
     GEOSContextHandle_t h = geos_.handle();
     double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
@@ -2393,10 +2393,6 @@ class Grower {
       if (!overlaps(input.direction, x0, y0, x1, y1)) {
         throw_invalid_argument("direction raster does not overlap the region");
       }
-      direction_ = input.direction;
-      for (double& a : direction_.values) {
-        if (!std::isnan(a)) a = kPi / 2.0 - std::fmod(a, 360.0) * kPi / 180.0;
-      }
     }
   }
 
@@ -2417,17 +2413,19 @@ class Grower {
 
   // θ's direction at p (radians, undirected): the direction raster's, else the guide's, else NaN.
   double direction_angle(Point p) {
-    if (!direction_.empty()) {
-      const double a = sample_axial_bilinear(direction_, 0, p);
-      if (!std::isnan(a)) {
+    if (!direction_->empty()) {
+      // Azimuths (degrees clockwise from north) into the growth's angles (counter-clockwise from
+      // east); the axial mean commutes with that reflection.
+      const double azimuth = sample_axial_bilinear(*direction_, 0, p, kPi / 180.0);
+      if (!std::isnan(azimuth)) {
         ++stats_.directed;
-        return a;
+        return kPi / 2.0 - azimuth;
       }
     }
     return guide_angle(p);
   }
   const GridField* weights_ = nullptr;
-  GridField direction_;
+  const GridField* direction_ = nullptr;
 
   // The guide's direction (radians, undirected) at p: the tangent of its nearest point; NaN
   // without a guide or farther than guide_reach from it.

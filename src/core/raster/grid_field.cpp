@@ -69,19 +69,19 @@ double sample_bilinear(const GridField& g, int band, Point p) {
   return weight > 0.0 ? sum / weight : NAN;
 }
 
-double sample_axial_bilinear(const GridField& g, int band, Point p) {
+double sample_axial_bilinear(const GridField& g, int band, Point p, double to_radians) {
   double u = 0.0, v = 0.0;
   if (g.empty() || !to_cell(g, p, u, v)) return NAN;
   const double own = g.at(band, nearest_index(u, g.width), nearest_index(v, g.height));
   if (std::isnan(own)) return NAN;
   double cx = 0.0, cy = 0.0;
   for_neighbours(g, u, v, [&](int c, int r, double w) {
-    const double a = g.at(band, c, r);
+    const double a = g.at(band, c, r) * to_radians;
     if (std::isnan(a)) return;
     cx += w * std::cos(2.0 * a);
     cy += w * std::sin(2.0 * a);
   });
-  if (std::hypot(cx, cy) < 1e-9) return own;
+  if (std::hypot(cx, cy) < 1e-9) return own * to_radians;
   return 0.5 * std::atan2(cy, cx);
 }
 

@@ -40,10 +40,11 @@ double sample_bilinear(const GridField& g, int band, Point p);
 // The value of the cell holding p; NaN outside the raster or on nodata.
 double sample_nearest(const GridField& g, int band, Point p);
 
-// Axial (undirected) bilinear interpolation of angles in radians: the mean of the doubled-angle
-// unit vectors, halved, so 1° and 179° average to 0° (or 180°), not 90°. NaN as sample_bilinear,
-// and the nearest cell's angle when the neighbours cancel out.
-double sample_axial_bilinear(const GridField& g, int band, Point p);
+// Axial (undirected) bilinear interpolation of angles: the mean of the doubled-angle unit vectors,
+// halved, so 1° and 179° average to 0° (or 180°), not 90°. The values are angles in units of
+// to_radians radians (1: radians; pi/180: degrees); the result is in radians, in the values'
+// orientation. NaN as sample_bilinear, and the nearest cell's angle when the neighbours cancel out.
+double sample_axial_bilinear(const GridField& g, int band, Point p, double to_radians = 1.0);
 
 // A weight raster: values >= 0 and finite (NaN is nodata). Throws invalid_argument otherwise.
 void check_weights(const GridField& g, const char* name);
