@@ -563,3 +563,29 @@ TEST(GrowExample, BadControlRastersAreRejected) {
   direction.direction.origin_y = -5000.0;
   EXPECT_THROW(grow_example(f.geos, direction, p), Error);
 }
+
+TEST(GrowExample, DirectionRasterComesBeforeTheGuide) {
+  // The raster (30°) covers the west half; a guide at azimuth 60° runs across the whole region:
+  // the west follows the raster, the east (raster nodata) the guide.
+  Fixture f;
+  GrowInput in = f.input();
+  in.seeds = {{250.0, 500.0}, {750.0, 500.0}};
+  in.direction = field_over_region(1, [](int, double x, double) { return x < 500.0 ? 30.0 : NAN; });
+  const double rad = 60.0 * 3.14159265358979323846 / 180.0, s = std::sin(rad), c = std::cos(rad);
+  in.guide = {{{500.0 - 800.0 * s, 500.0 - 800.0 * c}, {500.0 + 800.0 * s, 500.0 + 800.0 * c}}};
+  GrowParams p;
+  p.seed = 4;
+  p.max_edges = 600;
+  p.rotation = false;
+  GrowResult r = grow_example(f.geos, in, p);
+  std::vector<GrownEdge> west, east;
+  for (const GrownEdge& e : r.edges) {
+    const double x = 0.5 * (e.a.x + e.b.x);
+    if (x < 380.0) west.push_back(e);
+    if (x > 620.0) east.push_back(e);
+  }
+  ASSERT_GT(west.size(), 50u);
+  ASSERT_GT(east.size(), 50u);
+  EXPECT_GT(share_along(west, 30.0, 3.0), 0.8);
+  EXPECT_GT(share_along(east, 60.0, 3.0), 0.8);
+}
