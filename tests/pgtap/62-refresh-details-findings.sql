@@ -88,7 +88,10 @@ SELECT is_empty($$SELECT * FROM streetgen.outdated('liechtenstein_junction')$$, 
 -- OpenStreetMap contributors, ODbL 1.0, tags left out; 2306 is a soak's random insertion lying
 -- along 491), a full run writes the right sidewalk of 491's middle section over its own roadway
 -- (55 m²) and over 2306's (95 m²): the claim is not cut. The check after each local refresh
--- sees it as a miss; it refreshes around it once, then keeps it (see _refresh).
+-- sees it as a miss; it refreshes around it once, then keeps it (see _refresh). 2306 is a chord
+-- between two vertices of 491 (its ends are those vertices): moved 1 m, or 3 m wide instead of
+-- 6, the claim is cut as it should be; the stored sidewalk is the whole claim, as if the claim
+-- had met no blocker at all.
 SELECT streetgen.create_model('liechtenstein_uncut', 32632);
 INSERT INTO liechtenstein_uncut.axis (id, roadway_width, lanes, speed_kmh, road_class, oneway, geom) OVERRIDING SYSTEM VALUE VALUES
 (486, 6, 2, 50, 'tertiary', false, 'SRID=32632;LINESTRING(540806.872390292 5230723.282278269,540809.0337065759 5230707.393679191,540807.7759262216 5230698.783084579,540805.7849197744 5230690.011836408,540802.6250450284 5230681.677060053,540798.279749623 5230675.078931368,540792.4865356827 5230666.570388207,540781.185574149 5230649.866470275,540776.8573338249 5230640.790149089,540776.1683567304 5230634.217272341,540776.7337759602 5230629.0755899465,540777.1131948653 5230625.655227845,540780.0953599493 5230619.163255533,540784.2569435209 5230612.901697006,540796.830002508 5230599.974501557,540799.5836113107 5230594.792362466,540800.4393306315 5230589.274825409,540799.9816760214 5230579.902923083)'),
