@@ -541,17 +541,19 @@ BEGIN
   -- layer (the engine cuts it so), and when one does here, the engine was not given something
   -- within its reach: the search above has missed a case (soaks found such cases one in about a
   -- thousand edits, each fixed since). The axes of both then count as changed, once (a local
-  -- refresh around them, with their whole neighbourhood). What that refresh still writes over a
-  -- roadway is kept: the engine itself does so on rare shapes (a claim left uncut beside a
-  -- narrowed section, a known bug: pgTAP 62, TODO), and a full run there would cost a large city
-  -- minutes on every nearby edit without changing the result.
+  -- refresh around them, with their whole neighbourhood); a second miss runs the full model.
+  -- (A soak's first runs of this check also caught the engine itself writing a sidewalk over a
+  -- roadway, a GEOS overlay fault fixed since: every edit nearby then ran the full model.)
   IF reach > 0 THEN
     repair := streetgen._axes_of_overlapping_sidewalks(model);
     IF repair IS NOT NULL THEN
       RAISE LOG 'streetgen: refresh of % wrote overlapping sidewalks near axes %; %', model, repair,
-                CASE WHEN may_repair THEN 'refreshing around them' ELSE 'kept (the same after a refresh around them)' END;
+                CASE WHEN may_repair THEN 'refreshing around them' ELSE 'running the full model' END;
       IF may_repair THEN
         PERFORM streetgen._refresh(model, repair, '{}', false);
+      ELSE
+        PERFORM streetgen._compute_model(model);
+        PERFORM streetgen._store(model, false);
       END IF;
     END IF;
   END IF;
