@@ -17,6 +17,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr int kQuadrantSegments = 8;  // arc points per quarter circle, as PostGIS's ST_Buffer
 constexpr double kSamePoint = 1e-6;   // m
 constexpr double kStopBehindCrossing = 1.0;  // m between a crossing and the stop line behind it
+constexpr double kGivenAway = 1e-6;          // m²: less overlap than this between roadways is left alone
 constexpr double kSidewalkGrid = 1e-6;       // m: sidewalks are snapped to it (slivers collapse)
 constexpr double kMinSidewalkArea = 0.01;    // m²: smaller pieces of a sidewalk are overlay slivers
 
@@ -289,6 +290,7 @@ class SurfaceBuilder {
         build_intersection(n);
       }
     }
+    separate_overlapping_junctions(poller);
     build_sidewalks(poller);
     for (auto& corners : corners_of_node_) {
       for (CornerResult& c : corners) result_.corners.push_back(std::move(c));
@@ -643,6 +645,7 @@ class SurfaceBuilder {
       ir.surface = fallback_polygon(n);
     }
     result_.intersections.push_back(std::move(ir));
+    junction_node_.push_back(n);
   }
 
   // A ring with small defects (spikes, a pinch where border and arc meet at a bend) made valid:
@@ -790,6 +793,145 @@ class SurfaceBuilder {
         result_.issues.push_back({sec.axis_id, "overlap_kept", "its overlaps could not be removed: " + e.detail(), sec.part});
       }
     }
+  }
+
+  // Junction surfaces overlap where nodes lie closer than their junctions reach: acute branches
+  // packed together (interchanges, slip lanes, sausage links), a ramp beside a junction, and by
+  // a few cm² where a curb meets its own section off the border line. Sections win, as they are
+  // final by now (their lanes are built): a junction gives up what any section covers. Two junctions split their overlap along the midline of their skeletons
+  // (the node and the axis stubs out to its border lines), each keeping the part nearer its own,
+  // as sections do with each other. A junction that gave up area is `narrowed`; it keeps the
+  // polygon that holds its node (what else is left, cut off, is dropped: a few slivers).
+  // A junction's final shape depends only on its own surface, the sections overlapping it and
+  // the junctions overlapping it: the refresh brings those in (sql/65-refresh.sql).
+  void separate_overlapping_junctions(InterruptPoller& poller) {
+    const std::size_t junctions = result_.intersections.size();
+    std::vector<std::size_t> sections;  // indices into result_.sections, with a surface
+    std::vector<Box> boxes;             // junctions first, then sections
+    for (std::size_t j = 0; j < junctions; ++j) {
+      Box b{};
+      envelope_box(ctx_, result_.intersections[j].surface.get(), b);
+      boxes.push_back(b);
+    }
+    for (std::size_t i = 0; i < result_.sections.size(); ++i) {
+      if (!result_.sections[i].surface) continue;
+      Box b{};
+      envelope_box(ctx_, result_.sections[i].surface.get(), b);
+      sections.push_back(i);
+      boxes.push_back(b);
+    }
+    std::map<std::size_t, std::vector<std::size_t>> covering;  // junction -> sections over it (result_ indices)
+    std::vector<std::pair<std::size_t, std::size_t>> junction_pairs;
+    for_each_overlapping_pair(boxes, [&](std::size_t x, std::size_t y) {
+      if (x >= junctions) return;  // (x < y: a junction pairs with a later junction or a section)
+      int layer = topo_.nodes[junction_node_[x]].layer;
+      if (y < junctions) {
+        if (topo_.nodes[junction_node_[y]].layer == layer) junction_pairs.emplace_back(x, y);
+        return;
+      }
+      std::size_t i = sections[y - junctions];
+      if (axis_layer_.at(result_.sections[i].axis_id) != layer) return;
+      covering[x].push_back(i);
+    });
+    // The junctions less the sections over them.
+    std::vector<GeomPtr> cut(junctions);
+    for (auto& [j, over] : covering) {
+      poller.tick();
+      IntersectionResult& ir = result_.intersections[j];
+      try {
+        // (in key order, as one union: the same result whichever order the boxes were paired in)
+        std::sort(over.begin(), over.end(), [&](std::size_t a, std::size_t b) {
+          return std::make_pair(result_.sections[a].axis_id, result_.sections[a].part) <
+                 std::make_pair(result_.sections[b].axis_id, result_.sections[b].part);
+        });
+        std::vector<GEOSGeometry*> raw;
+        for (std::size_t i : over) raw.push_back(GEOSGeom_clone_r(ctx_.handle(), result_.sections[i].surface.get()));
+        GeomPtr all = own(ctx_, GEOSGeom_createCollection_r(ctx_.handle(), GEOS_GEOMETRYCOLLECTION, raw.data(),
+                                                            static_cast<unsigned>(raw.size())),
+                          "collection");
+        GeomPtr under = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), all.get()), "union");
+        GeomPtr rest = own(ctx_, GEOSDifference_r(ctx_.handle(), ir.surface.get(), under.get()), "difference");
+        if (area_of(ctx_, ir.surface.get()) - area_of(ctx_, rest.get()) > kGivenAway) cut[j] = std::move(rest);
+      } catch (const Error& e) {
+        if (e.kind() != ErrorKind::geometry_engine) throw;
+        result_.issues.push_back({topo_.nodes[junction_node_[j]].axis_ids.front(), "overlap_kept",
+                                  "the junction's overlap with sections could not be removed: " + e.detail(), std::nullopt,
+                                  ir.node_id});
+      }
+    }
+    auto current = [&](std::size_t j) { return cut[j] ? cut[j].get() : result_.intersections[j].surface.get(); };
+    // Pairs in key order, split on the junctions as cut above, all given away at once: the result
+    // does not depend on the order of the pairs.
+    for (auto& [x, y] : junction_pairs) {
+      if (result_.intersections[y].node_id < result_.intersections[x].node_id) std::swap(x, y);
+    }
+    std::sort(junction_pairs.begin(), junction_pairs.end(), [&](const auto& p, const auto& q) {
+      return std::make_pair(result_.intersections[p.first].node_id, result_.intersections[p.second].node_id) <
+             std::make_pair(result_.intersections[q.first].node_id, result_.intersections[q.second].node_id);
+    });
+    std::map<std::size_t, std::vector<GeomPtr>> given_away;
+    for (auto [x, y] : junction_pairs) {
+      poller.tick();
+      try {
+        GeomPtr overlap = own(ctx_, GEOSIntersection_r(ctx_.handle(), current(x), current(y)), "overlap");
+        if (area_of(ctx_, overlap.get()) < kGivenAway) continue;
+        GeomPtr nearer_x = nearer_region(overlap.get(), skeleton(junction_node_[x]), skeleton(junction_node_[y]));
+        GeomPtr nearer_y = own(ctx_, GEOSDifference_r(ctx_.handle(), overlap.get(), nearer_x.get()), "difference");
+        given_away[x].push_back(std::move(nearer_y));
+        given_away[y].push_back(std::move(nearer_x));
+      } catch (const Error& e) {
+        if (e.kind() != ErrorKind::geometry_engine) throw;
+        result_.issues.push_back({topo_.nodes[junction_node_[x]].axis_ids.front(), "overlap_kept",
+                                  "the overlap with the junction of node " + std::to_string(result_.intersections[y].node_id) +
+                                      " could not be split: " + e.detail(),
+                                  std::nullopt, result_.intersections[x].node_id});
+      }
+    }
+    for (std::size_t j = 0; j < junctions; ++j) {
+      IntersectionResult& ir = result_.intersections[j];
+      auto lost = given_away.find(j);
+      if (!cut[j] && lost == given_away.end()) continue;
+      try {
+        GeomPtr rest = own(ctx_, GEOSGeom_clone_r(ctx_.handle(), current(j)), "clone");
+        if (lost != given_away.end()) {
+          std::vector<GEOSGeometry*> raw;
+          for (GeomPtr& piece : lost->second) raw.push_back(piece.release());
+          GeomPtr all = own(ctx_, GEOSGeom_createCollection_r(ctx_.handle(), GEOS_GEOMETRYCOLLECTION, raw.data(),
+                                                              static_cast<unsigned>(raw.size())),
+                            "collection");
+          GeomPtr pieces = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), all.get()), "union");
+          rest = own(ctx_, GEOSDifference_r(ctx_.handle(), rest.get(), pieces.get()), "difference");
+        }
+        GeomPtr part = pick_polygon(ctx_, rest.get(), topo_.nodes[junction_node_[j]].position);
+        // (covered all over by sections and other junctions: the surface stays as built, reported)
+        if (!part || area_of(ctx_, part.get()) <= 1e-9) {
+          result_.issues.push_back({topo_.nodes[junction_node_[j]].axis_ids.front(), "overlap_kept",
+                                    "the junction lies under other roadways", std::nullopt, ir.node_id});
+          continue;
+        }
+        ir.surface = std::move(part);
+        ir.status = "narrowed";
+      } catch (const Error& e) {
+        if (e.kind() != ErrorKind::geometry_engine) throw;
+        result_.issues.push_back({topo_.nodes[junction_node_[j]].axis_ids.front(), "overlap_kept",
+                                  "its overlaps could not be removed: " + e.detail(), std::nullopt, ir.node_id});
+      }
+    }
+  }
+
+  // A junction's skeleton as one polyline: from the node out along each axis to its border line
+  // and back (distances to it are distances to the nearest stub).
+  Polyline skeleton(std::size_t n) const {
+    Point node = topo_.nodes[n].position;
+    Polyline star{node};
+    for (const End& e : ends_of_node_[n]) {
+      if (e.border <= 1e-9) continue;
+      Polyline stub = substring(e.outgoing, 0.0, e.border);
+      star.insert(star.end(), stub.begin() + 1, stub.end());
+      star.insert(star.end(), stub.rbegin() + 1, stub.rend());
+    }
+    if (star.size() == 1) star.push_back(node);
+    return star;
   }
 
   // The part of `region` nearer to polyline a than to polyline b.
@@ -1156,6 +1298,7 @@ class SurfaceBuilder {
   std::vector<std::vector<CornerResult>> corners_of_node_;
   std::vector<bool> transition_;
   std::map<std::pair<std::int64_t, std::int64_t>, const GEOSGeometry*> section_surface_;
+  std::vector<std::size_t> junction_node_;  // per result_.intersections entry: its node's index
   std::map<std::int64_t, int> axis_layer_;
   std::map<std::int64_t, std::size_t> axis_index_;
   std::vector<LanePlan> plans_;  // per axis, as axes_
