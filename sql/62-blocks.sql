@@ -123,8 +123,8 @@ $$;
 -- section; and how blocks, street surfaces and sidewalks tile the bounded faces of the
 -- ground-level network: face_area, the area covered twice inside the faces by what the details
 -- add (overlap_area: sidewalks on roadways or on each other, blocks on streets), the area where
--- roadways (sections, junctions) overlap each other there (roadway_overlap_area: the street
--- surfaces' own matter, see surface_quality), and the area covered by nothing (gap_area). Overlays
+-- roadways (sections, junctions) overlap each other there (roadway_overlap_area: the engine splits
+-- such overlaps, see surface_quality), and the area covered by nothing (gap_area). Overlays
 -- snap to a micrometre grid (OverlayNG with a grid size): without it GEOS throws on some
 -- nearly coincident edges of real networks.
 CREATE FUNCTION streetgen.detail_quality(model text,

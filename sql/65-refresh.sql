@@ -294,7 +294,7 @@ BEGIN
   UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Expand(ST_Envelope(s.geom), reach) FROM pg_temp._sg_changed_geom g,
          LATERAL (SELECT s.* FROM section s WHERE s.geom && ST_Expand(g.geom, max_width + reach)) AS s
   UNION SELECT s.axis_id, s.part, s.from_node, s.to_node, ST_Expand(ST_Envelope(s.geom), reach) FROM pg_temp._sg_changed_geom g,
-         LATERAL (SELECT i.node_id FROM intersection i WHERE reach > 0 AND i.geom && ST_Expand(g.geom, max_width + reach)) AS j,
+         LATERAL (SELECT i.node_id FROM intersection i WHERE i.geom && ST_Expand(g.geom, max_width + reach)) AS j,
          LATERAL (SELECT s.* FROM section s WHERE s.from_node = j.node_id
                   UNION ALL SELECT s.* FROM section s WHERE s.to_node = j.node_id) AS s;
   INSERT INTO pg_temp._sg_s2
@@ -304,7 +304,7 @@ BEGIN
   -- junctions within reach come in, so that those junctions are in scope with their context
   -- (their own sections may have no surface to be found by).
   UNION SELECT p.axis_id, p.part, p.from_node, p.to_node, ST_Expand(ST_Envelope(p.geom), reach) FROM pg_temp._sg_s1 k,
-         LATERAL (SELECT i.node_id FROM intersection i WHERE reach > 0 AND i.geom && k.envelope) AS j,
+         LATERAL (SELECT i.node_id FROM intersection i WHERE i.geom && k.envelope) AS j,
          LATERAL (SELECT p.* FROM section p WHERE p.from_node = j.node_id
                   UNION ALL SELECT p.* FROM section p WHERE p.to_node = j.node_id) AS p
   UNION SELECT axis_id, part, from_node, to_node, envelope FROM pg_temp._sg_s1;
@@ -343,13 +343,13 @@ BEGIN
         -- their context. (A soak found one written too large: a section whose sidewalk claim cut it
         -- had not been given at all, and nothing in the output could call for it.)
         UNION SELECT p.axis_id, p.part, p.from_node, p.to_node FROM ends e,
-               LATERAL (SELECT i.geom FROM intersection i WHERE reach > 0 AND i.node_id = e.id) AS j,
+               LATERAL (SELECT i.geom FROM intersection i WHERE i.node_id = e.id) AS j,
                LATERAL (SELECT p.* FROM section p WHERE p.geom && ST_Expand(j.geom, reach)) AS p
         -- The junctions within its reach too, by their sections (a surface the engine is not given
         -- does not cut it): a replay found a junction sidewalk written over a junction 3.7 m away
         -- whose sections all began beyond its reach.
         UNION SELECT p.axis_id, p.part, p.from_node, p.to_node FROM ends e,
-               LATERAL (SELECT i.geom FROM intersection i WHERE reach > 0 AND i.node_id = e.id) AS j,
+               LATERAL (SELECT i.geom FROM intersection i WHERE i.node_id = e.id) AS j,
                LATERAL (SELECT n.node_id FROM intersection n WHERE n.geom && ST_Expand(j.geom, reach)) AS n,
                LATERAL (SELECT p.* FROM section p WHERE p.from_node = n.node_id
                         UNION ALL SELECT p.* FROM section p WHERE p.to_node = n.node_id) AS p
@@ -390,6 +390,11 @@ BEGIN
        AND (o.axis_id = ANY (changed)
             OR EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE k.axis_id = o.axis_id AND k.part = o.part)
             OR (o.status = 'narrowed' AND (o.node_id IN (SELECT id FROM ends) OR o.to_node IN (SELECT id FROM ends))))
+    -- The narrowed junctions at the ends: what they gave way to (sections over them, junctions
+    -- overlapping them, which now touch them) must be right.
+    UNION ALL
+    SELECT ST_GeomFromEWKB(o.geom) FROM pg_temp._streetgen_out o
+     WHERE o.kind = 'intersection' AND o.geom IS NOT NULL AND o.status = 'narrowed' AND o.node_id IN (SELECT id FROM ends)
     -- The sidewalks that may be rewritten, as their boxes grown by the sidewalks' reach: a
     -- section cut too long where the context ends would have cut them short, by its roadway or
     -- by its own sidewalk's claim (which reaches beyond its roadway).
@@ -440,44 +445,44 @@ BEGIN
     -- against stored, either way) joins the scope, and the sections at junctions within reach
     -- (their junction sidewalks); the run is repeated with their context. (A soak found sidewalks
     -- of two narrowed sections left over a junction surface that a neighbour's edit had moved.)
-    IF reach > 0 THEN
-      INSERT INTO pg_temp._sg_s2
-      WITH ends (id) AS (SELECT from_node FROM pg_temp._sg_s2 UNION SELECT to_node FROM pg_temp._sg_s2
-                         UNION SELECT id FROM pg_temp._sg_k_nodes),
-      out_roadway AS MATERIALIZED (
-        SELECT o.axis_id, o.part, NULL::bigint AS node_id, ST_GeomFromEWKB(o.geom) AS geom FROM pg_temp._streetgen_out o
-         WHERE o.kind = 'section' AND o.geom IS NOT NULL
-           AND (o.axis_id = ANY (changed)
-                OR EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE k.axis_id = o.axis_id AND k.part = o.part))
-        UNION ALL
-        SELECT NULL, NULL, o.node_id, ST_GeomFromEWKB(o.geom) FROM pg_temp._streetgen_out o
-         WHERE o.kind = 'intersection' AND o.geom IS NOT NULL AND o.node_id IN (SELECT id FROM ends)),
-      moved (geom) AS (
-        SELECT r.geom FROM out_roadway r
-         WHERE r.node_id IS NULL
-           AND NOT EXISTS (SELECT 1 FROM section s WHERE s.axis_id = r.axis_id AND s.part = r.part AND ST_OrderingEquals(s.geom, r.geom))
-        UNION ALL SELECT r.geom FROM out_roadway r
-         WHERE r.node_id IS NOT NULL
-           AND NOT EXISTS (SELECT 1 FROM intersection i WHERE i.node_id = r.node_id AND ST_OrderingEquals(i.geom, r.geom))
-        UNION ALL SELECT s.geom FROM pg_temp._sg_s2 k, LATERAL (SELECT s.geom FROM section s
-                                                              WHERE s.axis_id = k.axis_id AND s.part = k.part) AS s
-         WHERE s.geom IS NOT NULL
-           AND NOT EXISTS (SELECT 1 FROM out_roadway r WHERE r.axis_id = k.axis_id AND r.part = k.part AND ST_OrderingEquals(s.geom, r.geom))
-        UNION ALL SELECT i.geom FROM ends e, LATERAL (SELECT i.geom FROM intersection i WHERE i.node_id = e.id) AS i
-         WHERE NOT EXISTS (SELECT 1 FROM out_roadway r WHERE r.node_id = e.id AND ST_OrderingEquals(i.geom, r.geom))),
-      reached AS (
-        SELECT p.axis_id, p.part, p.from_node, p.to_node, p.geom FROM moved m,
-               LATERAL (SELECT p.* FROM section p WHERE p.geom && ST_Expand(m.geom, reach) AND ST_DWithin(p.geom, m.geom, reach)) AS p
-        UNION
-        SELECT p.axis_id, p.part, p.from_node, p.to_node, p.geom FROM moved m,
-               LATERAL (SELECT i.node_id FROM intersection i
-                         WHERE i.geom && ST_Expand(m.geom, reach) AND ST_DWithin(i.geom, m.geom, reach)) AS j,
-               LATERAL (SELECT p.* FROM section p WHERE p.from_node = j.node_id
-                        UNION ALL SELECT p.* FROM section p WHERE p.to_node = j.node_id) AS p)
-      SELECT r.axis_id, r.part, r.from_node, r.to_node, ST_Expand(ST_Envelope(r.geom), reach) FROM reached r
-       WHERE NOT EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE k.axis_id = r.axis_id AND k.part = r.part);
-      GET DIAGNOSTICS widened = ROW_COUNT;
-    END IF;
+    -- Without sidewalks (reach 0) this runs too: a junction gives way to the roadways over it,
+    -- so one that a moved roadway overlaps, or overlapped, is rewritten with it.
+    INSERT INTO pg_temp._sg_s2
+    WITH ends (id) AS (SELECT from_node FROM pg_temp._sg_s2 UNION SELECT to_node FROM pg_temp._sg_s2
+                       UNION SELECT id FROM pg_temp._sg_k_nodes),
+    out_roadway AS MATERIALIZED (
+      SELECT o.axis_id, o.part, NULL::bigint AS node_id, ST_GeomFromEWKB(o.geom) AS geom FROM pg_temp._streetgen_out o
+       WHERE o.kind = 'section' AND o.geom IS NOT NULL
+         AND (o.axis_id = ANY (changed)
+              OR EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE k.axis_id = o.axis_id AND k.part = o.part))
+      UNION ALL
+      SELECT NULL, NULL, o.node_id, ST_GeomFromEWKB(o.geom) FROM pg_temp._streetgen_out o
+       WHERE o.kind = 'intersection' AND o.geom IS NOT NULL AND o.node_id IN (SELECT id FROM ends)),
+    moved (geom) AS (
+      SELECT r.geom FROM out_roadway r
+       WHERE r.node_id IS NULL
+         AND NOT EXISTS (SELECT 1 FROM section s WHERE s.axis_id = r.axis_id AND s.part = r.part AND ST_OrderingEquals(s.geom, r.geom))
+      UNION ALL SELECT r.geom FROM out_roadway r
+       WHERE r.node_id IS NOT NULL
+         AND NOT EXISTS (SELECT 1 FROM intersection i WHERE i.node_id = r.node_id AND ST_OrderingEquals(i.geom, r.geom))
+      UNION ALL SELECT s.geom FROM pg_temp._sg_s2 k, LATERAL (SELECT s.geom FROM section s
+                                                            WHERE s.axis_id = k.axis_id AND s.part = k.part) AS s
+       WHERE s.geom IS NOT NULL
+         AND NOT EXISTS (SELECT 1 FROM out_roadway r WHERE r.axis_id = k.axis_id AND r.part = k.part AND ST_OrderingEquals(s.geom, r.geom))
+      UNION ALL SELECT i.geom FROM ends e, LATERAL (SELECT i.geom FROM intersection i WHERE i.node_id = e.id) AS i
+       WHERE NOT EXISTS (SELECT 1 FROM out_roadway r WHERE r.node_id = e.id AND ST_OrderingEquals(i.geom, r.geom))),
+    reached AS (
+      SELECT p.axis_id, p.part, p.from_node, p.to_node, p.geom FROM moved m,
+             LATERAL (SELECT p.* FROM section p WHERE p.geom && ST_Expand(m.geom, reach) AND ST_DWithin(p.geom, m.geom, reach)) AS p
+      UNION
+      SELECT p.axis_id, p.part, p.from_node, p.to_node, p.geom FROM moved m,
+             LATERAL (SELECT i.node_id FROM intersection i
+                       WHERE i.geom && ST_Expand(m.geom, reach) AND ST_DWithin(i.geom, m.geom, reach)) AS j,
+             LATERAL (SELECT p.* FROM section p WHERE p.from_node = j.node_id
+                      UNION ALL SELECT p.* FROM section p WHERE p.to_node = j.node_id) AS p)
+    SELECT r.axis_id, r.part, r.from_node, r.to_node, ST_Expand(ST_Envelope(r.geom), reach) FROM reached r
+     WHERE NOT EXISTS (SELECT 1 FROM pg_temp._sg_s2 k WHERE k.axis_id = r.axis_id AND k.part = r.part);
+    GET DIAGNOSTICS widened = ROW_COUNT;
     converged := grown = 0 AND widened = 0;
     EXIT WHEN converged;
   END LOOP;

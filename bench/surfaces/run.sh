@@ -90,12 +90,13 @@ say ""
 say "streetgen $(psql -X -At -c "SELECT extension || ' (GEOS ' || geos || ', CGAL ' || cgal || ', PostGIS ' || postgis || ')' FROM streetgen.version()"), $(nproc) cores, $(date -u +%Y-%m-%d)."
 say "Road data (c) OpenStreetMap contributors, ODbL 1.0; Paris graph from Nishida et al. (ODbL-derived)."
 say ""
-say "| dataset | axes | nodes | junctions | intersections | invalid | missing | section overlap % | import s | generate s | peak private MB (before generate) |"
-say "|---|---|---|---|---|---|---|---|---|---|---|"
+say "| dataset | axes | nodes | junctions | intersections | invalid | missing | section overlap % | junction overlap % | import s | generate s | peak private MB (before generate) |"
+say "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for n in "${names[@]}"; do
   row=$(psql -X -At -F '|' -c "
     SELECT (SELECT count(*) FROM $n.axis), q.nodes, q.junctions, q.intersections, q.invalid_geometries,
-           q.missing_intersections, round((100 * q.section_overlap_ratio)::numeric, 4)
+           q.missing_intersections, round((100 * q.section_overlap_ratio)::numeric, 4),
+           round((100 * q.intersection_overlap_area / greatest(q.surface_area, 1e-9))::numeric, 4)
       FROM streetgen.surface_quality('$n') q")
   say "| $n | $row | ${import_s[$n]} | ${generate_s[$n]} | $(( ${peak_kb[$n]:-0} / 1024 )) ($(( ${base_kb[$n]:-0} / 1024 ))) |"
 done
@@ -112,7 +113,7 @@ for n in "${names[@]}"; do
 done
 totals=$(psql -X -At -c "SELECT count(*) FROM streetgen.model")
 say ""
-say "Models: $totals. Acceptance: invalid = 0, missing = 0, section overlap < 0.1 % on every row above."
+say "Models: $totals. Acceptance: invalid = 0, missing = 0, section and junction overlap < 0.1 % on every row above."
 
 if [[ " ${names[*]} " == *" c_neukolln "* ]]; then
   say ""

@@ -21,7 +21,9 @@ SELECT is_empty($$SELECT model, sidewalk_overlap_area FROM measured WHERE sidewa
 SELECT is_empty($$SELECT model, crossing_outside_area FROM measured WHERE crossing_outside_area >= 1e-3$$,
                 'crossings lie in their section (< 0.001 m2 per network)');
 SELECT is_empty($$SELECT model, overlap_area, face_area FROM measured WHERE overlap_area >= 0.001 * face_area AND face_area > 0$$,
-                'blocks, sidewalks and the street surfaces do not overlap inside the network''s bounded faces (< 0.1 % of their area; roadways on roadways are the surfaces'' matter, reported apart)');
+                'blocks, sidewalks and the street surfaces do not overlap inside the network''s bounded faces (< 0.1 % of their area)');
+SELECT is_empty($$SELECT model, roadway_overlap_area, face_area FROM measured WHERE roadway_overlap_area >= 0.001 * face_area AND face_area > 0$$,
+                'roadways (sections, junctions) do not overlap each other inside the network''s bounded faces (< 0.1 % of their area)');
 SELECT is_empty($$SELECT model, gap_area, face_area FROM measured WHERE abs(gap_area) >= 0.001 * face_area AND face_area > 0$$,
                 'blocks, street surfaces and sidewalks leave no gap in the network''s bounded faces (< 0.1 % of their area)');
 -- Blocks are the faces: as many as PostGIS finds in the layer-0 axes, noded (an independent

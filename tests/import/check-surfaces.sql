@@ -15,6 +15,9 @@ SELECT is_empty($$SELECT model, missing_intersections FROM measured WHERE missin
                 'every node of degree >= 2 has an intersection surface');
 SELECT is_empty($$SELECT model, section_overlap_ratio FROM measured WHERE section_overlap_ratio >= 0.001$$,
                 'sections of different axes on a layer overlap by less than 0.1 % of the surface');
+SELECT is_empty($$SELECT model, intersection_overlap_area, surface_area FROM measured
+                   WHERE intersection_overlap_area >= 0.001 * greatest(surface_area, 1e-9)$$,
+                'junctions overlap sections or other junctions of their layer by less than 0.1 % of the surface');
 SELECT is_empty($$SELECT model FROM measured WHERE intersections = 0 OR sections = 0$$,
                 'every network has sections and intersections');
 

@@ -158,6 +158,30 @@ TEST(StreetSurfaces, AcuteAngleFallsBackAndStaysValid) {
   expect_valid_and_disjoint(ctx, r);
 }
 
+// Two carriageways 8 m apart, 10 m wide (their sections split the overlap along the midline),
+// each with a branch leaving at 6°, one eastwards, one westwards, from the same abscissa: each
+// junction reaches over the other carriageway and the other junction. Junctions give way to the
+// sections and split what they share: nothing overlaps, and each keeps its node.
+TEST(StreetSurfaces, JunctionsPackedTogetherDoNotOverlap) {
+  GeosContext ctx;
+  SurfaceSettings s;
+  std::vector<SurfaceAxis> axes{axis(1, {{-100, 0}, {100, 0}}, 10, 50), axis(2, {{-100, 8}, {100, 8}}, 10, 50),
+                                axis(3, {{0, 0}, {100, -10}}, 8, 50), axis(4, {{0, 8}, {-100, 18}}, 8, 50)};
+  SurfaceResult r = street_surfaces(ctx, axes, {}, s);
+  ASSERT_EQ(r.intersections.size(), 2u);
+  for (const auto& i : r.intersections) {
+    EXPECT_EQ(i.status, "narrowed") << i.node_id;
+    EXPECT_EQ(GEOSGeomTypeId_r(ctx.handle(), i.surface.get()), GEOS_POLYGON);
+  }
+  for (Point node : {Point{0, 0}, Point{0, 8}}) {
+    GeomPtr p = own(ctx, GEOSGeom_createPointFromXY_r(ctx.handle(), node.x, node.y), "point");
+    int holders = 0;
+    for (const auto& i : r.intersections) holders += GEOSIntersects_r(ctx.handle(), i.surface.get(), p.get());
+    EXPECT_GE(holders, 1) << node.y;
+  }
+  expect_valid_and_disjoint(ctx, r);
+}
+
 TEST(StreetSurfaces, WidthChangeAtADegreeTwoNodeIsALinearTransition) {
   GeosContext ctx;
   SurfaceSettings s;
