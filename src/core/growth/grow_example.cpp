@@ -256,6 +256,7 @@ class Grower {
       local_hint_.clear();
       bridge_hint_.clear();
       bridge_landing_.clear();
+      bridge_end_.clear();
       load_existing();
       place_seeds();
     }
@@ -1472,6 +1473,9 @@ class Grower {
   // for a street. An approach edge on land, then the bridge edge between the banks; the far end
   // is a front. Nothing changes unless it is legal (no crossing, not crowded, max_edges).
   bool try_bridge(std::uint32_t v, double angle, double approach, int level, std::int64_t example_id, int source) {
+    // A bridge's ends start no other bridge: a side street of the landing would otherwise cross
+    // straight back (measured: zigzags of bridges along the river).
+    if (bridge_end_.count(v) != 0) return false;
     const Point p = nodes_[v].p;
     std::vector<double> angles;
     const int turns = static_cast<int>(std::floor(params_.bridge_turn * kPi / 180.0 / kBendStep + 1e-9));
@@ -1493,7 +1497,13 @@ class Grower {
     const Point near = p + std::max(0.0, c.entry - c.setback) * u;
     const Point far = p + (c.exit + c.setback) * u;
     const bool approach_edge = distance(p, near) >= min_length_;
-    if ((approach_edge && !legal(p, near)) || first_contact(p, far, v).found || crowded(far, min_length_, UINT32_MAX) ||
+    // Bridges keep two snap distances apart at both banks (side by side they would be one).
+    bool close = false;
+    for (std::uint32_t b : bridge_end_) {
+      close = close || distance(nodes_[b].p, near) < 2.0 * snap_ || distance(nodes_[b].p, far) < 2.0 * snap_;
+    }
+    if (close || (approach_edge && !legal(p, near)) || first_contact(p, far, v).found || crowded(far, min_length_, UINT32_MAX) ||
+        !clear_of_network(approach_edge ? near : p, far, clearance_, v, -1, -1) ||
         new_edges_ + 1 + (approach_edge ? 1 : 0) > params_.max_edges) {
       ++stats_.bridges_failed;
       return false;
@@ -1512,6 +1522,8 @@ class Grower {
     ++stats_.accepted;
     ++stats_.bridges;
     bridge_landing_.insert(to);
+    bridge_end_.insert(from);
+    bridge_end_.insert(to);
     unfinished_.push_back(to);
     return true;
   }
@@ -2695,7 +2707,8 @@ class Grower {
   // node tries a bridge first. Far ends of bridges may continue by the statistical fallback in the
   // arterial phase (a bridge to nowhere is worse than a statistical street).
   std::unordered_map<std::uint32_t, std::pair<double, int>> bridge_hint_;  // node -> direction, level
-  std::unordered_set<std::uint32_t> bridge_landing_;
+  std::unordered_set<std::uint32_t> bridge_landing_;  // far ends of bridges
+  std::unordered_set<std::uint32_t> bridge_end_;      // both ends
   std::vector<ONode> nodes_;
   std::vector<OEdge> edges_;
   BoxTree edge_tree_;
