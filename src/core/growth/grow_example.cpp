@@ -1502,7 +1502,13 @@ class Grower {
     for (std::uint32_t b : bridge_end_) {
       close = close || distance(nodes_[b].p, near) < 2.0 * snap_ || distance(nodes_[b].p, far) < 2.0 * snap_;
     }
-    if (close || (approach_edge && !legal(p, near)) || first_contact(p, far, v).found || crowded(far, min_length_, UINT32_MAX) ||
+    // A bridge deck keeps under max_slope between its banks (the DEM over the water is not read).
+    bool steep = false;
+    if (has_dem_) {
+      const double za = sample_bilinear(*dem_, 0, approach_edge ? near : p), zb = sample_bilinear(*dem_, 0, far);
+      steep = !std::isnan(za) && !std::isnan(zb) && std::abs(zb - za) > max_grade_ * distance(approach_edge ? near : p, far);
+    }
+    if (close || steep || (approach_edge && !legal(p, near)) || first_contact(p, far, v).found || crowded(far, min_length_, UINT32_MAX) ||
         !clear_of_network(approach_edge ? near : p, far, clearance_, v, -1, -1) ||
         new_edges_ + 1 + (approach_edge ? 1 : 0) > params_.max_edges) {
       ++stats_.bridges_failed;
@@ -2266,6 +2272,7 @@ class Grower {
         const OEdge& edge = edges_[best];
         if (distance(best_x, nodes_[edge.a].p) <= clearance_ || distance(best_x, nodes_[edge.b].p) <= clearance_) continue;
         if (distance(best_x, before) < min_length_) continue;
+        if (!legal(before, best_x)) continue;  // moved after the legality checks: water and slope again
         Point dir = nodes_[edge.b].p - nodes_[edge.a].p, in = best_x - before;
         double angle = std::abs(std::atan2(cross(dir, in), dot(dir, in)));
         if (std::min(angle, kPi - angle) < min_angle_) continue;
