@@ -349,7 +349,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   ereport(DEBUG1, (errmsg("grow_patches: %zu steps, %zu patches placed, %zu statistical fallback, %zu candidates, "
                           "%zu illegal, %zu self-crossing patches dropped, %zu restarts; levels: %zu arterial patches "
                           "placed, %zu local seeds (%zu with their example patch), %zu local streets ended on arterials; "
-                          "terrain: %zu bridges (%zu arterials found no far bank), %zu bent along the contour, %zu too steep; "
+                          "terrain: %zu bridges (%zu bridge attempts failed), %zu bent along the contour, %zu too steep; "
                           "example-based share %.1f %% of the edges, %.1f %% of the length",
                           stats.steps, stats.patches_placed, stats.fallback, stats.patch_candidates, stats.patch_illegal,
                           stats.patches_dropped, stats.restarts, stats.arterial_patches_placed, stats.local_seeds,

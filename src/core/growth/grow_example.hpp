@@ -164,7 +164,8 @@ struct GrowStats {
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
   std::size_t ended_on_arterial = 0;  // levels: local streets whose new end was put on an arterial street
   std::size_t bridges = 0;         // bridge edges across water
-  std::size_t bridges_failed = 0;  // arterials that met water without a far bank within bridge_distance
+  std::size_t bridges_failed = 0;  // bridge attempts that failed (no far bank within bridge_distance, too
+                                   // close to another bridge, crossing, crowded, too steep)
   std::size_t bent = 0;            // statistical proposals bent towards the contour (DEM)
   std::size_t too_steep = 0;       // statistical proposals discarded: no bend under max_slope
   double radius = 0.0;             // the r and snap distance used
