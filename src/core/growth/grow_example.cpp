@@ -384,14 +384,16 @@ class Grower {
     }
     if (params_.parametric) check_shape(params_.shape);
     if (!std::isfinite(params_.max_slope) || params_.max_slope <= 0.0) {
-      throw_invalid_argument("max_slope must be a finite number > 0", "It is " + std::to_string(params_.max_slope) + " %.");
+      throw_invalid_argument("max_slope must be a finite number > 0",
+                             "It is " + std::to_string(params_.max_slope) + " %.");
     }
     if (!std::isfinite(params_.bridge_distance) || params_.bridge_distance < 0.0) {
       throw_invalid_argument("bridge_distance must be a finite number >= 0",
                              "It is " + std::to_string(params_.bridge_distance) + " m.");
     }
     if (!(params_.bridge_turn >= 0.0 && params_.bridge_turn < 90.0)) {
-      throw_invalid_argument("bridge_turn must be in [0, 90) degrees", "It is " + std::to_string(params_.bridge_turn) + ".");
+      throw_invalid_argument("bridge_turn must be in [0, 90) degrees",
+                             "It is " + std::to_string(params_.bridge_turn) + ".");
     }
     if (params_.use_patches) {
       const PatchGrowParams& pp = params_.patch;
@@ -1503,13 +1505,14 @@ class Grower {
       close = close || distance(nodes_[b].p, near) < 2.0 * snap_ || distance(nodes_[b].p, far) < 2.0 * snap_;
     }
     // A bridge deck keeps under max_slope between its banks (the DEM over the water is not read).
+    const Point start = approach_edge ? near : p;
     bool steep = false;
     if (has_dem_) {
-      const double za = sample_bilinear(*dem_, 0, approach_edge ? near : p), zb = sample_bilinear(*dem_, 0, far);
-      steep = !std::isnan(za) && !std::isnan(zb) && std::abs(zb - za) > max_grade_ * distance(approach_edge ? near : p, far);
+      const double za = sample_bilinear(*dem_, 0, start), zb = sample_bilinear(*dem_, 0, far);
+      steep = !std::isnan(za) && !std::isnan(zb) && std::abs(zb - za) > max_grade_ * distance(start, far);
     }
-    if (close || steep || (approach_edge && !legal(p, near)) || first_contact(p, far, v).found || crowded(far, min_length_, UINT32_MAX) ||
-        !clear_of_network(approach_edge ? near : p, far, clearance_, v, -1, -1) ||
+    if (close || steep || (approach_edge && !legal(p, near)) || first_contact(p, far, v).found ||
+        crowded(far, min_length_, UINT32_MAX) || !clear_of_network(start, far, clearance_, v, -1, -1) ||
         new_edges_ + 1 + (approach_edge ? 1 : 0) > params_.max_edges) {
       ++stats_.bridges_failed;
       return false;
@@ -2095,7 +2098,8 @@ class Grower {
         return;
       }
     }
-    if (!params_.fallback || nodes_[v].edges.size() >= 2 || (hierarchy_ && phase_arterial_ && bridge_landing_.count(v) == 0)) {
+    if (!params_.fallback || nodes_[v].edges.size() >= 2 ||
+        (hierarchy_ && phase_arterial_ && bridge_landing_.count(v) == 0)) {
       done_ = true;
       return;
     }
@@ -2232,7 +2236,9 @@ class Grower {
         // bend along the contour (Nishida's local constraint).
         pl.steep_end = has_dem_ && legal(a, probe, false);
         if (pl.line.size() < 2 || length(pl.line) < min_length_) {
-          if (!std::isnan(pl.bridge_angle) && pl.line.size() <= 2) short_bridges.push_back({pl.a, pl.bridge_angle, pl.level});
+          if (!std::isnan(pl.bridge_angle) && pl.line.size() <= 2) {
+            short_bridges.push_back({pl.a, pl.bridge_angle, pl.level});
+          }
           pl.line.clear();  // too short to keep: dropped
         } else {
           fresh.push_back(pl.line.back());
@@ -2638,7 +2644,9 @@ class Grower {
     if (!input.dem.empty()) {
       input.dem.check("dem");
       for (double z : input.dem.values) {
-        if (std::isinf(z)) throw_invalid_argument("dem raster must hold finite heights", "Nodata cells are unknown terrain.");
+        if (std::isinf(z)) {
+          throw_invalid_argument("dem raster must hold finite heights", "Nodata cells are unknown terrain.");
+        }
       }
       if (input.dem.bands != 1) {
         throw_invalid_argument("dem raster must have one band", "It has " + std::to_string(input.dem.bands) + ".");

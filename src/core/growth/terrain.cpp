@@ -65,7 +65,8 @@ double grade(const GridField& dem, Point a, Point b) {
 
 Point terrain_gradient(const GridField& dem, Point p) {
   auto derivative = [&](Point d, double h) {
-    const double zp = sample_bilinear(dem, 0, p + d), zm = sample_bilinear(dem, 0, p - d), z0 = sample_bilinear(dem, 0, p);
+    const double zp = sample_bilinear(dem, 0, p + d), zm = sample_bilinear(dem, 0, p - d);
+    const double z0 = sample_bilinear(dem, 0, p);
     if (!std::isnan(zp) && !std::isnan(zm)) return (zp - zm) / (2.0 * h);
     if (!std::isnan(zp) && !std::isnan(z0)) return (zp - z0) / h;  // at the raster's edge or next to nodata
     if (!std::isnan(zm) && !std::isnan(z0)) return (z0 - zm) / h;
