@@ -20,6 +20,8 @@ CREATE FUNCTION streetgen._streetgen_grow_patches(patch_ids bigint[], roles text
     seed bigint, max_edges integer, snap double precision, min_angle double precision, scale double precision,
     max_distance double precision, angle_window double precision, tries integer, default_max_uses integer,
     rotation double precision, fallback boolean, clearance double precision, arterials boolean[], levels boolean,
+    water bytea[], dem_grid double precision[], dem_values double precision[], max_slope double precision,
+    bridge_distance double precision, bridge_turn double precision,
     OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text, OUT geom bytea)
   RETURNS SETOF record
   LANGUAGE c IMMUTABLE PARALLEL SAFE
@@ -115,7 +117,7 @@ COMMENT ON FUNCTION streetgen.extract_patches(text, jsonb) IS
   'Decomposes an example road network into patches (Nishida et al. 2016): roundabouts (the example''s roundabout column, or small compact faces found by polygonize) and clusters of 3 or more junctions closer than cluster_distance are detected first, then each structure and every other junction is grown by its streets shorter than short_edge. One row per patch edge: role inner, connector (shared with the neighbouring patch, oriented outwards) or dead_end (towards the dead end); semantic tags (Teng & Bidarra) per patch (roundabout, cluster, loop, cul-de-sac, curved, straight, terminal, initial, main, local), per edge (main, local, connector, dead-end, snappable, curved, straight, roundabout) and per end vertex (intersection, connectable, dead-end); max_uses NULL (set it to limit a patch''s uses in grow_patches). Levels (when the example has main and local streets): arterial patches (tag arterial) from the graph of the main streets alone, then local patches around the junctions where a local street meets. example: a query (geom, optionally road_class or type, id, roundabout) or a model name. params: short_edge (m, 0.4 x the median street length), cluster_distance (m, short_edge), detect_circles (true), circle_min_diameter (m, 8), circle_max_diameter (m, 100), circle_compactness (0.85), levels (true), crop_margin (m, 0 = off: a dead end this close to the example''s convex hull is a street the crop cut, a connector tagged cut)';
 
 CREATE FUNCTION streetgen.grow_patches(patches text, region geometry, seeds geometry, obstacles geometry DEFAULT NULL,
-    params jsonb DEFAULT '{}',
+    params jsonb DEFAULT '{}', water geometry DEFAULT NULL, dem raster DEFAULT NULL,
     OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text,
     OUT geom geometry)
   RETURNS SETOF record
@@ -137,6 +139,8 @@ DECLARE
   ys double precision[];
   obstacle_geoms bytea[];
   seed_types text[];
+  water_geoms bytea[];
+  dem_r record;
   k text;
   complete boolean;
 BEGIN
@@ -149,18 +153,30 @@ BEGIN
   IF seeds IS NULL THEN
     RAISE EXCEPTION 'seeds must not be null' USING ERRCODE = 'null_value_not_allowed';
   END IF;
-  PERFORM streetgen._require_params(p, ARRAY['angle_window', 'clearance', 'fallback', 'levels', 'max_distance', 'max_edges',
-                                             'max_uses', 'min_angle', 'rotation', 'scale', 'seed', 'snap', 'tries']);
+  PERFORM streetgen._require_params(p, ARRAY['angle_window', 'bridge_distance', 'bridge_turn', 'clearance', 'fallback',
+                                             'levels', 'max_distance', 'max_edges', 'max_slope', 'max_uses', 'min_angle',
+                                             'rotation', 'scale', 'seed', 'snap', 'tries']);
   IF p ? 'levels' AND jsonb_typeof(p -> 'levels') <> 'boolean' THEN
     RAISE EXCEPTION 'levels must be true or false' USING ERRCODE = 'invalid_parameter_value',
       DETAIL = format('It is %s.', p -> 'levels');
   END IF;
-  FOREACH k IN ARRAY ARRAY['scale', 'snap', 'max_distance', 'angle_window', 'clearance'] LOOP
+  FOREACH k IN ARRAY ARRAY['scale', 'snap', 'max_distance', 'angle_window', 'clearance', 'max_slope'] LOOP
     IF p ? k AND NOT coalesce(jsonb_typeof(p -> k) = 'number' AND (p ->> k)::double precision > 0, false) THEN
       RAISE EXCEPTION '% must be a number > 0', k USING ERRCODE = 'invalid_parameter_value',
         DETAIL = format('It is %s.', p -> k);
     END IF;
   END LOOP;
+  IF p ? 'bridge_distance' AND NOT coalesce(jsonb_typeof(p -> 'bridge_distance') = 'number'
+                                            AND (p ->> 'bridge_distance')::double precision >= 0, false) THEN
+    RAISE EXCEPTION 'bridge_distance must be a number >= 0' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It is %s.', p -> 'bridge_distance'), HINT = '0 turns bridges off.';
+  END IF;
+  IF p ? 'bridge_turn' AND NOT coalesce(jsonb_typeof(p -> 'bridge_turn') = 'number'
+                                        AND (p ->> 'bridge_turn')::double precision >= 0
+                                        AND (p ->> 'bridge_turn')::double precision < 90, false) THEN
+    RAISE EXCEPTION 'bridge_turn must be a number in [0, 90) (degrees)' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It is %s.', p -> 'bridge_turn');
+  END IF;
   PERFORM streetgen._require_metric_srid(ST_SRID(region), 'region SRID');
   IF ST_SRID(seeds) <> ST_SRID(region) THEN
     RAISE EXCEPTION 'seeds must have the SRID of the region' USING ERRCODE = 'invalid_parameter_value',
@@ -170,6 +186,17 @@ BEGIN
     RAISE EXCEPTION 'obstacles must have the SRID of the region' USING ERRCODE = 'invalid_parameter_value',
       DETAIL = format('The obstacles have SRID %s, the region %s.', ST_SRID(obstacles), ST_SRID(region));
   END IF;
+  IF water IS NOT NULL AND ST_SRID(water) <> ST_SRID(region) THEN
+    RAISE EXCEPTION 'water must have the SRID of the region' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('The water has SRID %s, the region %s.', ST_SRID(water), ST_SRID(region)),
+      HINT = 'ST_Transform the water to the region''s SRID.';
+  END IF;
+  IF dem IS NOT NULL AND NOT ST_IsEmpty(dem) AND ST_NumBands(dem) > 1 THEN
+    RAISE EXCEPTION 'dem raster must have one band' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It has %s.', ST_NumBands(dem)), HINT = 'ST_Band(rast, n) picks the band of heights.';
+  END IF;
+  -- SRID, skew, overlap with the region and size are checked there; NULL cells are unknown terrain.
+  dem_r := streetgen._control_raster(dem, 'dem', region);
   SELECT array_agg(DISTINCT ST_GeometryType(d.geom)) INTO seed_types
     FROM ST_Dump(seeds) AS d WHERE ST_GeometryType(d.geom) <> 'ST_Point';
   IF seed_types IS NOT NULL THEN
@@ -179,6 +206,7 @@ BEGIN
   SELECT array_agg(ST_X(d.geom) ORDER BY d.path), array_agg(ST_Y(d.geom) ORDER BY d.path) INTO xs, ys
     FROM ST_Dump(seeds) AS d;
   SELECT array_agg(ST_AsEWKB(d.geom) ORDER BY d.path) INTO obstacle_geoms FROM ST_Dump(obstacles) AS d;
+  SELECT array_agg(ST_AsEWKB(d.geom) ORDER BY d.path) INTO water_geoms FROM ST_Dump(water) AS d;
   -- The patch rows: patch_id, role and geom; optionally road_class, max_uses, edge_index (order),
   -- tags (a patch tagged arterial grows in the first phase).
   -- Rows of extract_patches (all columns there) are read directly, others through jsonb.
@@ -228,8 +256,11 @@ BEGIN
            coalesce((p ->> 'max_distance')::double precision, 0), coalesce((p ->> 'angle_window')::double precision, 30),
            coalesce((p ->> 'tries')::integer, 24), coalesce((p ->> 'max_uses')::integer, 0),
            coalesce((p ->> 'rotation')::double precision, 0), coalesce((p ->> 'fallback')::boolean, true),
-           coalesce((p ->> 'clearance')::double precision, 0), arterials, coalesce((p ->> 'levels')::boolean, true)) AS g;
+           coalesce((p ->> 'clearance')::double precision, 0), arterials, coalesce((p ->> 'levels')::boolean, true),
+           coalesce(water_geoms, '{}'), dem_r.grid, dem_r.vals, coalesce((p ->> 'max_slope')::double precision, 12),
+           coalesce((p ->> 'bridge_distance')::double precision, 300),
+           coalesce((p ->> 'bridge_turn')::double precision, 30)) AS g;
 END
 $$;
-COMMENT ON FUNCTION streetgen.grow_patches(text, geometry, geometry, geometry, jsonb) IS
-  'Grows a road network inside region from seeds with example patches (Nishida et al. 2016): fronts are processed breadth first; at each, a patch is drawn with probability proportional to exp(-d / scale), d the smallest Hausdorff distance between one of its connectors (inner end on the front) and the front''s streets, among the patches that pass the legality checks (inside region, outside obstacles, no crossing, min_angle, degree); its vertices within snap of nodes are merged, its connectors become new fronts. Where no patch is legal, growth I''s parametric rule with the patch streets'' length statistics (origin grow_parametric). patches: a query with patch_id, role, geom (optionally road_class, max_uses, edge_index): the rows of extract_patches. params: seed (0), max_edges (10000), snap (m, 0.45 x the mean segment), min_angle (deg, 20), scale (m, 0.1), max_distance (m, a quarter of the mean street), angle_window (deg, 30), tries (24), max_uses (0: unlimited, for patches without their own), rotation (deg, 0), fallback (true), clearance (m, 4 % of the mean street: new patch streets keep this far from streets they do not meet), levels (true: patches tagged arterial grow first, without the fallback; then local streets from the example''s local junctions along the arterial streets, with those junctions'' patches, local streets only). origin: grow_patches:<patch_id> or grow_parametric; the example-based share is count(*) FILTER (WHERE origin LIKE ''grow_patches:%'') / count(*)';
+COMMENT ON FUNCTION streetgen.grow_patches(text, geometry, geometry, geometry, jsonb, geometry, raster) IS
+  'Grows a road network inside region from seeds with example patches (Nishida et al. 2016): fronts are processed breadth first; at each, a patch is drawn with probability proportional to exp(-d / scale), d the smallest Hausdorff distance between one of its connectors (inner end on the front) and the front''s streets, among the patches that pass the legality checks (inside region, outside obstacles, no crossing, min_angle, degree); its vertices within snap of nodes are merged, its connectors become new fronts. Where no patch is legal, growth I''s parametric rule with the patch streets'' length statistics (origin grow_parametric). patches: a query with patch_id, role, geom (optionally road_class, max_uses, edge_index): the rows of extract_patches. params: seed (0), max_edges (10000), snap (m, 0.45 x the mean segment), min_angle (deg, 20), scale (m, 0.1), max_distance (m, a quarter of the mean street), angle_window (deg, 30), tries (24), max_uses (0: unlimited, for patches without their own), rotation (deg, 0), fallback (true), clearance (m, 4 % of the mean street: new patch streets keep this far from streets they do not meet), levels (true: patches tagged arterial grow first, without the fallback; then local streets from the example''s local junctions along the arterial streets, with those junctions'' patches, local streets only). origin: grow_patches:<patch_id> or grow_parametric; the example-based share is count(*) FILTER (WHERE origin LIKE ''grow_patches:%'') / count(*). water: (Multi)Polygons in the region''s SRID that no street crosses (patches with an edge over it are illegal, open connectors and statistical streets stop at its edge) except an arterial (main road class) that meets it: it goes on across, turned up to bridge_turn for a shorter crossing, to a far bank within bridge_distance with room for a street; that edge has origin bridge (insert layer 1 for it: CASE origin WHEN ''bridge'' THEN 1 ELSE 0 END). Seeds must not lie in water; water over the whole region is an error. Unlike obstacles (nothing crosses them). dem: a one-band raster of heights (m) in the region''s SRID overlapping it, NULL cells unknown: no new street is steeper than max_slope (patch edges steeper make the patch illegal, open connectors are cut where they get steeper); a statistical street that would be bends towards the contour (in 5 degree steps) to the first direction under max_slope, else is discarded. params also: max_slope (percent, 12), bridge_distance (m, 300; 0: no bridges), bridge_turn (deg, 30)';

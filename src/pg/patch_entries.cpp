@@ -15,6 +15,7 @@
 #include "core/interrupts.hpp"
 #include "pg/array_args.hpp"
 #include "pg/boundary.hpp"
+#include "pg/grid_args.hpp"
 #include "pg/grown_rows.hpp"
 #include "pg/owned_result.hpp"
 
@@ -51,7 +52,7 @@ enum ExtractArg {
 enum GrowArg {
   kGPatchIds, kGRoles, kGClasses, kGGeoms, kGMaxUses, kGRegion, kGSeedsX, kGSeedsY, kGObstacles, kGSeed, kGMaxEdges,
   kGSnap, kGMinAngle, kGScale, kGMaxDistance, kGAngleWindow, kGTries, kGDefaultMaxUses, kGRotation, kGFallback, kGClearance,
-  kGArterials, kGLevels, kGArgs
+  kGArterials, kGLevels, kGWater, kGDemGrid, kGDemValues, kGMaxSlope, kGBridgeDistance, kGBridgeTurn, kGArgs
 };
 
 }  // namespace
@@ -173,9 +174,11 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   static const char* const names[kGArgs] = {
       "patch ids", "roles", "road classes", "patch edges", "max_uses", "region", "seeds x", "seeds y", "obstacles",
       "seed", "max_edges", "snap", "min_angle", "scale", "max_distance", "angle_window", "tries", "max_uses",
-      "rotation", "fallback", "clearance", "arterials", "levels"};
+      "rotation", "fallback", "clearance", "arterials", "levels", "water", "dem grid", "dem", "max_slope",
+      "bridge_distance", "bridge_turn"};
   for (int a = kGRegion; a < kGArgs; ++a) {
-    if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && a != kGArterials && PG_ARGISNULL(a)) {
+    if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && a != kGArterials && a != kGWater && a != kGDemGrid &&
+        a != kGDemValues && PG_ARGISNULL(a)) {
       pg::raise_null_argument(names[a]);
     }
   }
@@ -194,6 +197,8 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   pg::ArrayArg ys = pg::array_arg(fcinfo, kGSeedsY, FLOAT8OID, "seeds y");
   pg::require_same_length(xs, "seeds x", ys, "seeds y");
   pg::ArrayArg obstacle_arg = pg::array_arg(fcinfo, kGObstacles, BYTEAOID, "obstacles");
+  pg::ArrayArg water_arg = pg::array_arg(fcinfo, kGWater, BYTEAOID, "water");
+  pg::GridArg dem = pg::grid_arg(fcinfo, kGDemGrid, kGDemValues, "dem");
   struct EdgeArg {
     std::int64_t patch_id;
     core::PatchEdgeRole role;
@@ -242,6 +247,8 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   double* seed_xy = pg::xy_pairs(xs, ys, "a seed coordinate", &seed_count);
   int obstacle_count = 0;
   pg::ByteView* obstacles = pg::byte_views(obstacle_arg, &obstacle_count);
+  int water_count = 0;
+  pg::ByteView* water = pg::byte_views(water_arg, &water_count);
   pg::ByteView region = pg::byte_view(PG_GETARG_DATUM(kGRegion));
   core::GrowParams params;
   params.use_patches = true;
@@ -263,11 +270,14 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   params.fallback = PG_GETARG_BOOL(kGFallback);
   params.patch.clearance = PG_GETARG_FLOAT8(kGClearance);
   params.patch.levels = PG_GETARG_BOOL(kGLevels);
+  params.max_slope = PG_GETARG_FLOAT8(kGMaxSlope);
+  params.bridge_distance = PG_GETARG_FLOAT8(kGBridgeDistance);
+  params.bridge_turn = PG_GETARG_FLOAT8(kGBridgeTurn);
   params.rotation = true;  // the fallback's streets turn from the front's street, as Nishida's (about 90°)
   InitMaterializedSRF(fcinfo, 0);
   auto rows = pg::OwnedResult<std::vector<pg::GrownRow>>::create();
   core::GrowStats stats;
-  std::size_t from_patches = 0, total = 0;
+  std::size_t from_patches = 0, total = 0, bridges = 0;
   double length_patches = 0.0, length_total = 0.0;
 
   // Phase 2.
@@ -303,6 +313,15 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
     }
     std::vector<core::SridGeometry> region_and_obstacles;
     int srid = pg::read_region_and_obstacles(geos, region, obstacles, obstacle_count, input, region_and_obstacles);
+    std::vector<core::SridGeometry> water_parts;
+    water_parts.reserve(static_cast<std::size_t>(water_count));
+    for (int i = 0; i < water_count; ++i) {
+      std::string name = "water part " + std::to_string(i + 1);
+      water_parts.push_back(core::read_ewkb(geos, water[i].data, water[i].size, name.c_str()));
+      core::require_finite_coordinates(geos, water_parts.back().geom.get(), name.c_str());
+      input.water.push_back(water_parts.back().geom.get());
+    }
+    pg::to_field(dem, input.dem);
     for (int i = 0; i < seed_count; ++i) input.seeds.push_back({seed_xy[2 * i], seed_xy[2 * i + 1]});
     core::GrowResult result = core::grow_example(geos, input, params);
     stats = result.stats;
@@ -316,7 +335,10 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
         ++from_patches;
         length_patches += len;
       }
-      std::string origin = e.example < 0 ? std::string("grow_parametric") : "grow_patches:" + std::to_string(e.example_id);
+      if (e.bridge) ++bridges;
+      std::string origin = e.bridge           ? std::string("bridge")
+                           : e.example < 0 ? std::string("grow_parametric")
+                                           : "grow_patches:" + std::to_string(e.example_id);
       out.push_back(pg::grown_row(e, std::move(origin), srid));
     }
     rows.emplace(std::move(out));
@@ -326,11 +348,13 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   // Phase 3.
   ereport(DEBUG1, (errmsg("grow_patches: %zu steps, %zu patches placed, %zu statistical fallback, %zu candidates, "
                           "%zu illegal, %zu self-crossing patches dropped, %zu restarts; levels: %zu arterial patches "
-                          "placed, %zu local seeds (%zu with their example patch), %zu local streets ended on arterials; example-based share "
-                          "%.1f %% of the edges, %.1f %% of the length",
+                          "placed, %zu local seeds (%zu with their example patch), %zu local streets ended on arterials; "
+                          "terrain: %zu bridges (%zu bridge attempts failed), %zu bent along the contour, %zu too steep; "
+                          "example-based share %.1f %% of the edges, %.1f %% of the length",
                           stats.steps, stats.patches_placed, stats.fallback, stats.patch_candidates, stats.patch_illegal,
                           stats.patches_dropped, stats.restarts, stats.arterial_patches_placed, stats.local_seeds,
-                          stats.local_seeds_used, stats.ended_on_arterial, total > 0 ? 100.0 * from_patches / total : 0.0,
+                          stats.local_seeds_used, stats.ended_on_arterial, bridges, stats.bridges_failed, stats.bent,
+                          stats.too_steep, total > 0 ? 100.0 * from_patches / total : 0.0,
                           length_total > 0 ? 100.0 * length_patches / length_total : 0.0)));
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();

@@ -17,6 +17,7 @@
 
 #include "core/error.hpp"
 #include "core/geometry_checks.hpp"
+#include "core/growth/terrain.hpp"
 #include "core/interrupts.hpp"
 
 namespace streetgen::core {
@@ -149,6 +150,7 @@ struct OEdge {
   int level;  // -1: an edge of the existing network (matches any level, never emitted)
   std::int64_t example_id;
   int source;  // the example it was copied from; -1: grown parametrically
+  bool bridge = false;  // across water
 };
 
 class GeosLine {  // a reusable two-point GEOS LineString for the region/obstacle predicates
@@ -252,6 +254,9 @@ class Grower {
       use_level_shape();
       pending_local_.clear();
       local_hint_.clear();
+      bridge_hint_.clear();
+      bridge_landing_.clear();
+      bridge_end_.clear();
       load_existing();
       place_seeds();
     }
@@ -277,6 +282,7 @@ class Grower {
         if (hit == 2) geos_.fail("reseed in obstacle");
         if (hit == 1) continue;
       }
+      if (in_water(q)) continue;
       ++stats_.reseeds;
       unfinished_.push_back(add_node(q));
       return true;
@@ -339,6 +345,7 @@ class Grower {
       g.example = e.source;
       g.a = nodes_[e.a].p;
       g.b = nodes_[e.b].p;
+      g.bridge = e.bridge;
       out.edges.push_back(std::move(g));
     }
     return out;
@@ -376,6 +383,18 @@ class Grower {
                              "It is " + std::to_string(params_.guide_reach) + " m.");
     }
     if (params_.parametric) check_shape(params_.shape);
+    if (!std::isfinite(params_.max_slope) || params_.max_slope <= 0.0) {
+      throw_invalid_argument("max_slope must be a finite number > 0",
+                             "It is " + std::to_string(params_.max_slope) + " %.");
+    }
+    if (!std::isfinite(params_.bridge_distance) || params_.bridge_distance < 0.0) {
+      throw_invalid_argument("bridge_distance must be a finite number >= 0",
+                             "It is " + std::to_string(params_.bridge_distance) + " m.");
+    }
+    if (!(params_.bridge_turn >= 0.0 && params_.bridge_turn < 90.0)) {
+      throw_invalid_argument("bridge_turn must be in [0, 90) degrees",
+                             "It is " + std::to_string(params_.bridge_turn) + ".");
+    }
     if (params_.use_patches) {
       const PatchGrowParams& pp = params_.patch;
       if (!std::isfinite(pp.scale) || pp.scale <= 0.0) {
@@ -645,6 +664,56 @@ class Grower {
         if (!obstacles_prepared_) geos_.fail("prepare obstacles");
       }
     }
+    prepare_water(input.water);
+  }
+
+  // Water: one valid polygonal union (adjacent polygons are one stretch of water for a bridge).
+  void prepare_water(const std::vector<const GEOSGeometry*>& water) {
+    GEOSContextHandle_t h = geos_.handle();
+    std::vector<GEOSGeometry*> parts;
+    auto release = [&] {
+      for (GEOSGeometry* g : parts) GEOSGeom_destroy_r(h, g);
+    };
+    for (std::size_t i = 0; i < water.size(); ++i) {
+      const GEOSGeometry* w = water[i];
+      if (!is_polygonal(h, w)) {
+        release();
+        throw_invalid_argument("water must be polygons",
+                               "Water part " + std::to_string(i + 1) + " is a " + geometry_type_name(geos_, w) + ".");
+      }
+      if (GEOSisEmpty_r(h, w) == 1) continue;
+      GEOSGeometry* c = GEOSGeom_clone_r(h, w);
+      if (c == nullptr) {
+        release();
+        geos_.fail("clone water");
+      }
+      parts.push_back(c);
+    }
+    if (parts.empty()) return;
+    GeomPtr collection = own(geos_,
+                             GEOSGeom_createCollection_r(h, GEOS_GEOMETRYCOLLECTION, parts.data(),
+                                                         static_cast<unsigned int>(parts.size())),
+                             "water collection");
+    GeomPtr valid = own(geos_, GEOSMakeValid_r(h, collection.get()), "water repair");
+    water_ = own(geos_, GEOSUnaryUnion_r(h, valid.get()), "water union");
+    water_prepared_ = PreparedPtr(GEOSPrepare_r(h, water_.get()), PreparedDeleter{h});
+    if (!water_prepared_) geos_.fail("prepare water");
+    // Water over the whole region leaves no land to grow on: say so rather than fail on the seeds.
+    GeomPtr land = own(geos_, GEOSDifference_r(h, region_geom_, water_.get()), "region minus water");
+    double area = 0.0;
+    if (GEOSArea_r(h, land.get(), &area) == 0) geos_.fail("land area");
+    if (!(area > 0.0)) {
+      throw_invalid_argument("water covers the whole region", "No land is left to grow streets on.",
+                             "Pass the water that lies in the region only where it is water, or a larger region.");
+    }
+  }
+  bool in_water(Point q) {
+    if (!water_prepared_) return false;
+    GEOSContextHandle_t h = geos_.handle();
+    GeomPtr g = own(geos_, GEOSGeom_createPointFromXY_r(h, q.x, q.y), "point");
+    char hit = GEOSPreparedIntersects_r(h, water_prepared_.get(), g.get());
+    if (hit == 2) geos_.fail("water check");
+    return hit == 1;
   }
 
   // The existing network: fixed edges the growth must respect and may join, never emitted.
@@ -711,6 +780,11 @@ class Grower {
         if (hit == 2) geos_.fail("seed in obstacle");
         if (hit == 1) throw_invalid_argument("seed " + std::to_string(i + 1) + " lies in an obstacle");
       }
+      if (in_water(p)) {
+        throw_invalid_argument("seed " + std::to_string(i + 1) + " lies in water",
+                               "It is at (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ").",
+                               "Seeds must lie on land.");
+      }
       bool duplicate = false;
       for (Point q : seed_points_) duplicate = duplicate || distance(q, p) <= snap_;
       if (duplicate) continue;  // two seeds on one spot grow one node
@@ -733,10 +807,10 @@ class Grower {
     node_tree_.insert(PointValue(BPoint(p.x, p.y), id));
     return id;
   }
-  void add_edge(std::uint32_t a, std::uint32_t b, int level, std::int64_t example_id, int source) {
+  void add_edge(std::uint32_t a, std::uint32_t b, int level, std::int64_t example_id, int source, bool bridge = false) {
     auto id = static_cast<std::uint32_t>(edges_.size());
     if (level >= 0) ++new_edges_;
-    edges_.push_back({a, b, level, example_id, source});
+    edges_.push_back({a, b, level, example_id, source, bridge});
     nodes_[a].edges.push_back(id);
     nodes_[b].edges.push_back(id);
     edge_tree_.insert(BoxValue(box_of(nodes_[a].p, nodes_[b].p), id));
@@ -751,7 +825,7 @@ class Grower {
     edges_[e].b = m;
     nodes_[m].edges.push_back(e);
     edge_tree_.insert(BoxValue(box_of(nodes_[old.a].p, x), e));
-    add_edge(m, old.b, old.level, old.example_id, old.source);
+    add_edge(m, old.b, old.level, old.example_id, old.source, old.bridge);
     return m;
   }
   Point other_end(std::uint32_t e, std::uint32_t v) const {
@@ -775,16 +849,33 @@ class Grower {
   }
 
   // ---- legal area ---------------------------------------------------------------------------
-  bool legal(Point a, Point b) {
+  // `terrain` false: the region, obstacles and water only, not the DEM's slope.
+  bool legal(Point a, Point b, bool terrain = true) {
     GEOSContextHandle_t h = geos_.handle();
     GeomPtr line = line_.make(a, b);
     char inside = GEOSPreparedContains_r(h, region_.get(), line.get());
     if (inside == 2) geos_.fail("region check");
     if (inside == 0) return false;
-    if (!obstacles_prepared_) return true;
-    char hit = GEOSPreparedIntersects_r(h, obstacles_prepared_.get(), line.get());
-    if (hit == 2) geos_.fail("obstacle check");
-    return hit == 0;
+    if (obstacles_prepared_) {
+      char hit = GEOSPreparedIntersects_r(h, obstacles_prepared_.get(), line.get());
+      if (hit == 2) geos_.fail("obstacle check");
+      if (hit == 1) return false;
+    }
+    if (water_prepared_) {  // local streets never cross water; arterials do on bridges (try_bridge)
+      char hit = GEOSPreparedIntersects_r(h, water_prepared_.get(), line.get());
+      if (hit == 2) geos_.fail("water check");
+      if (hit == 1) return false;
+    }
+    return !terrain || !has_dem_ || grade(*dem_, a, b) <= max_grade_;
+  }
+  // Segment a-b meets water.
+  bool wet(Point a, Point b) {
+    if (!water_prepared_) return false;
+    GEOSContextHandle_t h = geos_.handle();
+    GeomPtr line = line_.make(a, b);
+    char hit = GEOSPreparedIntersects_r(h, water_prepared_.get(), line.get());
+    if (hit == 2) geos_.fail("water check");
+    return hit == 1;
   }
 
   // ---- crossings ----------------------------------------------------------------------------
@@ -1220,10 +1311,28 @@ class Grower {
       ++stats_.rejected;
       return;
     }
+    // Steep terrain (Nishida's local constraint): bend towards the contour, else discard.
+    if (has_dem_ && grade(*dem_, p, p + length * Point{std::cos(angle), std::sin(angle)}) > max_grade_) {
+      const double bent = bend_to_contour(*dem_, p, angle, length, max_grade_, kBendStep,
+                                          [&](double a) { return angle_free(v, a); });
+      if (std::isnan(bent)) {
+        ++stats_.too_steep;
+        ++stats_.rejected;
+        return;
+      }
+      angle = bent;
+      ++stats_.bent;
+    }
     const Point u{std::cos(angle), std::sin(angle)};
     Point e = p + length * u;
     bool outside = false;
     if (!legal(p, e)) {
+      // An arterial meeting water goes on across it to the far bank (Nishida's bridges); a local
+      // street is clipped at the water's edge below, as at an obstacle.
+      if (bridges_on() && !dead_end && level_is_main(level) && wet(p, e) &&
+          try_bridge(v, angle, length, level, example_id, source)) {
+        return;
+      }
       // The longest legal prefix: legality of p->p+t(e-p) only gets lost as t grows.
       double lo = 0.0, hi = 1.0;
       for (int i = 0; i < 30; ++i) {
@@ -1356,6 +1465,76 @@ class Grower {
       if (w == v || distance(nodes_[w].p, p) > reach) continue;
       if (try_connect_node(v, w, level, join_id, join_source)) return;
     }
+  }
+
+  bool bridges_on() const { return water_prepared_ != nullptr && params_.bridge_distance > 0.0; }
+  static constexpr double kBendStep = 5.0 * kPi / 180.0;  // contour bends and bridge turns, in steps of 5°
+
+  // A bridge from v: along `angle` (or turned up to bridge_turn, for a shorter crossing) to the
+  // first water within `approach`, across at most bridge_distance of it to a far bank with room
+  // for a street. An approach edge on land, then the bridge edge between the banks; the far end
+  // is a front. Nothing changes unless it is legal (no crossing, not crowded, max_edges).
+  bool try_bridge(std::uint32_t v, double angle, double approach, int level, std::int64_t example_id, int source) {
+    // A bridge's ends start no other bridge: a side street of the landing would otherwise cross
+    // straight back (measured: zigzags of bridges along the river).
+    if (bridge_end_.count(v) != 0) return false;
+    const Point p = nodes_[v].p;
+    std::vector<double> angles;
+    const int turns = static_cast<int>(std::floor(params_.bridge_turn * kPi / 180.0 / kBendStep + 1e-9));
+    for (int k = 0; k <= turns; ++k) {
+      for (int side : {1, -1}) {
+        if (k == 0 && side < 0) continue;
+        const double a = wrap(angle + side * k * kBendStep);
+        if (angle_free(v, a)) angles.push_back(a);
+      }
+    }
+    const double landing = std::max(min_length_, snap_);
+    WaterCrossing c = find_water_crossing(geos_, water_.get(), p, angles, approach, params_.bridge_distance, landing,
+                                          [&](Point a, Point b) { return legal(a, b); });
+    if (!c.found) {
+      ++stats_.bridges_failed;
+      return false;
+    }
+    const Point u{std::cos(c.angle), std::sin(c.angle)};
+    const Point near = p + std::max(0.0, c.entry - c.setback) * u;
+    const Point far = p + (c.exit + c.setback) * u;
+    const bool approach_edge = distance(p, near) >= min_length_;
+    // Bridges keep two snap distances apart at both banks (side by side they would be one).
+    bool close = false;
+    for (std::uint32_t b : bridge_end_) {
+      close = close || distance(nodes_[b].p, near) < 2.0 * snap_ || distance(nodes_[b].p, far) < 2.0 * snap_;
+    }
+    // A bridge deck keeps under max_slope between its banks (the DEM over the water is not read).
+    const Point start = approach_edge ? near : p;
+    bool steep = false;
+    if (has_dem_) {
+      const double za = sample_bilinear(*dem_, 0, start), zb = sample_bilinear(*dem_, 0, far);
+      steep = !std::isnan(za) && !std::isnan(zb) && std::abs(zb - za) > max_grade_ * distance(start, far);
+    }
+    if (close || steep || (approach_edge && !legal(p, near)) || first_contact(p, far, v).found ||
+        crowded(far, min_length_, UINT32_MAX) || !clear_of_network(start, far, clearance_, v, -1, -1) ||
+        new_edges_ + 1 + (approach_edge ? 1 : 0) > params_.max_edges) {
+      ++stats_.bridges_failed;
+      return false;
+    }
+    std::uint32_t from = v;
+    if (approach_edge) {
+      from = add_node(near);
+      frames_[from] = step_frame_;
+      completed_[from] = 1;
+      add_edge(v, from, level, example_id, source);
+      ++stats_.accepted;
+    }
+    const std::uint32_t to = add_node(far);
+    frames_[to] = step_frame_;
+    add_edge(from, to, level, 0, -1, true);
+    ++stats_.accepted;
+    ++stats_.bridges;
+    bridge_landing_.insert(to);
+    bridge_end_.insert(from);
+    bridge_end_.insert(to);
+    unfinished_.push_back(to);
+    return true;
   }
 
   // A new end node at q; it stays unfinished unless `finished`.
@@ -1759,6 +1938,18 @@ class Grower {
   }
 
   void patch_step(std::uint32_t v) {
+    // An arterial connector that stopped at the water's edge: a bridge first.
+    if (!bridge_hint_.empty()) {
+      auto it = bridge_hint_.find(v);
+      if (it != bridge_hint_.end()) {
+        const auto [angle, level] = it->second;
+        bridge_hint_.erase(it);
+        if (try_bridge(v, angle, min_length_, level, 0, -1)) {
+          done_ = true;
+          return;
+        }
+      }
+    }
     if (completed_[v]) {
       done_ = true;
       return;
@@ -1894,7 +2085,21 @@ class Grower {
     // Levels: an arterial street no arterial patch continues ends there (the local phase fills
     // around it): the fallback's straight arterials measured a grid over the whole region
     // (canberra_south_large: street density +150 % instead of +55 %).
-    if (!params_.fallback || nodes_[v].edges.size() >= 2 || (hierarchy_ && phase_arterial_)) {
+    // An arterial street ending here with water ahead (every patch was illegal over it): it goes
+    // on across as a bridge (Nishida's local constraint of procedural growth), also in the
+    // arterial phase, which has no statistical fallback otherwise.
+    if (bridges_on() && nodes_[v].edges.size() == 1 && level_is_main(level)) {
+      const Point back = other_end(nodes_[v].edges[0], v);
+      const double angle = std::atan2(p.y - back.y, p.x - back.x);
+      const double reach = std::max(shape_.length, min_length_);
+      if (wet(p, p + reach * Point{std::cos(angle), std::sin(angle)}) &&
+          try_bridge(v, angle, reach, level, 0, -1)) {
+        done_ = true;
+        return;
+      }
+    }
+    if (!params_.fallback || nodes_[v].edges.size() >= 2 ||
+        (hierarchy_ && phase_arterial_ && bridge_landing_.count(v) == 0)) {
       done_ = true;
       return;
     }
@@ -1958,6 +2163,8 @@ class Grower {
       std::uint32_t edge = 0;  // index in the patch
       bool clipped = false;
       std::uint32_t on_edge = UINT32_MAX;  // its new end lies on this street (split when glued)
+      double bridge_angle = NAN;  // an arterial clipped at the water's edge: the direction a bridge takes
+      bool steep_end = false;     // clipped where the slope got too steep
     };
     std::vector<Planned> plan;
     auto pos = [&](std::int64_t id) {
@@ -1995,6 +2202,12 @@ class Grower {
       }
     }
     // Region and obstacles: clip open connectors to their longest legal prefix.
+    struct ShortBridge {
+      std::int64_t from;
+      double angle;
+      int level;
+    };
+    std::vector<ShortBridge> short_bridges;
     for (Planned& pl : plan) {
       for (std::size_t k = 0; k + 1 < pl.line.size(); ++k) {
         if (legal(pl.line[k], pl.line[k + 1])) continue;
@@ -2013,7 +2226,19 @@ class Grower {
         if (distance(end, a) > kContact) pl.line.push_back(end);
         pl.open_end = false;
         pl.clipped = true;
+        // Water just beyond the clip: an arterial crosses it from there (a bridge, tried when the
+        // patch is glued); from the connector's inner end when the stub is too short to keep.
+        const Point probe = end + 0.01 * unit(b - a);
+        if (bridges_on() && level_is_main(pl.level) && in_water(probe)) {
+          pl.bridge_angle = std::atan2(b.y - a.y, b.x - a.x);
+        }
+        // Cut where it got too steep: the end stays a front, where the statistical fallback may
+        // bend along the contour (Nishida's local constraint).
+        pl.steep_end = has_dem_ && legal(a, probe, false);
         if (pl.line.size() < 2 || length(pl.line) < min_length_) {
+          if (!std::isnan(pl.bridge_angle) && pl.line.size() <= 2) {
+            short_bridges.push_back({pl.a, pl.bridge_angle, pl.level});
+          }
           pl.line.clear();  // too short to keep: dropped
         } else {
           fresh.push_back(pl.line.back());
@@ -2053,6 +2278,7 @@ class Grower {
         const OEdge& edge = edges_[best];
         if (distance(best_x, nodes_[edge.a].p) <= clearance_ || distance(best_x, nodes_[edge.b].p) <= clearance_) continue;
         if (distance(best_x, before) < min_length_) continue;
+        if (!legal(before, best_x)) continue;  // moved after the legality checks: water and slope again
         Point dir = nodes_[edge.b].p - nodes_[edge.a].p, in = best_x - before;
         double angle = std::abs(std::atan2(cross(dir, in), dot(dir, in)));
         if (std::min(angle, kPi - angle) < min_angle_) continue;
@@ -2169,6 +2395,7 @@ class Grower {
       return fresh_id[f];
     };
     const bool seeds_local = hierarchy_ && phase_arterial_;
+    std::vector<std::uint32_t> hinted;
     for (const Planned& pl : plan) {
       std::uint32_t prev = node_id(pl.a);
       line_nodes_.assign(1, prev);
@@ -2192,6 +2419,11 @@ class Grower {
         completed_[prev] = 0;
         unfinished_.push_back(prev);
       }
+      if (!std::isnan(pl.bridge_angle)) {
+        bridge_hint_[prev] = {pl.bridge_angle, pl.level};
+        hinted.push_back(prev);
+      }
+      if (pl.steep_end) hinted.push_back(prev);
     }
     // An existing node that became one of the patch's own junctions is finished; one that only
     // a connector reached (the outer end, a neighbouring patch's place) stays a front.
@@ -2205,6 +2437,19 @@ class Grower {
     for (const Planned& pl : plan) {
       if (pl.b >= 0 && pl.outer && !completed_[static_cast<std::uint32_t>(pl.b)]) {
         unfinished_.push_back(static_cast<std::uint32_t>(pl.b));
+      }
+    }
+    // Bridge hints and steep ends: the nodes stay fronts (bridges are tried first there).
+    for (const ShortBridge& sb : short_bridges) {
+      if (sb.from < 0 && fresh_id[static_cast<std::size_t>(-sb.from - 1)] == UINT32_MAX) continue;  // not glued
+      const std::uint32_t node = node_id(sb.from);
+      bridge_hint_[node] = {sb.angle, sb.level};
+      hinted.push_back(node);
+    }
+    for (std::uint32_t node : hinted) {
+      if (completed_[node]) {
+        completed_[node] = 0;
+        unfinished_.push_back(node);
       }
     }
     ++library_[j].uses;
@@ -2365,7 +2610,7 @@ class Grower {
   void prepare_fields(const GrowInput& input) {
     GEOSContextHandle_t h = geos_.handle();
     double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-    if (!input.weights.empty() || !input.direction.empty()) {
+    if (!input.weights.empty() || !input.direction.empty() || !input.dem.empty()) {
       GeomPtr hull = own(geos_, GEOSEnvelope_r(h, region_geom_), "region envelope");
       if (GEOSGeom_getXMin_r(h, hull.get(), &x0) == 0 || GEOSGeom_getYMin_r(h, hull.get(), &y0) == 0 ||
           GEOSGeom_getXMax_r(h, hull.get(), &x1) == 0 || GEOSGeom_getYMax_r(h, hull.get(), &y1) == 0) {
@@ -2393,6 +2638,21 @@ class Grower {
       if (!overlaps(input.direction, x0, y0, x1, y1)) {
         throw_invalid_argument("direction raster does not overlap the region");
       }
+    }
+    dem_ = &input.dem;
+    max_grade_ = params_.max_slope / 100.0;
+    if (!input.dem.empty()) {
+      input.dem.check("dem");
+      for (double z : input.dem.values) {
+        if (std::isinf(z)) {
+          throw_invalid_argument("dem raster must hold finite heights", "Nodata cells are unknown terrain.");
+        }
+      }
+      if (input.dem.bands != 1) {
+        throw_invalid_argument("dem raster must have one band", "It has " + std::to_string(input.dem.bands) + ".");
+      }
+      if (!overlaps(input.dem, x0, y0, x1, y1)) throw_invalid_argument("dem raster does not overlap the region");
+      has_dem_ = true;
     }
   }
 
@@ -2453,6 +2713,17 @@ class Grower {
   Point env_min_, env_max_;
   GeomPtr obstacles_{nullptr, GeomDeleter{}};
   PreparedPtr obstacles_prepared_;
+  GeomPtr water_{nullptr, GeomDeleter{}};
+  PreparedPtr water_prepared_;
+  const GridField* dem_ = nullptr;
+  bool has_dem_ = false;
+  double max_grade_ = INFINITY;  // max_slope as rise over run
+  // Patch growth: an arterial connector clipped at the water's edge, its node and direction; the
+  // node tries a bridge first. Far ends of bridges may continue by the statistical fallback in the
+  // arterial phase (a bridge to nowhere is worse than a statistical street).
+  std::unordered_map<std::uint32_t, std::pair<double, int>> bridge_hint_;  // node -> direction, level
+  std::unordered_set<std::uint32_t> bridge_landing_;  // far ends of bridges
+  std::unordered_set<std::uint32_t> bridge_end_;      // both ends
   std::vector<ONode> nodes_;
   std::vector<OEdge> edges_;
   BoxTree edge_tree_;

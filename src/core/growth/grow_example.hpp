@@ -91,6 +91,14 @@ struct GrowParams {
   BlendParams blend;
   bool use_patches = false;    // grow_patches: GrowInput::patches instead of node matching
   PatchGrowParams patch;
+  // Terrain and water (Nishida et al. 2016, sections 4.3.2 and 4.3.4), with GrowInput::dem and
+  // GrowInput::water.
+  double max_slope = 12.0;        // percent: no new street is steeper (GrowInput::dem); a proposal of
+                                  // statistical growth that is bends towards the contour, else is discarded
+  double bridge_distance = 300.0; // metres: an arterial that meets water crosses at most this much of it to
+                                  // the far bank (a bridge edge); 0: no bridges
+  double bridge_turn = 30.0;      // degrees: a bridge may turn this far from the street's direction to cross
+                                  // shorter
 };
 
 struct GrowInput {
@@ -112,6 +120,12 @@ struct GrowInput {
   // interpolation; it sets θ like the guide does, and where it is nodata the guide (if any) and
   // then node matching decide. Empty: no direction raster.
   GridField direction;
+  // Water: polygonal; no street but a bridge crosses it (arterials, params.bridge_distance). Seeds
+  // must lie outside it. May be empty.
+  std::vector<const GEOSGeometry*> water;
+  // A DEM (one band of heights in the coordinates' unit, NaN unknown): streets keep under
+  // params.max_slope where it is known. Empty: no DEM.
+  GridField dem;
 };
 
 struct GrownEdge {
@@ -122,6 +136,7 @@ struct GrownEdge {
   std::int64_t example_id = 0;
   Point a, b;
   int example = 0;  // which example it was copied from (0-based); -1: grown parametrically
+  bool bridge = false;  // an arterial across water (GrowInput::water)
 };
 
 struct GrowStats {
@@ -148,6 +163,11 @@ struct GrowStats {
   std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
   std::size_t ended_on_arterial = 0;  // levels: local streets whose new end was put on an arterial street
+  std::size_t bridges = 0;         // bridge edges across water
+  std::size_t bridges_failed = 0;  // bridge attempts that failed (no far bank within bridge_distance, too
+                                   // close to another bridge, crossing, crowded, too steep)
+  std::size_t bent = 0;            // statistical proposals bent towards the contour (DEM)
+  std::size_t too_steep = 0;       // statistical proposals discarded: no bend under max_slope
   double radius = 0.0;             // the r and snap distance used
   double snap = 0.0;
 };
@@ -162,7 +182,10 @@ struct GrowResult {
 // or inside an obstacle, and parameters out of range. Polls interrupts once per step.
 // Several examples (ExampleEdge::example) need params.blend or a weight raster; a guide needs at
 // least one segment. A weight raster needs one band per example and finite weights >= 0, a
-// direction raster finite angles and one band; either must overlap the region's extent.
+// direction raster finite angles and one band; either must overlap the region's extent. So must
+// a DEM (one band, finite heights or NaN); water must be polygonal and leave some of the region.
+// Sets up the terrain and water checks of every step (legality of new streets, bending along the
+// contour, bridges).
 GrowResult grow_example(GeosContext& geos, const GrowInput& input, const GrowParams& params);
 
 }  // namespace streetgen::core
