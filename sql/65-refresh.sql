@@ -121,12 +121,13 @@ BEGIN
 END
 $$;
 
--- The axes around the sidewalks that the last local refresh of MODEL wrote (its scope, in the
--- session's work tables) where one overlaps a roadway or another sidewalk of its layer by more
--- than 1e-2 m²: the sidewalk's own axes and those of what it overlaps. NULL when none does.
--- Pairs are sought by box and measured exactly (60 ms for 100 sidewalks); 1e-2 m² is far above
--- the traces of the micrometre grid along shared edges (under 1e-3 m²).
-CREATE FUNCTION streetgen._axes_of_overlapping_sidewalks(model text)
+-- The axes around the sidewalks and junctions that the last local refresh of MODEL wrote (its
+-- scope, in the session's work tables) where a sidewalk overlaps a roadway or another sidewalk of
+-- its layer, or a junction a section or another junction of its layer, by more than 1e-2 m²: the
+-- axes of both. NULL when none does. Pairs are sought by box and measured exactly (60 ms for 100
+-- sidewalks); 1e-2 m² is far above the traces of the micrometre grid along shared edges (under
+-- 1e-3 m²).
+CREATE FUNCTION streetgen._axes_of_overlapping_outputs(model text)
   RETURNS bigint[]
   LANGUAGE plpgsql STABLE
   SET search_path FROM CURRENT
@@ -141,6 +142,9 @@ BEGIN
       UNION ALL
       SELECT w.axis_id, w.part, w.node_id, w.side, w.geom, n.layer
         FROM pg_temp._sg_scope_nodes k JOIN %1$I.sidewalk w ON w.node_id = k.id JOIN %1$I.node n ON n.id = k.id),
+    written_junction AS (
+      SELECT i.node_id, i.geom, n.layer
+        FROM pg_temp._sg_scope_nodes k JOIN %1$I.intersection i ON i.node_id = k.id JOIN %1$I.node n ON n.id = k.id),
     overlapping AS (
       SELECT w.axis_id AS owner_axis, w.node_id AS owner_node, x.axis_id, x.node_id
         FROM written w,
@@ -155,7 +159,17 @@ BEGIN
                        WHERE o.geom && w.geom AND coalesce(a.layer, n.layer) = w.layer
                          AND NOT (o.axis_id IS NOT DISTINCT FROM w.axis_id AND o.part IS NOT DISTINCT FROM w.part
                                   AND o.node_id IS NOT DISTINCT FROM w.node_id AND o.side = w.side)) AS x
-       WHERE ST_Intersects(w.geom, x.geom) AND ST_Area(ST_Intersection(w.geom, x.geom)) > 1e-2)
+       WHERE ST_Intersects(w.geom, x.geom) AND ST_Area(ST_Intersection(w.geom, x.geom)) > 1e-2
+      -- (junctions give way to every section and split their overlaps with each other)
+      UNION ALL
+      SELECT NULL, j.node_id, x.axis_id, x.node_id
+        FROM written_junction j,
+             LATERAL (SELECT s.axis_id, NULL::bigint AS node_id, s.geom FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id
+                       WHERE s.geom && j.geom AND a.layer = j.layer
+                      UNION ALL
+                      SELECT NULL, i.node_id, i.geom FROM %1$I.intersection i JOIN %1$I.node n ON n.id = i.node_id
+                       WHERE i.geom && j.geom AND n.layer = j.layer AND i.node_id <> j.node_id) AS x
+       WHERE ST_Area(ST_Intersection(j.geom, x.geom, 1e-6)) > 1e-2)
     SELECT array_agg(DISTINCT a ORDER BY a) FROM (
       SELECT owner_axis AS a FROM overlapping WHERE owner_axis IS NOT NULL
       UNION ALL SELECT axis_id FROM overlapping WHERE axis_id IS NOT NULL
@@ -543,23 +557,22 @@ BEGIN
   PERFORM pg_notify('qgis', model);
 
   -- A check of what was written: a sidewalk never overlaps a roadway or another sidewalk of its
-  -- layer (the engine cuts it so), and when one does here, the engine was not given something
-  -- within its reach: the search above has missed a case (soaks found such cases one in about a
-  -- thousand edits, each fixed since). The axes of both then count as changed, once (a local
-  -- refresh around them, with their whole neighbourhood); a second miss runs the full model.
-  -- (A soak's first runs of this check also caught the engine itself writing a sidewalk over a
-  -- roadway, a GEOS overlay fault fixed since: every edit nearby then ran the full model.)
-  IF reach > 0 THEN
-    repair := streetgen._axes_of_overlapping_sidewalks(model);
-    IF repair IS NOT NULL THEN
-      RAISE LOG 'streetgen: refresh of % wrote overlapping sidewalks near axes %; %', model, repair,
-                CASE WHEN may_repair THEN 'refreshing around them' ELSE 'running the full model' END;
-      IF may_repair THEN
-        PERFORM streetgen._refresh(model, repair, '{}', false);
-      ELSE
-        PERFORM streetgen._compute_model(model);
-        PERFORM streetgen._store(model, false);
-      END IF;
+  -- layer, nor a junction a section or another junction (the engine cuts them so), and when one
+  -- does here, the engine was not given something within its reach: the search above has missed
+  -- a case (soaks found such cases one in about a thousand edits, each fixed since). The axes of
+  -- both then count as changed, once (a local refresh around them, with their whole
+  -- neighbourhood); a second miss runs the full model. (A soak's first runs of this check also
+  -- caught the engine itself writing a sidewalk over a roadway, a GEOS overlay fault fixed since:
+  -- every edit nearby then ran the full model.)
+  repair := streetgen._axes_of_overlapping_outputs(model);
+  IF repair IS NOT NULL THEN
+    RAISE LOG 'streetgen: refresh of % wrote overlapping outputs near axes %; %', model, repair,
+              CASE WHEN may_repair THEN 'refreshing around them' ELSE 'running the full model' END;
+    IF may_repair THEN
+      PERFORM streetgen._refresh(model, repair, '{}', false);
+    ELSE
+      PERFORM streetgen._compute_model(model);
+      PERFORM streetgen._store(model, false);
     END IF;
   END IF;
 END

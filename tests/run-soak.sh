@@ -52,9 +52,9 @@ pg_prove -d "$db" -S model="$model" -S min_edits="$min_edits" "$SRC/tests/soak/c
 # What the clients were told, by message (the retried deadlocks and serialization failures among them).
 tail -c +"$((mark + 1))" "$PGHOST/server.log" | grep -o 'ERROR: .*' | sed 's/[0-9]\{3,\}/N/g' | sort | uniq -c | sort -rn || true
 
-# Local refreshes whose sidewalk check found a miss and refreshed again (sql/65-refresh.sql):
+# Local refreshes whose overlap check found a miss and refreshed again (sql/65-refresh.sql):
 # the outputs are right all the same, but each one is a case the neighbourhood search missed.
-repairs=$(tail -c +"$((mark + 1))" "$PGHOST/server.log" | grep -c 'wrote overlapping sidewalks' || true)
+repairs=$(tail -c +"$((mark + 1))" "$PGHOST/server.log" | grep -c 'wrote overlapping outputs' || true)
 
 pgbench_stat() { sed -n "s/^$1[ =:]*\([0-9.]*\).*/\1/p" "$work/pgbench.out"; }
 edits=$(psql -X -At -c "SELECT sum(n) || ' (' || string_agg(kind || ' ' || n, ', ') || ')'
@@ -63,6 +63,6 @@ echo "soak: $clients clients, $seconds s, committed edits $edits of $(pgbench_st
   "tps $(pgbench_stat tps), latency avg $(pgbench_stat 'latency average') ms, failed $(pgbench_stat 'number of failed transactions')" \
   "(serialization $(pgbench_stat 'number of serialization failures'), deadlock $(pgbench_stat 'number of deadlock failures')), retried" \
   "$(pgbench_stat 'number of transactions retried') (retries $(pgbench_stat 'total number of retries')); load average $load_before before," \
-  "$load_after after; refreshes repaired by the sidewalk check $repairs; whole layer ${SECONDS} s"
+  "$load_after after; refreshes repaired by the overlap check $repairs; whole layer ${SECONDS} s"
 assert_no_crash_since "$mark" || status=1
 exit $status

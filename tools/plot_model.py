@@ -16,7 +16,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import psycopg  # noqa: E402
 from shapely import wkb  # noqa: E402
 
-STATUS_COLOURS = {"ok": "#9ecae1", "transition": "#a1d99b", "merged": "#fdae6b", "fallback": "#fb6a4a",
+STATUS_COLOURS = {"ok": "#9ecae1", "transition": "#a1d99b", "narrowed": "#fdae6b", "fallback": "#fb6a4a",
                   "repaired": "#fcbba1"}
 
 

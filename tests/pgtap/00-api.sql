@@ -62,7 +62,7 @@ SELECT set_eq(
     ('streetgen._store(text,boolean)', 'void', 'v', false),
     ('streetgen._lock_outputs(text)', 'void', 'v', false),
     ('streetgen._lock_outputs_first()', 'trigger', 'v', false),
-    ('streetgen._axes_of_overlapping_sidewalks(text)', 'bigint[]', 's', false),
+    ('streetgen._axes_of_overlapping_outputs(text)', 'bigint[]', 's', false),
     ('streetgen._refresh(text,bigint[],geometry[],boolean)', 'void', 'v', false),
     ('streetgen._axis_inserted()', 'trigger', 'v', false),
     ('streetgen._axis_updated()', 'trigger', 'v', false),

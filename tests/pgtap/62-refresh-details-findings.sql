@@ -76,12 +76,12 @@ SELECT is_empty($$SELECT * FROM streetgen.outdated('liechtenstein_junction')$$,
 -- repairs it.
 SELECT streetgen._empty_work_tables();
 INSERT INTO pg_temp._sg_scope_nodes SELECT id FROM liechtenstein_junction.node WHERE axis_ids = '{434,437}';
-SELECT is(streetgen._axes_of_overlapping_sidewalks('liechtenstein_junction'), NULL, 'check: no written sidewalk overlaps anything');
+SELECT is(streetgen._axes_of_overlapping_outputs('liechtenstein_junction'), NULL, 'check: no written sidewalk or junction overlaps anything');
 UPDATE liechtenstein_junction.sidewalk w SET geom = ST_Multi(ST_Buffer(w.geom, 2))
   FROM liechtenstein_junction.node n WHERE n.axis_ids = '{434,437}' AND w.node_id = n.id;
-SELECT ok(streetgen._axes_of_overlapping_sidewalks('liechtenstein_junction') @> '{434,435,437,443}',
+SELECT ok(streetgen._axes_of_overlapping_outputs('liechtenstein_junction') @> '{434,435,437,443}',
           'check: a junction sidewalk over its neighbour names the axes of both junctions');
-SELECT streetgen._refresh('liechtenstein_junction', streetgen._axes_of_overlapping_sidewalks('liechtenstein_junction'), '{}', false);
+SELECT streetgen._refresh('liechtenstein_junction', streetgen._axes_of_overlapping_outputs('liechtenstein_junction'), '{}', false);
 SELECT is_empty($$SELECT * FROM streetgen.outdated('liechtenstein_junction')$$, 'check: a local refresh of those axes repairs it');
 
 -- Six Liechtenstein axes (© OpenStreetMap contributors, ODbL 1.0, tags left out; 2306 is a soak's
