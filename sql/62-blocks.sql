@@ -7,7 +7,8 @@
 -- unbounded outside of the network without a block. Bridges and tunnels (layer <> 0) neither
 -- bound faces nor are subtracted: a block is what lies between the streets on the ground.
 -- Traffic islands are the faces of under 2,500 m2 bounded only by one-way axes and links (the
--- gap between dual carriageways, a slip lane and its main road): kind 'island'.
+-- gap between dual carriageways), or by a link and at most two other axes (the triangle between
+-- a slip lane and the roads it joins, two-way ones included): kind 'island'.
 
 -- FACE minus the union of PIECES, as a MultiPolygon (NULL when nothing is left). The pieces are
 -- clipped to the face before their union (half the time: the far side of each street drops
@@ -72,13 +73,15 @@ BEGIN
                   WHERE n.layer = 0 AND w.geom && f.face)) END,
            CASE WHEN kept.id IS NOT NULL THEN kept.axis_ids ELSE coalesce(r.axis_ids, '{}') END,
            CASE WHEN kept.id IS NOT NULL THEN kept.kind
-                WHEN ST_Area(f.face) < 2500 AND r.one_way_or_link THEN 'island' ELSE 'block' END
+                WHEN ST_Area(f.face) < 2500 AND (r.one_way_or_link OR (r.has_link AND r.axis_count <= 3)) THEN 'island'
+                ELSE 'block' END
       FROM (SELECT ('x' || substr(md5(ST_AsEWKB(ST_Normalize(g.face))), 1, 16))::bit(64)::bigint AS id, g.face
               FROM pg_temp._sg_faces g) AS f
            LEFT JOIN LATERAL (SELECT b.id, b.geom, b.axis_ids, b.kind FROM %1$I.block b
                                WHERE $2 IS NOT NULL AND b.id = f.id AND NOT (f.face && $2)) AS kept ON true,
            LATERAL (SELECT array_agg(DISTINCT s.axis_id ORDER BY s.axis_id) AS axis_ids,
-                           bool_and(a.oneway OR a.road_class LIKE '%%\_link') AS one_way_or_link
+                           bool_and(a.oneway OR a.road_class LIKE '%%\_link') AS one_way_or_link,
+                           bool_or(a.road_class LIKE '%%\_link') AS has_link, count(DISTINCT s.axis_id) AS axis_count
                       FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id
                      WHERE kept.id IS NULL AND a.layer = 0 AND s.status <> 'duplicate' AND s.centre_line && f.face
                        AND ST_DWithin(ST_LineInterpolatePoint(s.centre_line, 0.5), ST_Boundary(f.face), 1e-6)) AS r

@@ -26,6 +26,23 @@ SELECT is_empty($$SELECT model, roadway_overlap_area, face_area FROM measured WH
                 'roadways (sections, junctions) do not overlap each other inside the network''s bounded faces (< 0.1 % of their area)');
 SELECT is_empty($$SELECT model, gap_area, face_area FROM measured WHERE abs(gap_area) >= 0.001 * face_area AND face_area > 0$$,
                 'blocks, street surfaces and sidewalks leave no gap in the network''s bounded faces (< 0.1 % of their area)');
+-- Traffic islands where the geometry makes them: between the carriageways of a dual carriageway
+-- and in the triangle of a slip lane.
+CREATE FUNCTION pg_temp.islands(model text) RETURNS bigint LANGUAGE plpgsql AS $f$
+DECLARE
+  n bigint;
+BEGIN
+  EXECUTE format('SELECT count(*) FROM %I.block WHERE kind = ''island''', model) INTO n;
+  RETURN n;
+END
+$f$;
+SELECT is_empty($$SELECT d.model, pg_temp.islands(d.model) FROM detail_dataset d
+                   WHERE d.model IN ('c_northgate_dual_carriageway', 'c_seattle_slip_lane', 'c_arizona_highways')
+                     AND pg_temp.islands(d.model) = 0$$,
+                'dual carriageways and slip lanes have traffic islands');
+SELECT is((SELECT count(*) FROM detail_dataset d
+            WHERE d.model IN ('c_northgate_dual_carriageway', 'c_seattle_slip_lane', 'c_arizona_highways')), 3::bigint,
+          'and those three cases are loaded');
 -- Blocks are the faces: as many as PostGIS finds in the layer-0 axes, noded (an independent
 -- count: ST_Node of the raw axes, not the engine's topology; ends the engine snapped make the
 -- difference, so within 2 %).
