@@ -10,35 +10,28 @@
 -- gap between dual carriageways), or by a link and at most two other axes (the triangle between
 -- a slip lane and the roads it joins, two-way ones included): kind 'island'.
 
--- FACE minus the union of PIECES, as a MultiPolygon (NULL when nothing is left). The pieces are
--- clipped to the face before their union (half the time: the far side of each street drops
--- out). Floating-point overlay first; where GEOS throws on nearly coincident edges (it does on
--- a few real junctions), the same on a micrometre grid (OverlayNG with a grid size never fails,
--- but is three times slower): an edit is never aborted by a block.
-CREATE FUNCTION streetgen._face_minus(face geometry, pieces geometry[])
-  RETURNS geometry
-  LANGUAGE plpgsql IMMUTABLE PARALLEL SAFE
-  SET search_path FROM CURRENT
-  AS $$
-DECLARE
-  d geometry;
-BEGIN
-  BEGIN
-    d := ST_CollectionExtract(coalesce(ST_Difference(face, ST_UnaryUnion(ST_Collect(ARRAY(
-           SELECT ST_CollectionExtract(ST_Intersection(p, face), 3) FROM unnest(pieces) AS p)))), face), 3);
-  EXCEPTION WHEN internal_error THEN
-    d := ST_CollectionExtract(coalesce(ST_Difference(face, ST_UnaryUnion(ST_Collect(ARRAY(
-           SELECT ST_CollectionExtract(ST_Intersection(p, face, 1e-6), 3) FROM unnest(pieces) AS p)), 1e-6), 1e-6), face), 3);
-  END;
-  RETURN CASE WHEN ST_IsEmpty(d) THEN NULL ELSE ST_Multi(d) END;
-END
-$$;
+-- Each face minus the union of the pieces (street surfaces, sidewalks) on it, in C++ (src/core/
+-- streets/blocks.cpp): one row per face, face_index from 1, geom NULL when nothing is left. The
+-- pieces are clipped to the face before their union (the far side of each street drops out; a
+-- piece inside the face is taken as is). Floating-point overlay first; where GEOS throws on nearly
+-- coincident edges (it does on a few real junctions), the face again on a grid of grid_size
+-- (OverlayNG with a grid size never fails, but is three times slower): an edit is never aborted by
+-- a block. In SQL this was one ST_Intersection per face and piece, each converting the face to
+-- GEOS again (73 s of Paris' 159 s generate).
+CREATE FUNCTION streetgen._streetgen_faces_minus(faces bytea[], pieces bytea[], grid_size double precision,
+                                                 OUT face_index integer, OUT geom bytea)
+  RETURNS SETOF record
+  LANGUAGE c IMMUTABLE PARALLEL SAFE
+  COST 100000 ROWS 1000
+  AS 'MODULE_PATHNAME', '_streetgen_faces_minus';
 
 -- The blocks of MODEL whose faces lie inside AREA (all of them when AREA is NULL), from its
 -- stored sections, junctions and sidewalks, into pg_temp._sg_blocks. With CHANGED (the box
 -- around every street surface and sidewalk a refresh rewrote, old and new), a face that keeps
 -- its key and lies off CHANGED keeps its stored block: nothing it is cut by has changed (an
 -- edit of one street recomputed every block of its box, twenty-five faces on Liechtenstein).
+-- The faces to cut again go to the overlay in one call, with every ground-level piece in the box
+-- around them (the overlay finds each face's own pieces with a tree).
 CREATE FUNCTION streetgen._compute_blocks(model text, area geometry, changed geometry DEFAULT NULL)
   RETURNS void
   LANGUAGE plpgsql VOLATILE
@@ -46,6 +39,8 @@ CREATE FUNCTION streetgen._compute_blocks(model text, area geometry, changed geo
   SET jit = off
   SET enable_seqscan = on SET enable_hashjoin = on SET enable_mergejoin = on
   AS $$
+DECLARE
+  extent geometry;
 BEGIN
   PERFORM streetgen._work_tables();
   DELETE FROM pg_temp._sg_faces;
@@ -56,25 +51,15 @@ BEGIN
       FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id
      WHERE a.layer = 0 AND s.status <> 'duplicate' AND ($1 IS NULL OR s.centre_line && $1)$q$, model) USING area;
   EXECUTE format($q$
-    INSERT INTO pg_temp._sg_blocks (id, face, geom, axis_ids, kind)
+    INSERT INTO pg_temp._sg_blocks (id, face, geom, axis_ids, kind, cut)
     SELECT f.id,
            f.face,
-           CASE WHEN kept.id IS NOT NULL THEN kept.geom ELSE streetgen._face_minus(f.face, ARRAY(
-                 SELECT s.geom FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id
-                  WHERE a.layer = 0 AND s.geom && f.face
-                 UNION ALL
-                 SELECT i.geom FROM %1$I.intersection i JOIN %1$I.node n ON n.id = i.node_id
-                  WHERE n.layer = 0 AND i.geom && f.face
-                 UNION ALL
-                 SELECT w.geom FROM %1$I.sidewalk w JOIN %1$I.axis a ON a.id = w.axis_id
-                  WHERE a.layer = 0 AND w.geom && f.face
-                 UNION ALL
-                 SELECT w.geom FROM %1$I.sidewalk w JOIN %1$I.node n ON n.id = w.node_id
-                  WHERE n.layer = 0 AND w.geom && f.face)) END,
+           kept.geom,
            CASE WHEN kept.id IS NOT NULL THEN kept.axis_ids ELSE coalesce(r.axis_ids, '{}') END,
            CASE WHEN kept.id IS NOT NULL THEN kept.kind
                 WHEN ST_Area(f.face) < 2500 AND (r.one_way_or_link OR (r.has_link AND r.axis_count <= 3)) THEN 'island'
-                ELSE 'block' END
+                ELSE 'block' END,
+           kept.id IS NULL
       FROM (SELECT ('x' || substr(md5(ST_AsEWKB(ST_Normalize(g.face))), 1, 16))::bit(64)::bigint AS id, g.face
               FROM pg_temp._sg_faces g) AS f
            LEFT JOIN LATERAL (SELECT b.id, b.geom, b.axis_ids, b.kind FROM %1$I.block b
@@ -86,6 +71,31 @@ BEGIN
                      WHERE kept.id IS NULL AND a.layer = 0 AND s.status <> 'duplicate' AND s.centre_line && f.face
                        AND ST_DWithin(ST_LineInterpolatePoint(s.centre_line, 0.5), ST_Boundary(f.face), 1e-6)) AS r
      WHERE $1 IS NULL OR f.face @ $1$q$, model) USING area, changed;
+  SELECT ST_SetSRID(ST_Extent(b.face)::geometry, min(ST_SRID(b.face))) INTO extent FROM pg_temp._sg_blocks b WHERE b.cut;
+  IF extent IS NULL THEN
+    RETURN;
+  END IF;
+  -- (a materialized CTE: the overlay runs once whatever the plan; joined as a subquery, a
+  -- nested loop once sorted every face again for each of Paris' 13,140 rows)
+  EXECUTE format($q$
+    WITH c AS MATERIALIZED (
+      SELECT x.ids[r.face_index] AS id, r.geom
+        FROM (SELECT array_agg(k.id ORDER BY k.id) AS ids, array_agg(ST_AsEWKB(k.face) ORDER BY k.id) AS faces
+                FROM pg_temp._sg_blocks k WHERE k.cut) AS x,
+             streetgen._streetgen_faces_minus(x.faces, ARRAY(
+               SELECT ST_AsEWKB(s.geom) FROM %1$I.section s JOIN %1$I.axis a ON a.id = s.axis_id
+                WHERE a.layer = 0 AND s.geom && $1
+               UNION ALL
+               SELECT ST_AsEWKB(i.geom) FROM %1$I.intersection i JOIN %1$I.node n ON n.id = i.node_id
+                WHERE n.layer = 0 AND i.geom && $1
+               UNION ALL
+               SELECT ST_AsEWKB(w.geom) FROM %1$I.sidewalk w JOIN %1$I.axis a ON a.id = w.axis_id
+                WHERE a.layer = 0 AND w.geom && $1
+               UNION ALL
+               SELECT ST_AsEWKB(w.geom) FROM %1$I.sidewalk w JOIN %1$I.node n ON n.id = w.node_id
+                WHERE n.layer = 0 AND w.geom && $1), 1e-6) AS r
+       WHERE r.geom IS NOT NULL)
+    UPDATE pg_temp._sg_blocks b SET geom = ST_GeomFromEWKB(c.geom) FROM c WHERE b.id = c.id AND b.cut$q$, model) USING extent;
 END
 $$;
 

@@ -50,7 +50,7 @@ BEGIN
     '_sg_scope_axes (id bigint)',
     '_sg_scope_out (geom geometry)',
     '_sg_faces (face geometry)',
-    '_sg_blocks (id bigint, face geometry, geom geometry, axis_ids bigint[], kind text)'] LOOP
+    '_sg_blocks (id bigint, face geometry, geom geometry, axis_ids bigint[], kind text, cut boolean)'] LOOP
     EXECUTE 'CREATE TEMP TABLE IF NOT EXISTS ' || definition;
     EXECUTE format('GRANT ALL ON pg_temp.%I TO PUBLIC', split_part(definition, ' ', 1));
   END LOOP;

@@ -1,0 +1,203 @@
+#include "core/streets/blocks.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <new>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/interrupts.hpp"
+
+namespace streetgen::core {
+namespace {
+
+struct TreeDeleter {
+  GEOSContextHandle_t handle;
+  void operator()(GEOSSTRtree* tree) const noexcept { GEOSSTRtree_destroy_r(handle, tree); }
+};
+struct PreparedDeleter {
+  GEOSContextHandle_t handle;
+  void operator()(const GEOSPreparedGeometry* prepared) const noexcept { GEOSPreparedGeom_destroy_r(handle, prepared); }
+};
+
+// What the tree query collects; GEOS calls the callback from C, so it must not throw.
+struct Candidates {
+  std::vector<std::size_t> indices;
+  bool out_of_memory = false;
+};
+void collect(void* item, void* userdata) {
+  auto* c = static_cast<Candidates*>(userdata);
+  try {
+    c->indices.push_back(reinterpret_cast<std::uintptr_t>(item) - 1);
+  } catch (...) {
+    c->out_of_memory = true;
+  }
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A GEOS overlay failed: GEOS's own interrupt is rethrown at once (as canceled); any other error
+// is forgotten, and the caller retries on the grid.
+void forget_or_rethrow(GeosContext& ctx, const char* operation) {
+  if (ctx.last_error().rfind("InterruptedException", 0) == 0) ctx.fail(operation);
+  ctx.clear_error();
+}
+
+// The polygons of `geom` (recursively through collections), cloned, empty ones left out: what
+// ST_CollectionExtract(geom, 3) keeps.
+void append_polygons(GeosContext& ctx, const GEOSGeometry* geom, std::vector<GeomPtr>& out) {
+  GEOSContextHandle_t h = ctx.handle();
+  int type = GEOSGeomTypeId_r(h, geom);
+  if (type == GEOS_POLYGON) {
+    if (GEOSisEmpty_r(h, geom) == 0) out.push_back(own(ctx, GEOSGeom_clone_r(h, geom), "clone"));
+  } else if (type == GEOS_MULTIPOLYGON || type == GEOS_GEOMETRYCOLLECTION) {
+    int n = GEOSGetNumGeometries_r(h, geom);
+    for (int i = 0; i < n; ++i) append_polygons(ctx, GEOSGetGeometryN_r(h, geom, i), out);
+  }
+}
+
+// Takes the geometries (on success or failure) into a new collection of `type`.
+GEOSGeometry* make_collection(GeosContext& ctx, int type, std::vector<GeomPtr>& parts) {
+  std::vector<GEOSGeometry*> raw;
+  raw.reserve(parts.size());
+  for (auto& p : parts) raw.push_back(p.get());
+  GEOSGeometry* c = GEOSGeom_createCollection_r(ctx.handle(), type, raw.data(), static_cast<unsigned int>(raw.size()));
+  if (c != nullptr) {
+    for (auto& p : parts) p.release();  // owned by the collection now
+  }
+  parts.clear();
+  return c;
+}
+
+// One face, floating-point (grid_size < 0) or on the grid. Returns false when a float overlay
+// failed (the caller retries on the grid); throws when an overlay on the grid fails.
+bool cut_face(GeosContext& ctx, const GEOSGeometry* face, const GEOSPreparedGeometry* prepared,
+              const std::vector<const GEOSGeometry*>& pieces, const std::vector<std::size_t>& candidates, double grid_size,
+              GeomPtr& result, FaceCutStats& stats) {
+  GEOSContextHandle_t h = ctx.handle();
+  const bool grid = grid_size >= 0;
+  std::vector<GeomPtr> parts;
+  for (std::size_t i : candidates) {
+    const GEOSGeometry* piece = pieces[i];
+    // (a predicate that throws, on an invalid piece, leaves the question to the overlay)
+    char touches = GEOSPreparedIntersects_r(h, prepared, piece);
+    if (touches == 0) continue;
+    if (touches == 2) forget_or_rethrow(ctx, "block predicate");
+    if (touches == 1 && !grid) {
+      char inside = GEOSPreparedContainsProperly_r(h, prepared, piece);
+      if (inside == 1) {
+        append_polygons(ctx, piece, parts);
+        continue;
+      }
+      if (inside == 2) forget_or_rethrow(ctx, "block predicate");
+    }
+    ++stats.clipped_pairs;
+    auto start = std::chrono::steady_clock::now();
+    GEOSGeometry* clipped = grid ? GEOSIntersectionPrec_r(h, piece, face, grid_size) : GEOSIntersection_r(h, piece, face);
+    stats.clip_seconds += seconds_since(start);
+    if (clipped == nullptr) {
+      if (grid) ctx.fail("block overlay (intersection on the grid)");
+      forget_or_rethrow(ctx, "block overlay (intersection)");
+      return false;
+    }
+    GeomPtr owned(clipped, GeomDeleter{h});
+    append_polygons(ctx, owned.get(), parts);
+  }
+  GeomPtr difference;
+  if (parts.empty()) {
+    difference = own(ctx, GEOSGeom_clone_r(h, face), "clone");
+  } else {
+    GeomPtr collection = own(ctx, make_collection(ctx, GEOS_GEOMETRYCOLLECTION, parts), "collection");
+    auto start = std::chrono::steady_clock::now();
+    GEOSGeometry* u = grid ? GEOSUnaryUnionPrec_r(h, collection.get(), grid_size) : GEOSUnaryUnion_r(h, collection.get());
+    stats.union_seconds += seconds_since(start);
+    if (u == nullptr) {
+      if (grid) ctx.fail("block overlay (union on the grid)");
+      forget_or_rethrow(ctx, "block overlay (union)");
+      return false;
+    }
+    GeomPtr united(u, GeomDeleter{h});
+    start = std::chrono::steady_clock::now();
+    GEOSGeometry* d = grid ? GEOSDifferencePrec_r(h, face, united.get(), grid_size) : GEOSDifference_r(h, face, united.get());
+    stats.difference_seconds += seconds_since(start);
+    if (d == nullptr) {
+      if (grid) ctx.fail("block overlay (difference on the grid)");
+      forget_or_rethrow(ctx, "block overlay (difference)");
+      return false;
+    }
+    difference = GeomPtr(d, GeomDeleter{h});
+  }
+  std::vector<GeomPtr> polygons;
+  append_polygons(ctx, difference.get(), polygons);
+  if (polygons.empty()) {
+    result.reset();
+  } else {
+    result = own(ctx, make_collection(ctx, GEOS_MULTIPOLYGON, polygons), "multipolygon");
+  }
+  return true;
+}
+
+struct IndexTree {  // an STRtree of geometries by index (items are index + 1: GEOS may treat a null item as none)
+  IndexTree(GeosContext& ctx) : tree(GEOSSTRtree_create_r(ctx.handle(), 10), TreeDeleter{ctx.handle()}) {
+    if (!tree) ctx.fail("STRtree creation");
+  }
+  void insert(GeosContext& ctx, const GEOSGeometry* g, std::size_t i) {
+    GEOSSTRtree_insert_r(ctx.handle(), tree.get(), g, reinterpret_cast<void*>(static_cast<std::uintptr_t>(i + 1)));
+  }
+  // The indices whose boxes meet g's, sorted.
+  const std::vector<std::size_t>& query(GeosContext& ctx, const GEOSGeometry* g) {
+    found.indices.clear();
+    GEOSSTRtree_query_r(ctx.handle(), tree.get(), g, &collect, &found);
+    if (found.out_of_memory) throw std::bad_alloc();
+    std::sort(found.indices.begin(), found.indices.end());
+    return found.indices;
+  }
+  std::unique_ptr<GEOSSTRtree, TreeDeleter> tree;
+  Candidates found;
+};
+
+}  // namespace
+
+std::vector<GeomPtr> faces_minus_pieces(GeosContext& ctx, const std::vector<const GEOSGeometry*>& faces,
+                                        const std::vector<const GEOSGeometry*>& pieces, double grid_size,
+                                        FaceCutStats* stats) {
+  if (!(grid_size > 0)) throw_invalid_argument("grid size must be positive");
+  GEOSContextHandle_t h = ctx.handle();
+  FaceCutStats local;
+  FaceCutStats& s = stats != nullptr ? *stats : local;
+  std::vector<GeomPtr> out;
+  for (std::size_t f = 0; f < faces.size(); ++f) out.emplace_back(nullptr, GeomDeleter{h});
+
+  IndexTree tree(ctx);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (pieces[i] != nullptr && GEOSisEmpty_r(h, pieces[i]) == 0) tree.insert(ctx, pieces[i], i);
+  }
+  // Each face's pieces by box, in the order of the input (not of the tree: the same pieces
+  // always unite in the same order).
+  std::vector<std::vector<std::size_t>> candidates(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    if (faces[f] == nullptr) continue;
+    ++s.faces;
+    if (GEOSisEmpty_r(h, faces[f]) == 0) candidates[f] = tree.query(ctx, faces[f]);
+    s.candidate_pairs += candidates[f].size();
+  }
+
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    poll_interrupts();
+    if (faces[f] == nullptr) continue;
+    const GEOSGeometry* face = faces[f];
+    std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter> prepared(GEOSPrepare_r(h, face), PreparedDeleter{h});
+    if (!prepared) ctx.fail("prepared geometry");
+    if (!cut_face(ctx, face, prepared.get(), pieces, candidates[f], -1.0, out[f], s)) {
+      ++s.grid_faces;
+      cut_face(ctx, face, prepared.get(), pieces, candidates[f], grid_size, out[f], s);
+    }
+  }
+  return out;
+}
+
+}  // namespace streetgen::core

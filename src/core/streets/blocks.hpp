@@ -1,0 +1,37 @@
+// City blocks (issue 5): each bounded face of the ground-level axis network minus the street
+// surfaces and sidewalks on it. The faces themselves come from PostGIS (ST_Polygonize of the
+// sections' centre lines, sql/62-blocks.sql); this is the per-face overlay, which in SQL was one
+// ST_Intersection per (face, piece) pair, each converting the face to GEOS again: most of a full
+// run's block time on real cities.
+#pragma once
+#include "core/no_postgres.hpp"
+
+#include <cstddef>
+#include <vector>
+
+#include "core/geos_context.hpp"
+
+namespace streetgen::core {
+
+struct FaceCutStats {
+  std::size_t faces = 0;
+  std::size_t candidate_pairs = 0;  // (face, piece) pairs whose boxes overlap
+  std::size_t clipped_pairs = 0;    // pairs that needed an overlay (the piece crosses the face's boundary)
+  std::size_t grid_faces = 0;       // faces that fell back to the micrometre grid
+  double clip_seconds = 0;          // in the pieces' intersections with the faces
+  double union_seconds = 0;
+  double difference_seconds = 0;
+};
+
+// For each face: the face minus the union of `pieces` (each clipped to the face first), as a
+// MultiPolygon, or nullptr when nothing is left. The same operations as the SQL it replaces
+// (ST_Intersection, ST_CollectionExtract, ST_UnaryUnion, ST_Difference): floating-point overlay
+// first; where GEOS throws on nearly coincident edges, the face again with OverlayNG on a grid of
+// `grid_size` (which never fails). A piece whose box misses the face, or that does not touch it,
+// adds nothing; one inside the face's interior is taken as is (its intersection with the face).
+// A null face gives a null result. Polls interrupts between faces.
+std::vector<GeomPtr> faces_minus_pieces(GeosContext& ctx, const std::vector<const GEOSGeometry*>& faces,
+                                        const std::vector<const GEOSGeometry*>& pieces, double grid_size,
+                                        FaceCutStats* stats = nullptr);
+
+}  // namespace streetgen::core

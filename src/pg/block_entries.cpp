@@ -1,0 +1,97 @@
+// The block overlay: faces and pieces in as EWKB arrays, one row per face out (its index in
+// the array, from 1, and what is left of it, or NULL). sql/62-blocks.sql gathers the faces and
+// the street surfaces and sidewalks around them.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/ewkb.hpp"
+#include "core/streets/blocks.hpp"
+#include "pg/array_args.hpp"
+#include "pg/boundary.hpp"
+#include "pg/owned_result.hpp"
+
+extern "C" {
+#include "catalog/pg_type.h"
+#include "utils/array.h"
+}
+
+using namespace streetgen;
+
+namespace {
+
+struct CutRows {
+  std::vector<core::Bytes> geoms;  // empty: NULL
+  core::FaceCutStats stats;
+};
+
+}  // namespace
+
+extern "C" {
+
+PG_FUNCTION_INFO_V1(_streetgen_faces_minus);
+// (faces bytea[], pieces bytea[], grid_size float8) -> SETOF (face_index integer, geom bytea)
+Datum _streetgen_faces_minus(PG_FUNCTION_ARGS) {
+  pg::require_argument_count(fcinfo, 3, "_streetgen_faces_minus");
+  if (PG_ARGISNULL(2)) pg::raise_null_argument("grid_size");
+  pg::ArrayArg faces = pg::array_arg(fcinfo, 0, BYTEAOID, "faces");
+  pg::ArrayArg piece_array = pg::array_arg(fcinfo, 1, BYTEAOID, "pieces");
+  double grid_size = PG_GETARG_FLOAT8(2);
+  auto* face_views = static_cast<pg::ByteView*>(palloc0(sizeof(pg::ByteView) * (faces.count > 0 ? faces.count : 1)));
+  for (int i = 0; i < faces.count; ++i) {
+    if (!faces.nulls[i]) face_views[i] = pg::byte_view(faces.values[i]);
+  }
+  int piece_count = 0;
+  pg::ByteView* piece_views = pg::byte_views(piece_array, &piece_count);
+  InitMaterializedSRF(fcinfo, 0);
+  auto rows = pg::OwnedResult<CutRows>::create();
+
+  pg::CallError error;
+  pg::guarded_call(error, [&] {
+    core::GeosContext& geos = pg::backend_geos();
+    int srid = 0;
+    std::vector<core::GeomPtr> owned;
+    owned.reserve(static_cast<std::size_t>(faces.count) + static_cast<std::size_t>(piece_count));
+    std::vector<const GEOSGeometry*> face_geoms(static_cast<std::size_t>(faces.count), nullptr);
+    for (int i = 0; i < faces.count; ++i) {
+      if (face_views[i].data == nullptr) continue;
+      std::string name = "face " + std::to_string(i + 1);
+      core::SridGeometry g = core::read_ewkb(geos, face_views[i].data, face_views[i].size, name.c_str());
+      srid = g.srid;
+      face_geoms[static_cast<std::size_t>(i)] = g.geom.get();
+      owned.push_back(std::move(g.geom));
+    }
+    std::vector<const GEOSGeometry*> piece_geoms;
+    piece_geoms.reserve(static_cast<std::size_t>(piece_count));
+    for (int i = 0; i < piece_count; ++i) {
+      core::SridGeometry g = core::read_ewkb(geos, piece_views[i].data, piece_views[i].size, "piece");
+      piece_geoms.push_back(g.geom.get());
+      owned.push_back(std::move(g.geom));
+    }
+    auto& out = rows.emplace();
+    std::vector<core::GeomPtr> cut = core::faces_minus_pieces(geos, face_geoms, piece_geoms, grid_size, &out.stats);
+    out.geoms.reserve(cut.size());
+    for (auto& g : cut) {
+      out.geoms.push_back(g ? core::write_ewkb(geos, g.get(), srid) : core::Bytes());
+    }
+  });
+  pg::raise_if_failed(error);
+
+  elog(DEBUG1,
+       "streetgen: blocks of %zu faces, %zu (face, piece) pairs by box, %zu pieces clipped, %zu faces on the grid; "
+       "seconds in clips %.3f, unions %.3f, differences %.3f",
+       rows->stats.faces, rows->stats.candidate_pairs, rows->stats.clipped_pairs, rows->stats.grid_faces,
+       rows->stats.clip_seconds, rows->stats.union_seconds, rows->stats.difference_seconds);
+  auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
+  for (std::size_t i = 0; i < rows->geoms.size(); ++i) {
+    const core::Bytes& g = rows->geoms[i];
+    Datum values[2] = {Int32GetDatum(static_cast<int32>(i + 1)), g.empty() ? Datum(0) : PointerGetDatum(pg::to_bytea(g))};
+    bool nulls[2] = {false, g.empty()};
+    tuplestore_putvalues(rsinfo->setResult, rsinfo->setDesc, values, nulls);
+  }
+  rows.release();
+  PG_RETURN_NULL();
+}
+
+}  // extern "C"
