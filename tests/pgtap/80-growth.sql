@@ -511,5 +511,26 @@ SELECT cmp_ok((SELECT seconds FROM outcome), '<', 2.0::double precision, 'within
 SELECT is(pg_temp.grow('SELECT geom, road_class FROM tokyo', params => '{"max_edges": 10}'), 10::bigint,
           'and the session grows again');
 
+-- fill is on by default for grow_example: a second part of the region that no front can reach (2 km
+-- east of the first) is grown from a new seed; with fill off it stays empty.
+CREATE TEMP TABLE two_parts AS
+SELECT ST_Multi(ST_Union(r.geom, ST_MakeEnvelope(ST_XMax(r.geom) + 2000, ST_YMin(r.geom), ST_XMax(r.geom) + 2600,
+                                                 ST_YMin(r.geom) + 600, 0))) AS geom,
+       ST_XMax(r.geom) + 2000 AS x_east, r.centre
+  FROM region r WHERE r.name = 'tokyo';
+CREATE TEMP TABLE fill_default AS
+SELECT g.* FROM two_parts t, streetgen.grow_example($$SELECT id, road_class, geom FROM patch WHERE name = 'tokyo'$$,
+  t.geom, t.centre, NULL, '{"seed": 5, "rotation": false, "max_edges": 6000}') AS g;
+CREATE TEMP TABLE fill_off AS
+SELECT g.* FROM two_parts t, streetgen.grow_example($$SELECT id, road_class, geom FROM patch WHERE name = 'tokyo'$$,
+  t.geom, t.centre, NULL, '{"seed": 5, "rotation": false, "max_edges": 6000, "fill": false}') AS g;
+SELECT ok((SELECT count(*) FROM fill_default f, two_parts t WHERE ST_XMin(f.geom) >= t.x_east) >= 50,
+          'fill (on by default) grows the part of the region no front reaches');
+SELECT is((SELECT count(*) FROM fill_off f, two_parts t WHERE ST_XMin(f.geom) >= t.x_east), 0::bigint,
+          'with fill off that part stays empty');
+SELECT is((SELECT count(*) FROM fill_default a JOIN fill_default b ON a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
+          0::bigint, 'the filled growth is planar');
+
 SELECT * FROM finish();
 ROLLBACK;

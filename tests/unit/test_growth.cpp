@@ -334,6 +334,57 @@ TEST(GrowExample, DeadEndsOnTheCropEdgeGrowOn) {
   EXPECT_LT(dead_share(-1.0), 0.5 * dead_share(0.0));
 }
 
+TEST(GrowExample, FrontsThatCanNeitherGrowNorJoinAreCutBack) {
+  // A grid with its junctions moved by up to 20 m has no dead ends (its crop-edge ends grow on),
+  // so every dead end in the output is a front that failed (its skewed copies crowd each other):
+  // away from the region's border and the lake, none is left, and the streets that led to them
+  // are gone, not stubs.
+  Fixture f;
+  GrowInput in = f.input();
+  in.obstacles = {f.lake.get()};
+  in.example.clear();
+  auto at = [](int i, int j) {
+    unsigned h = static_cast<unsigned>(i * 7919 + j * 104729) * 2654435761u;
+    return Point{i * 80.0 + static_cast<double>(h % 41) - 20.0, j * 80.0 + static_cast<double>((h >> 8) % 41) - 20.0};
+  };
+  std::int64_t id = 0;
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      in.example.push_back({{at(j, i), at(j + 1, i)}, "street", ++id});
+      in.example.push_back({{at(i, j), at(i, j + 1)}, "street", ++id});
+    }
+  }
+  std::size_t pruned = 0;
+  for (std::uint64_t seed : {1u, 2u, 3u, 4u}) {
+    GrowParams p;
+    p.seed = seed;
+    p.max_edges = 3000;
+    GrowResult r = grow_example(f.geos, in, p);
+    ASSERT_GT(r.edges.size(), 100u);
+    pruned += r.stats.pruned;
+    std::map<std::int64_t, std::pair<int, Point>> degree;
+    for (const GrownEdge& e : r.edges) {
+      degree[e.from_node] = {degree[e.from_node].first + 1, e.a};
+      degree[e.to_node] = {degree[e.to_node].first + 1, e.b};
+    }
+    const double margin = 80.0;  // an example segment: clipped ends at the border or the lake stop there
+    std::size_t interior_dead = 0;
+    for (const auto& [node, dp] : degree) {
+      const Point q = dp.second;
+      bool near_border = q.x < margin || q.y < margin || q.x > 1000.0 - margin || q.y > 1000.0 - margin;
+      bool near_lake = q.x > 600.0 - margin && q.x < 800.0 + margin && q.y > 600.0 - margin && q.y < 800.0 + margin;
+      if (dp.first == 1 && !near_border && !near_lake) ++interior_dead;
+    }
+    EXPECT_EQ(interior_dead, 0u) << "seed " << seed;
+    std::size_t bad = 0;
+    for (std::size_t i = 0; i < r.edges.size(); ++i) {
+      for (std::size_t j = i + 1; j < r.edges.size(); ++j) bad += crosses_without_node(r.edges[i], r.edges[j]);
+    }
+    EXPECT_EQ(bad, 0u) << "seed " << seed;
+  }
+  EXPECT_GT(pruned, 0u);  // the case arises: fronts did fail and were cut back
+}
+
 TEST(GrowExample, FillReseedsWhereTheFrontsDied) {
   // The comb with real dead ends grows one spine and stops; with fill it starts again from new
   // seeds until no legal point is farther than r from every edge, and stays planar.
@@ -348,6 +399,7 @@ TEST(GrowExample, FillReseedsWhereTheFrontsDied) {
   p.seed = 3;
   p.rotation = false;
   p.crop_margin = 0.0;
+  p.fill = false;
   GrowResult once = grow_example(f.geos, in, p);
   p.fill = true;
   GrowResult filled = grow_example(f.geos, in, p);
@@ -362,6 +414,30 @@ TEST(GrowExample, FillReseedsWhereTheFrontsDied) {
 }
 
 namespace {
+
+TEST(GrowExample, FillLeavesGapsTheExampleHas) {
+  // The comb's hull is a thin strip: fill reseeds wherever a point is farther than r from every
+  // edge. With one more short street 560 m off the comb, the example's hull holds an empty space
+  // about 200 m wide: gaps up to that size are the example's own and are not reseeded.
+  Fixture f;
+  GrowInput in = f.input();
+  in.example.clear();
+  for (int i = 0; i < 10; ++i) {
+    in.example.push_back({{{i * 50.0, 0.0}, {(i + 1) * 50.0, 0.0}}, "street", i + 1});
+    in.example.push_back({{{i * 50.0, 0.0}, {i * 50.0, 40.0}}, "street", 100 + i});
+  }
+  GrowParams p;
+  p.seed = 3;
+  p.rotation = false;
+  p.crop_margin = 0.0;
+  p.fill = true;  // (as grow_example in SQL, by default)
+  GrowResult strip = grow_example(f.geos, in, p);
+  in.example.push_back({{{250.0, 600.0}, {290.0, 600.0}}, "street", 500});
+  GrowResult gap = grow_example(f.geos, in, p);
+  EXPECT_GT(strip.stats.reseeds, 3u);
+  EXPECT_LT(gap.stats.reseeds, strip.stats.reseeds);
+  EXPECT_LT(gap.edges.size(), strip.edges.size());
+}
 
 // A north-up raster over [0, 1000]² of 100 m cells, `bands` bands filled by f(band, x, y) at
 // each cell centre.

@@ -83,7 +83,8 @@ struct GrowParams {
   double coherence = 1.0;      // probability that a node first tries the example node its edge was copied
                                // to (coherent copying, as in texture synthesis); 0: random candidates only
   bool keep_frame = true;
-  bool fill = false;           // fronts all dead before the region is covered: grow on from new seeds
+  bool fill = false;           // fronts all dead before the region is covered: grow on from new seeds (SQL grow_example: on)
+                               // farther than max(r, the examples' widest empty space) from every edge
   double crop_margin = -1.0;   // metres: an example dead end this close to its hull's edge is a street
                                // the crop cut and grows on; < 0: the mean example segment length      // a node matches under the θ of the match that made it (free θ only if none)
   ParametricParams shape;      // the parametric growth's parameters (with an example: derived from it)
@@ -154,6 +155,7 @@ struct GrowStats {
   std::size_t rejected = 0;
   std::size_t reseeds = 0;         // new seeds placed where the fronts had died before covering the region
   std::size_t restarts = 0;        // growths that died within their first 20 edges and began again
+  std::size_t pruned = 0;          // output segments cut back from fronts that could neither grow nor join
   std::size_t patches_placed = 0;  // patch growth: fronts (and seeds) where a patch was glued
   std::size_t patch_candidates = 0;  // patches within max_distance, summed over fronts
   std::size_t patch_illegal = 0;   // drawn patches that failed a legality check
