@@ -8,9 +8,11 @@
 #include "core/error.hpp"
 #include "core/growth/grow_example.hpp"
 #include "core/growth/patches.hpp"
+#include "patch_fixtures.hpp"
 #include "test_support.hpp"
 
 using namespace streetgen::core;
+using streetgen::test::avenue_grid;
 using streetgen::test::wkt;
 
 namespace {
@@ -270,22 +272,6 @@ TEST(GrowPatches, BadPatchesAreRejected) {
   EXPECT_THROW(grow_example(f.geos, in, p), Error);
 }
 
-namespace {
-// A 7 x 7 node grid of 100 m blocks (one row per block): avenues along x = 100, x = 400, y = 100
-// and y = 400 (crossing at four arterial junctions), streets elsewhere.
-std::vector<PatchInputEdge> avenue_grid() {
-  std::vector<PatchInputEdge> out;
-  std::int64_t id = 0;
-  auto avenue = [](int k) { return k == 1 || k == 4; };
-  for (int i = 0; i <= 6; ++i) {
-    for (int j = 0; j < 6; ++j) {
-      out.push_back({{{j * 100.0, i * 100.0}, {(j + 1) * 100.0, i * 100.0}}, avenue(i) ? "avenue" : "street", ++id, false});
-      out.push_back({{{i * 100.0, j * 100.0}, {i * 100.0, (j + 1) * 100.0}}, avenue(i) ? "avenue" : "street", ++id, false});
-    }
-  }
-  return out;
-}
-}  // namespace
 
 TEST(ExtractPatches, LevelsSplitArterialAndLocalPatches) {
   GeosContext geos;

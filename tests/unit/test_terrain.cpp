@@ -7,9 +7,11 @@
 #include "core/growth/grow_example.hpp"
 #include "core/growth/patches.hpp"
 #include "core/growth/terrain.hpp"
+#include "patch_fixtures.hpp"
 #include "test_support.hpp"
 
 using namespace streetgen::core;
+using streetgen::test::avenue_grid;
 using streetgen::test::wkt;
 
 namespace {
@@ -123,21 +125,6 @@ TEST(Terrain, NoBridgeToTheSeaOrToASliverOfLand) {
 }
 
 namespace {
-// A 7 x 7 node grid of 100 m blocks: avenues along x = 100, x = 400, y = 100 and y = 400,
-// streets elsewhere (as in test_patches.cpp).
-std::vector<PatchInputEdge> avenue_grid() {
-  std::vector<PatchInputEdge> out;
-  std::int64_t id = 0;
-  auto avenue = [](int k) { return k == 1 || k == 4; };
-  for (int i = 0; i <= 6; ++i) {
-    for (int j = 0; j < 6; ++j) {
-      out.push_back({{{j * 100.0, i * 100.0}, {(j + 1) * 100.0, i * 100.0}}, avenue(i) ? "avenue" : "street", ++id, false});
-      out.push_back({{{i * 100.0, j * 100.0}, {i * 100.0, (j + 1) * 100.0}}, avenue(i) ? "avenue" : "street", ++id, false});
-    }
-  }
-  return out;
-}
-
 // Segment a-b meets the band y in [y0, y1] (the river spans the whole region).
 bool meets_band(const GrownEdge& e, double y0, double y1) {
   return std::max(e.a.y, e.b.y) >= y0 && std::min(e.a.y, e.b.y) <= y1;
