@@ -49,6 +49,16 @@ double point_segment_distance_for_test(Point p, Point a, Point b) {
   return distance(p, a + t * d);
 }
 
+// A comb: a 500 m spine of ten 50 m edges with a 40 m dead-end tooth at each node.
+std::vector<ExampleEdge> comb_with_dead_ends() {
+  std::vector<ExampleEdge> out;
+  for (int i = 0; i < 10; ++i) {
+    out.push_back({{{i * 50.0, 0.0}, {(i + 1) * 50.0, 0.0}}, "street", i + 1});
+    out.push_back({{{i * 50.0, 0.0}, {i * 50.0, 40.0}}, "street", 100 + i});
+  }
+  return out;
+}
+
 struct Fixture {
   GeosContext geos;
   GeomPtr region = wkt(geos, "POLYGON((0 0, 1000 0, 1000 1000, 0 1000, 0 0))");
@@ -125,11 +135,7 @@ TEST(GrowExample, DeadEndsOfTheExampleStayDeadEnds) {
   // A comb: a spine with teeth that end in dead ends.
   Fixture f;
   GrowInput in = f.input();
-  in.example.clear();
-  for (int i = 0; i < 10; ++i) {
-    in.example.push_back({{{i * 50.0, 0.0}, {(i + 1) * 50.0, 0.0}}, "street", i + 1});
-    in.example.push_back({{{i * 50.0, 0.0}, {i * 50.0, 40.0}}, "street", 100 + i});
-  }
+  in.example = comb_with_dead_ends();
   GrowParams p;
   p.seed = 3;
   p.rotation = false;  // a straight comb: the spine runs to the region's border both ways
@@ -310,11 +316,7 @@ TEST(GrowExample, DeadEndsOnTheCropEdgeGrowOn) {
   // default crop_margin they grow on; with 0 they stay dead ends.
   Fixture f;
   GrowInput in = f.input();
-  in.example.clear();
-  for (int i = 0; i < 10; ++i) {
-    in.example.push_back({{{i * 50.0, 0.0}, {(i + 1) * 50.0, 0.0}}, "street", i + 1});
-    in.example.push_back({{{i * 50.0, 0.0}, {i * 50.0, 40.0}}, "street", 100 + i});
-  }
+  in.example = comb_with_dead_ends();
   auto dead_share = [&](double margin) {
     GrowParams p;
     p.seed = 3;
@@ -390,11 +392,7 @@ TEST(GrowExample, FillReseedsWhereTheFrontsDied) {
   // seeds until no legal point is farther than r from every edge, and stays planar.
   Fixture f;
   GrowInput in = f.input();
-  in.example.clear();
-  for (int i = 0; i < 10; ++i) {
-    in.example.push_back({{{i * 50.0, 0.0}, {(i + 1) * 50.0, 0.0}}, "street", i + 1});
-    in.example.push_back({{{i * 50.0, 0.0}, {i * 50.0, 40.0}}, "street", 100 + i});
-  }
+  in.example = comb_with_dead_ends();
   GrowParams p;
   p.seed = 3;
   p.rotation = false;
@@ -421,11 +419,7 @@ TEST(GrowExample, FillLeavesGapsTheExampleHas) {
   // about 200 m wide: gaps up to that size are the example's own and are not reseeded.
   Fixture f;
   GrowInput in = f.input();
-  in.example.clear();
-  for (int i = 0; i < 10; ++i) {
-    in.example.push_back({{{i * 50.0, 0.0}, {(i + 1) * 50.0, 0.0}}, "street", i + 1});
-    in.example.push_back({{{i * 50.0, 0.0}, {i * 50.0, 40.0}}, "street", 100 + i});
-  }
+  in.example = comb_with_dead_ends();
   GrowParams p;
   p.seed = 3;
   p.rotation = false;
