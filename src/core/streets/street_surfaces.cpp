@@ -1119,7 +1119,11 @@ class SurfaceBuilder {
           Item it;
           it.owned = single_sided_buffer(ctx_, line.get(), side == 0 ? d : -d);
           if (GEOSisValid_r(ctx_.handle(), it.owned.get()) != 1) {
-            it.owned = own(ctx_, GEOSMakeValid_r(ctx_.handle(), it.owned.get()), "make valid");
+            // (its polygons only: a made-valid buffer can hold lines, and an overlay refuses
+            // input of mixed dimension)
+            GeomPtr fixed = own(ctx_, GEOSMakeValid_r(ctx_.handle(), it.owned.get()), "make valid");
+            it.owned = polygons_of(ctx_, fixed.get(), 0.0);
+            if (!it.owned) continue;
           }
           it.geom = it.owned.get();
           it.layer = axis.layer;
@@ -1180,8 +1184,8 @@ class SurfaceBuilder {
       try {
         GeomPtr rest = own(ctx_, GEOSGeom_clone_r(ctx_.handle(), it.geom), "clone");
         // Boxes overlap far more often than shapes (long diagonal streets): only what the claim
-        // really meets goes into the union (a predicate that fails counts as meeting).
-        std::vector<GEOSGeometry*> raw;
+        // really meets is taken away (a predicate that fails counts as meeting).
+        std::vector<const GEOSGeometry*> meeting;
         if (!blockers[i].empty()) {
           std::sort(blockers[i].begin(), blockers[i].end());
           const GEOSPreparedGeometry* prepared = GEOSPrepare_r(ctx_.handle(), it.geom);
@@ -1189,25 +1193,33 @@ class SurfaceBuilder {
           for (std::size_t b : blockers[i]) {
             char meets = GEOSPreparedIntersects_r(ctx_.handle(), prepared, items[b].geom);
             if (meets == 2) ctx_.clear_error();
-            if (meets != 0) raw.push_back(GEOSGeom_clone_r(ctx_.handle(), items[b].geom));
+            if (meets != 0) meeting.push_back(items[b].geom);
           }
           GEOSPreparedGeom_destroy_r(ctx_.handle(), prepared);
         }
-        if (!raw.empty()) {
-          GeomPtr all = own(ctx_, GEOSGeom_createCollection_r(ctx_.handle(), GEOS_GEOMETRYCOLLECTION, raw.data(),
-                                                              static_cast<unsigned>(raw.size())),
-                            "collection");
-          GeomPtr taken = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), all.get()), "union");
-          // Snap-rounded on the sidewalk grid: in floating precision, OverlayNG returned a whole
-          // claim where the union of its blockers covered it (the union had a zero-area hole
-          // through a vertex of the claim; a soak's axis lying along another, pgTAP 62).
-          rest = own(ctx_, GEOSDifferencePrec_r(ctx_.handle(), rest.get(), taken.get(), kSidewalkGrid), "difference");
+        // One blocker after another, not their union: a difference clips the blocker to the
+        // claim's box before it nodes anything (a union has no such envelope, and a long
+        // street's roadway or a large junction's sidewalk would be united whole for every claim
+        // along it). The last step is snap-rounded on the micrometre grid, and so is a claim
+        // nothing blocks: an overlay can leave a sliver nanometres wide along an edge it nearly
+        // shares, present or not as the roadways around differ in their last bits (a local
+        // refresh and a full run then disagreed by 2.75 m of sliver, 1e-8 m2); snap rounding
+        // collapses such slivers, those of the floating steps before it included, and gives
+        // valid output. (A union of the blockers in floating precision once had a zero-area
+        // hole through a vertex of the claim, and the whole claim came back: pgTAP 62.)
+        for (std::size_t k = 0; k < meeting.size() && rest; ++k) {
+          rest = k + 1 < meeting.size()
+                     ? own(ctx_, GEOSDifference_r(ctx_.handle(), rest.get(), meeting[k]), "difference")
+                     : own(ctx_, GEOSDifferencePrec_r(ctx_.handle(), rest.get(), meeting[k], kSidewalkGrid), "difference");
+          // (a floating difference can leave a collapsed edge as a line beside the polygons, and
+          // the next overlay would refuse input of mixed dimension)
+          int type = GEOSGeomTypeId_r(ctx_.handle(), rest.get());
+          if (type != GEOS_POLYGON && type != GEOS_MULTIPOLYGON) rest = polygons_of(ctx_, rest.get(), 0.0);
         }
-        // On the micrometre grid: an overlay can leave a sliver nanometres wide along an edge it
-        // nearly shares, present or not as the roadways around differ in their last bits (a
-        // local refresh and a full run then disagreed by 2.75 m of sliver, 1e-8 m2). Snap
-        // rounding collapses such slivers, and gives valid output.
-        rest = own(ctx_, GEOSGeom_setPrecision_r(ctx_.handle(), rest.get(), kSidewalkGrid, 0), "sidewalk grid");
+        if (!rest) continue;
+        if (meeting.empty()) {
+          rest = own(ctx_, GEOSGeom_setPrecision_r(ctx_.handle(), rest.get(), kSidewalkGrid, 0), "sidewalk grid");
+        }
         GeomPtr surface = polygons_of(ctx_, rest.get(), kMinSidewalkArea);
         if (!surface) continue;
         if (GEOSisValid_r(ctx_.handle(), surface.get()) != 1) {
