@@ -13,6 +13,8 @@
 namespace streetgen::core {
 namespace {
 
+constexpr double kMinBlockPartArea = 0.01;  // m², as sidewalks' (kMinSidewalkArea): smaller parts are slivers
+
 struct TreeDeleter {
   GEOSContextHandle_t handle;
   void operator()(GEOSSTRtree* tree) const noexcept { GEOSSTRtree_destroy_r(handle, tree); }
@@ -73,8 +75,31 @@ GEOSGeometry* make_collection(GeosContext& ctx, int type, std::vector<GeomPtr>& 
   return c;
 }
 
-// One face, floating-point (grid_size < 0) or on the grid. Returns false when a float overlay
-// failed (the caller retries on the grid); throws when an overlay on the grid fails.
+// What is left of a face as its block: the polygons of `rest` of at least kMinBlockPartArea, as a
+// MultiPolygon, or nullptr. Smaller parts are the gaps, nanometres wide, that two surfaces leave
+// between edges that meet up to rounding (sidewalks lie on the micrometre grid, roadways not):
+// on a piece of the Paris graph, 95 % of the blocks' parts were such slivers (1e-20 to 1e-4 m2).
+void keep_block(GeosContext& ctx, const GEOSGeometry* rest, GeomPtr& result) {
+  std::vector<GeomPtr> polygons;
+  append_polygons(ctx, rest, polygons);
+  polygons.erase(std::remove_if(polygons.begin(), polygons.end(), [&](const GeomPtr& p) {
+                   double a = 0.0;
+                   if (GEOSArea_r(ctx.handle(), p.get(), &a) == 0) ctx.fail("area");
+                   return a < kMinBlockPartArea;
+                 }),
+                 polygons.end());
+  if (polygons.empty()) {
+    result.reset();
+  } else {
+    result = own(ctx, make_collection(ctx, GEOS_MULTIPOLYGON, polygons), "multipolygon");
+  }
+}
+
+// One face, floating-point (grid_size < 0) or on the grid: the pieces cut to the face, united,
+// and taken from it. Returns false when a float overlay failed (the caller retries on the grid);
+// throws when an overlay on the grid fails. (Taking the pieces away one after another, each
+// difference clipping the piece to the face's box, was 10 % faster on the small faces of the
+// Paris graph but 2.6 times slower on Liechtenstein, whose faces hold hundreds of pieces.)
 bool cut_face(GeosContext& ctx, const GEOSGeometry* face, const GEOSPreparedGeometry* prepared,
               const std::vector<const GEOSGeometry*>& pieces, const std::vector<std::size_t>& candidates, double grid_size,
               GeomPtr& result, FaceCutStats& stats) {
@@ -107,37 +132,30 @@ bool cut_face(GeosContext& ctx, const GEOSGeometry* face, const GEOSPreparedGeom
     GeomPtr owned(clipped, GeomDeleter{h});
     append_polygons(ctx, owned.get(), parts);
   }
-  GeomPtr difference;
   if (parts.empty()) {
-    difference = own(ctx, GEOSGeom_clone_r(h, face), "clone");
-  } else {
-    GeomPtr collection = own(ctx, make_collection(ctx, GEOS_GEOMETRYCOLLECTION, parts), "collection");
-    auto start = std::chrono::steady_clock::now();
-    GEOSGeometry* u = grid ? GEOSUnaryUnionPrec_r(h, collection.get(), grid_size) : GEOSUnaryUnion_r(h, collection.get());
-    stats.union_seconds += seconds_since(start);
-    if (u == nullptr) {
-      if (grid) ctx.fail("block overlay (union on the grid)");
-      forget_or_rethrow(ctx, "block overlay (union)");
-      return false;
-    }
-    GeomPtr united(u, GeomDeleter{h});
-    start = std::chrono::steady_clock::now();
-    GEOSGeometry* d = grid ? GEOSDifferencePrec_r(h, face, united.get(), grid_size) : GEOSDifference_r(h, face, united.get());
-    stats.difference_seconds += seconds_since(start);
-    if (d == nullptr) {
-      if (grid) ctx.fail("block overlay (difference on the grid)");
-      forget_or_rethrow(ctx, "block overlay (difference)");
-      return false;
-    }
-    difference = GeomPtr(d, GeomDeleter{h});
+    keep_block(ctx, face, result);
+    return true;
   }
-  std::vector<GeomPtr> polygons;
-  append_polygons(ctx, difference.get(), polygons);
-  if (polygons.empty()) {
-    result.reset();
-  } else {
-    result = own(ctx, make_collection(ctx, GEOS_MULTIPOLYGON, polygons), "multipolygon");
+  GeomPtr collection = own(ctx, make_collection(ctx, GEOS_GEOMETRYCOLLECTION, parts), "collection");
+  auto start = std::chrono::steady_clock::now();
+  GEOSGeometry* u = grid ? GEOSUnaryUnionPrec_r(h, collection.get(), grid_size) : GEOSUnaryUnion_r(h, collection.get());
+  stats.union_seconds += seconds_since(start);
+  if (u == nullptr) {
+    if (grid) ctx.fail("block overlay (union on the grid)");
+    forget_or_rethrow(ctx, "block overlay (union)");
+    return false;
   }
+  GeomPtr united(u, GeomDeleter{h});
+  start = std::chrono::steady_clock::now();
+  GEOSGeometry* d = grid ? GEOSDifferencePrec_r(h, face, united.get(), grid_size) : GEOSDifference_r(h, face, united.get());
+  stats.difference_seconds += seconds_since(start);
+  if (d == nullptr) {
+    if (grid) ctx.fail("block overlay (difference on the grid)");
+    forget_or_rethrow(ctx, "block overlay (difference)");
+    return false;
+  }
+  GeomPtr difference(d, GeomDeleter{h});
+  keep_block(ctx, difference.get(), result);
   return true;
 }
 

@@ -24,12 +24,13 @@ struct FaceCutStats {
 };
 
 // For each face: the face minus the union of `pieces` (each clipped to the face first), as a
-// MultiPolygon, or nullptr when nothing is left. The same operations as the SQL it replaces
-// (ST_Intersection, ST_CollectionExtract, ST_UnaryUnion, ST_Difference): floating-point overlay
-// first; where GEOS throws on nearly coincident edges, the face again with OverlayNG on a grid of
-// `grid_size` (which never fails). A piece whose box misses the face, or that does not touch it,
-// adds nothing; one inside the face's interior is taken as is (its intersection with the face).
-// A null face gives a null result. Polls interrupts between faces.
+// MultiPolygon of the parts of at least 0.01 m² (smaller ones are slivers between surfaces that
+// meet up to rounding), or nullptr when nothing is left. The same operations as the SQL it
+// replaces (ST_Intersection, ST_CollectionExtract, ST_UnaryUnion, ST_Difference): floating-point
+// overlay first; where GEOS throws on nearly coincident edges, the face again with OverlayNG on a
+// grid of `grid_size` (which never fails). A piece whose box misses the face, or that does not
+// touch it, adds nothing; one inside the face's interior is taken as is (its intersection with
+// the face). A null face gives a null result. Polls interrupts between faces.
 std::vector<GeomPtr> faces_minus_pieces(GeosContext& ctx, const std::vector<const GEOSGeometry*>& faces,
                                         const std::vector<const GEOSGeometry*>& pieces, double grid_size,
                                         FaceCutStats* stats = nullptr);
