@@ -4,15 +4,28 @@
 # recompute, every output geometry valid. Fails as well if a client aborted on an error pgbench
 # cannot retry or if the server log shows a crashed backend. tests/soak/replay.sql replays a
 # failed soak's log in one session to name the edit that broke the invariant.
-#   SOAK_SECONDS  duration of the pgbench run (default 60)
+#   SOAK_EDITS    edits per client (default 20: 160 edits, every one of which must commit)
+#   SOAK_SECONDS  run for this long instead (pgbench -T; at least one edit per 6 s must commit)
 #   SOAK_CLIENTS  concurrent editors (default 8; 1 tells a concurrency bug from a scope bug)
 source "$(dirname "$0")/lib.sh"
 : "${STREETGEN_SHARED_DATA:?}"
 pgbench="${PG_BINDIR:-/usr/lib/postgresql/15/bin}/pgbench"
-seconds=${SOAK_SECONDS:-60}
 clients=${SOAK_CLIENTS:-8}
-# At ~20 serialised edits a second, 100 a minute only proves the soak did work, even on a busy machine.
-min_edits=$(( seconds * 100 / 60 > 10 ? seconds * 100 / 60 : 10 ))
+# A number of edits, not a duration, by default: an edit of Liechtenstein with its sidewalks and
+# blocks takes 0.4 s of serialised work on an idle machine and 0.8 s on a busy one, so a 60 s
+# run proved anything from 79 to 153 edits. Every edit counted must commit (pgbench retries
+# 40001 and 40P01).
+if [ -n "${SOAK_SECONDS:-}" ]; then
+  seconds=$SOAK_SECONDS
+  run_for=(-T "$seconds")
+  min_edits=$(( seconds / 6 > 10 ? seconds / 6 : 10 ))
+  what="$seconds s"
+else
+  per_client=${SOAK_EDITS:-20}
+  run_for=(-t "$per_client")
+  min_edits=$(( clients * per_client ))
+  what="$per_client edits each"
+fi
 model=liechtenstein
 mark=$(log_mark)
 db=streetgen_soak
@@ -31,7 +44,7 @@ psql -X -q -v ON_ERROR_STOP=1 -v model="$model" -f "$SRC/tests/soak/setup.sql"
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 status=0
 PGOPTIONS="$PGOPTIONS -c search_path=$model,public -c statement_timeout=120s" \
-  "$pgbench" -n -c "$clients" -j "$(( clients < 2 ? clients : 2 ))" -T "$seconds" -P 10 --max-tries=10 --failures-detailed \
+  "$pgbench" -n -c "$clients" -j "$(( clients < 2 ? clients : 2 ))" "${run_for[@]}" -P 10 --max-tries=10 --failures-detailed \
   -f "$SRC/tests/soak/move-axis.sql@25" -f "$SRC/tests/soak/move-vertex.sql@20" \
   -f "$SRC/tests/soak/width.sql@15" -f "$SRC/tests/soak/speed.sql@15" \
   -f "$SRC/tests/soak/insert.sql@15" -f "$SRC/tests/soak/delete.sql@10" \
@@ -59,7 +72,7 @@ repairs=$(tail -c +"$((mark + 1))" "$PGHOST/server.log" | grep -c 'wrote overlap
 pgbench_stat() { sed -n "s/^$1[ =:]*\([0-9.]*\).*/\1/p" "$work/pgbench.out"; }
 edits=$(psql -X -At -c "SELECT sum(n) || ' (' || string_agg(kind || ' ' || n, ', ') || ')'
                           FROM (SELECT kind, count(*) AS n FROM soak_log GROUP BY kind ORDER BY kind) k")
-echo "soak: $clients clients, $seconds s, committed edits $edits of $(pgbench_stat 'number of transactions actually processed') transactions," \
+echo "soak: $clients clients, $what, committed edits $edits of $(pgbench_stat 'number of transactions actually processed') transactions," \
   "tps $(pgbench_stat tps), latency avg $(pgbench_stat 'latency average') ms, failed $(pgbench_stat 'number of failed transactions')" \
   "(serialization $(pgbench_stat 'number of serialization failures'), deadlock $(pgbench_stat 'number of deadlock failures')), retried" \
   "$(pgbench_stat 'number of transactions retried') (retries $(pgbench_stat 'total number of retries')); load average $load_before before," \
