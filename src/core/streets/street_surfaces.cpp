@@ -966,6 +966,14 @@ class SurfaceBuilder {
     int n = GEOSGetNumGeometries_r(ctx_.handle(), cells.get());
     for (int k = 0; k < n; ++k) {
       const GEOSGeometry* cell = GEOSGetGeometryN_r(ctx_.handle(), cells.get(), k);
+      // (GEOS clips the cells to the sites' box grown by its size: most lie off the region, and
+      // uniting them only to cut them away cost more than the diagram)
+      double cx0, cy0, cx1, cy1;
+      GEOSGeom_getXMin_r(ctx_.handle(), cell, &cx0);
+      GEOSGeom_getYMin_r(ctx_.handle(), cell, &cy0);
+      GEOSGeom_getXMax_r(ctx_.handle(), cell, &cx1);
+      GEOSGeom_getYMax_r(ctx_.handle(), cell, &cy1);
+      if (cx1 < x0 || cx0 > x1 || cy1 < y0 || cy0 > y1) continue;
       GeomPtr inside = own(ctx_, GEOSPointOnSurface_r(ctx_.handle(), cell), "point on surface");
       double x, y;
       GEOSGeomGetX_r(ctx_.handle(), inside.get(), &x);
