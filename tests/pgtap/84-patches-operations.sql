@@ -1,0 +1,185 @@
+-- Growing networks II, operations (Nishida, Garcia-Dorado & Aliaga 2016, section 5) on real
+-- example patches of ../shared/data/examples/patches (crops of OpenStreetMap, © OpenStreetMap
+-- contributors, ODbL 1.0): warping along a guide, interpolation of two styles with weight t,
+-- blending by Gaussian fall-off from each style's seed; every bad new parameter by SQLSTATE.
+BEGIN;
+SELECT * FROM no_plan();
+
+CREATE TEMP TABLE ex AS
+SELECT n AS name, row_number() OVER (PARTITION BY n) AS id, f -> 'properties' ->> 'type' AS road_class,
+       (f -> 'properties' ->> 'roundabout')::boolean AS roundabout,
+       ST_SetSRID(ST_GeomFromGeoJSON(f -> 'geometry'), 0) AS geom
+  FROM unnest(ARRAY['tokyo', 'canberra_south_large']) AS n,
+       jsonb_array_elements(pg_read_file(current_setting('streetgen_test.shared_data') || '/examples/patches/' || n
+                                         || '.geojson')::jsonb -> 'features') AS f;
+CREATE TEMP TABLE pt AS
+SELECT n AS name, x.*
+  FROM unnest(ARRAY['tokyo', 'canberra_south_large']) AS n,
+       streetgen.extract_patches(format('SELECT id, road_class, roundabout, geom FROM ex WHERE name = %L', n)) AS x;
+-- One square region for both styles (patches are placed relative to the seed, not where the
+-- example lies).
+CREATE TEMP TABLE sq AS SELECT ST_MakeEnvelope(-900, -900, 900, 900, 0) AS geom;
+
+-- Edges as unit directions: the angle between two undirected directions folded to [0, 45]
+-- degrees (a grid's streets and their perpendiculars are one family).
+CREATE FUNCTION pg_temp.grid_deviation(a double precision, b double precision) RETURNS double precision
+  LANGUAGE sql IMMUTABLE AS $$
+  SELECT least(d, 90 - d) FROM (SELECT mod(mod(degrees(a - b)::numeric, 90) + 90, 90)::double precision AS d) x
+$$;
+
+-- ---- Warping ----------------------------------------------------------------------------------
+-- A circular guide (radius 500 m around the seed): the tokyo grid grown with it turns to follow
+-- the circle's tangent; without it, its streets keep one direction and cross the circle at every
+-- angle.
+CREATE TEMP TABLE guide AS SELECT ST_ExteriorRing(ST_Buffer('POINT(0 0)'::geometry, 500, 64)) AS geom;
+CREATE TEMP TABLE warp AS
+SELECT 'guided'::text AS run, g.* FROM sq, guide,
+       streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', sq.geom, 'POINT(0 0)', NULL,
+                              '{"seed": 3, "max_edges": 2500}', NULL, NULL, guide.geom) AS g
+UNION ALL
+SELECT 'free', g.* FROM sq,
+       streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', sq.geom, 'POINT(0 0)', NULL,
+                              '{"seed": 3, "max_edges": 2500}') AS g;
+-- Per edge within 60 m of the guide: its deviation from the tangent at the guide's nearest point,
+-- length-weighted.
+CREATE TEMP TABLE warp_dev AS
+SELECT w.run, sum(ST_Length(w.geom) * pg_temp.grid_deviation(
+                    ST_Azimuth(ST_StartPoint(w.geom), ST_EndPoint(w.geom)),
+                    ST_Azimuth(ST_LineInterpolatePoint(guide.geom, greatest(f - 0.002, 0)),
+                               ST_LineInterpolatePoint(guide.geom, least(f + 0.002, 1)))))
+              / sum(ST_Length(w.geom)) AS deviation,
+       count(*) AS near
+  FROM warp w, guide,
+       LATERAL (SELECT ST_LineLocatePoint(guide.geom, ST_Centroid(w.geom)) AS f) l
+ WHERE ST_DWithin(w.geom, guide.geom, 60)
+ GROUP BY w.run;
+SELECT ok((SELECT bool_and(near >= 40) AND count(*) = 2 FROM warp_dev), 'both growths reach the guide (40+ edges near it)');
+SELECT cmp_ok((SELECT deviation FROM warp_dev WHERE run = 'guided'), '<', 8.0::double precision,
+              'warped: edges near the guide deviate from its tangent by under 8 degrees (grid directions)');
+SELECT cmp_ok((SELECT deviation FROM warp_dev WHERE run = 'guided'), '<',
+              (SELECT 0.4 * deviation FROM warp_dev WHERE run = 'free'),
+              'warped: under 0.4 x the deviation of the same growth without the guide');
+SELECT cmp_ok((SELECT deviation FROM warp_dev WHERE run = 'free'), '>', 15.0::double precision,
+              'unwarped: the grid crosses the circle at every angle (mean deviation above 15 degrees)');
+SELECT is((SELECT count(*) FROM warp a JOIN warp b ON a.run = b.run AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE a.run = 'guided' AND NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
+          0::bigint, 'warped: planar (no two edges cross or touch without a shared node)');
+SELECT ok((SELECT count(*) FILTER (WHERE origin LIKE 'grow_patches:%') > 0.5 * count(*) FROM warp WHERE run = 'guided'),
+          'warped: most edges still come from patches');
+-- guide_reach: beyond it the growth is not turned.
+SELECT cmp_ok((SELECT sum(ST_Length(g.geom) * pg_temp.grid_deviation(ST_Azimuth(ST_StartPoint(g.geom), ST_EndPoint(g.geom)), 0))
+                      / sum(ST_Length(g.geom))
+                 FROM sq, streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', sq.geom, 'POINT(0 0)', NULL,
+                                                 '{"seed": 3, "max_edges": 600, "guide_reach": 50}', NULL, NULL,
+                                                 'LINESTRING(2000 -900, 2900 0)') AS g),
+              '<',
+              (SELECT sum(ST_Length(g.geom) * pg_temp.grid_deviation(ST_Azimuth(ST_StartPoint(g.geom), ST_EndPoint(g.geom)), 0))
+                      / sum(ST_Length(g.geom)) + 0.5
+                 FROM sq, streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', sq.geom, 'POINT(0 0)', NULL,
+                                                 '{"seed": 3, "max_edges": 600}') AS g),
+              'guide_reach: a guide farther than guide_reach leaves the growth as it is');
+
+-- ---- Interpolation ----------------------------------------------------------------------------
+-- tokyo (short straight streets) and canberra (long curved ones): with t = 0, 0.5, 1 the mean
+-- edge length and the share of canberra's patches move from tokyo's towards canberra's.
+CREATE TEMP TABLE interp AS
+SELECT t, g.* FROM sq, unnest(ARRAY[0, 0.5, 1]) AS t,
+       streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', sq.geom, 'POINT(0 0)', NULL,
+                              jsonb_build_object('seed', 5, 'max_edges', 1500, 't', t,
+                                                 'interpolate', 'SELECT * FROM pt WHERE name = ''canberra_south_large''')) AS g;
+CREATE TEMP TABLE interp_stats AS
+SELECT t, avg(ST_Length(geom)) AS mean_length,
+       sum(ST_Length(geom)) FILTER (WHERE origin LIKE 'grow_patches:%:b') / sum(ST_Length(geom)) AS share_b,
+       count(*) AS n
+  FROM interp GROUP BY t;
+SELECT ok((SELECT bool_and(n >= 300) AND count(*) = 3 FROM interp_stats), 'interpolation: each t grows 300+ edges');
+SELECT is((SELECT share_b FROM interp_stats WHERE t = 0), 0::double precision,
+          't = 0: nothing from the interpolate library');
+SELECT cmp_ok((SELECT share_b FROM interp_stats WHERE t = 1), '>', 0.9::double precision,
+              't = 1: over 90 % of the length from the interpolate library');
+SELECT ok((SELECT s0.share_b < s5.share_b AND s5.share_b < s1.share_b
+             FROM interp_stats s0, interp_stats s5, interp_stats s1 WHERE s0.t = 0 AND s5.t = 0.5 AND s1.t = 1),
+          'the interpolate library''s share grows monotonically with t');
+SELECT ok((SELECT s0.mean_length < s5.mean_length AND s5.mean_length < s1.mean_length
+                  AND s1.mean_length > 1.2 * s0.mean_length
+             FROM interp_stats s0, interp_stats s5, interp_stats s1 WHERE s0.t = 0 AND s5.t = 0.5 AND s1.t = 1),
+          'mean edge length moves monotonically from tokyo''s to canberra''s as t goes 0, 0.5, 1');
+SELECT is((SELECT count(*) FROM interp a JOIN interp b ON a.t = b.t AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
+          0::bigint, 'interpolation: planar');
+
+-- ---- Blending ---------------------------------------------------------------------------------
+-- Gaussian fall-off from each style's seed: tokyo seeded in the west, canberra in the east.
+CREATE TEMP TABLE blend AS
+SELECT g.* FROM sq,
+       streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', sq.geom,
+                              'MULTIPOINT((-600 0), (600 0))', NULL,
+                              '{"seed": 5, "max_edges": 2500, "blend": "points", "blend_points": [[-600, 0], [600, 0]],
+                                "blend_sigma": 400,
+                                "interpolate": "SELECT * FROM pt WHERE name = ''canberra_south_large''"}') AS g;
+CREATE TEMP TABLE blend_stats AS
+SELECT ST_X(ST_Centroid(geom)) > 0 AS east,
+       sum(ST_Length(geom)) FILTER (WHERE origin LIKE 'grow_patches:%:b')
+         / nullif(sum(ST_Length(geom)) FILTER (WHERE origin LIKE 'grow_patches:%'), 0) AS share_b
+  FROM blend WHERE abs(ST_X(ST_Centroid(geom))) > 300 GROUP BY 1;
+SELECT cmp_ok((SELECT share_b FROM blend_stats WHERE NOT east), '<', 0.3::double precision,
+              'blend: west of x = -300, under 30 % of the patch length is canberra''s');
+SELECT cmp_ok((SELECT share_b FROM blend_stats WHERE east), '>', 0.7::double precision,
+              'blend: east of x = 300, over 70 % is canberra''s');
+
+-- ---- Bad input --------------------------------------------------------------------------------
+CREATE FUNCTION pg_temp.bad(params jsonb, guide geometry DEFAULT NULL) RETURNS bigint LANGUAGE sql AS $$
+  SELECT count(*) FROM sq, streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', sq.geom, 'POINT(0 0)', NULL,
+                                                  params || '{"max_edges": 10}', NULL, NULL, guide)
+$$;
+SELECT throws_ok($$SELECT pg_temp.bad('{}', 'POINT(0 0)')$$, '22023', 'guide must be a LineString or MultiLineString',
+                 'guide: a point (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{}', 'SRID=3857;LINESTRING(0 0, 1 1)')$$, '22023',
+                 'guide must have the SRID of the region', 'guide: another SRID (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"guide_reach": 0}', 'LINESTRING(0 0, 1 1)')$$, '22023',
+                 'guide_reach must be a number > 0', 'guide_reach 0 (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"guide_reach": "far"}', 'LINESTRING(0 0, 1 1)')$$, '22023',
+                 'guide_reach must be a number > 0', 'guide_reach not a number (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"guide_reach": 10}')$$, '22023', 'guide_reach needs a guide',
+                 'guide_reach without a guide (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{}', 'LINESTRING(5 5, 5 5)')$$, '22023', 'guide has no segment',
+                 'a guide of one point (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"interpolate": 3}')$$, '22023',
+                 'interpolate must be the query of a second patch library', 'interpolate not a string (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"interpolate": "SELECT * FROM pt WHERE false"}')$$, '22023',
+                 'interpolate has no rows', 'interpolate: an empty library (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"interpolate": "SELECT 1 AS patch_id, ''inner'' AS role, ''LINESTRING(0 0, 1 1)''::geometry AS geom"}')$$,
+                 '22023', 'no patch of the interpolate library has a connector', 'interpolate: no connector (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"interpolate": "SELECT 1 AS id, ST_SetSRID(geom, 3857) AS geom FROM pt LIMIT 3"}')$$,
+                 '22023', 'the interpolate query must return the columns patch_id, role and geom',
+                 'interpolate: not patch rows (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"interpolate": "SELECT patch_id, role, ST_SetSRID(geom, 3857) AS geom FROM pt"}')$$,
+                 '22023', 'interpolate patches must have the SRID of the patches', 'interpolate: another SRID (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"t": 1.5, "interpolate": "SELECT * FROM pt"}')$$, '22023',
+                 't must be a number in [0, 1]', 't above 1 (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"t": "half", "interpolate": "SELECT * FROM pt"}')$$, '22023',
+                 't must be a number in [0, 1]', 't not a number (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"t": 0.5}')$$, '22023', 't needs interpolate', 't without interpolate (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"blend": "gradient"}')$$, '22023', 'blend needs interpolate',
+                 'blend without interpolate (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"blend": "voronoi", "interpolate": "SELECT * FROM pt"}')$$, '22023',
+                 'blend must be ''gradient'' or ''points''', 'blend: an unknown mode (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"blend": "points", "interpolate": "SELECT * FROM pt"}')$$, '22023',
+                 'blend ''points'' needs blend_points', 'blend points without blend_points (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"blend": "points", "blend_points": [[0, 0]], "interpolate": "SELECT * FROM pt"}')$$,
+                 '22023', 'blend_points must be an array of two [x, y] pairs', 'blend_points: one point (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"blend": "points", "blend_points": [[0, "a"], [1, 1]], "interpolate": "SELECT * FROM pt"}')$$,
+                 '22023', 'blend_points must be an array of two [x, y] pairs', 'blend_points: not numbers (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"blend": "gradient", "blend_sigma": -1, "interpolate": "SELECT * FROM pt"}')$$,
+                 '22023', 'blend_sigma must be a number > 0', 'blend_sigma below 0 (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"blend": "gradient", "blend_angle": "north", "interpolate": "SELECT * FROM pt"}')$$,
+                 '22023', 'blend_angle must be a number (degrees)', 'blend_angle not a number (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"blend": "gradient", "t": 0.5, "interpolate": "SELECT * FROM pt"}')$$, '22023',
+                 'blend and t exclude each other', 'blend with t (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"warp": true}')$$, '22023', NULL, 'an unknown params key (22023)');
+-- Blend gradient works (a defined result).
+SELECT ok((SELECT pg_temp.bad('{"blend": "gradient", "blend_angle": 90, "interpolate": "SELECT * FROM pt WHERE name = ''canberra_south_large''"}')) > 0,
+          'blend gradient grows');
+
+SELECT * FROM finish();
+ROLLBACK;
