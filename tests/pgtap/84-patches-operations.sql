@@ -80,30 +80,37 @@ SELECT cmp_ok((SELECT sum(ST_Length(g.geom) * pg_temp.grid_deviation(ST_Azimuth(
               'guide_reach: a guide farther than guide_reach leaves the growth as it is');
 
 -- ---- Interpolation ----------------------------------------------------------------------------
--- tokyo (short straight streets) and canberra (long curved ones): with t = 0, 0.5, 1 the mean
--- edge length and the share of canberra's patches move from tokyo's towards canberra's.
+-- tokyo (short straight streets, 50 m between junctions) and canberra (long curved ones, 150 m):
+-- with t = 0, 0.5, 1 the mean street length (between junctions and dead ends: total length over
+-- half the ends at nodes of degree other than 2) and the share of canberra's patches move from
+-- tokyo's towards canberra's. (The mean edge is no measure: canberra's curves are many short
+-- segments.)
 CREATE TEMP TABLE interp AS
 SELECT t, g.* FROM sq, unnest(ARRAY[0, 0.5, 1]) AS t,
        streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', sq.geom, 'POINT(0 0)', NULL,
                               jsonb_build_object('seed', 5, 'max_edges', 1500, 't', t,
                                                  'interpolate', 'SELECT * FROM pt WHERE name = ''canberra_south_large''')) AS g;
 CREATE TEMP TABLE interp_stats AS
-SELECT t, avg(ST_Length(geom)) AS mean_length,
-       sum(ST_Length(geom)) FILTER (WHERE origin LIKE 'grow_patches:%:b') / sum(ST_Length(geom)) AS share_b,
+WITH ends AS (SELECT t, from_node AS node FROM interp UNION ALL SELECT t, to_node FROM interp),
+     degree AS (SELECT t, node, count(*) AS d FROM ends GROUP BY t, node)
+SELECT i.t, sum(ST_Length(i.geom)) / ((SELECT sum(d) FROM degree WHERE degree.t = i.t AND d <> 2) / 2.0) AS mean_length,
+       coalesce(sum(ST_Length(i.geom)) FILTER (WHERE i.origin LIKE 'grow_patches:%:b'), 0) / sum(ST_Length(i.geom)) AS share_b,
        count(*) AS n
-  FROM interp GROUP BY t;
+  FROM interp i GROUP BY i.t;
 SELECT ok((SELECT bool_and(n >= 300) AND count(*) = 3 FROM interp_stats), 'interpolation: each t grows 300+ edges');
 SELECT is((SELECT share_b FROM interp_stats WHERE t = 0), 0::double precision,
           't = 0: nothing from the interpolate library');
-SELECT cmp_ok((SELECT share_b FROM interp_stats WHERE t = 1), '>', 0.9::double precision,
-              't = 1: over 90 % of the length from the interpolate library');
+SELECT cmp_ok((SELECT share_b FROM interp_stats WHERE t = 1), '>', 0.8::double precision,
+              't = 1: over 80 % of the length from the interpolate library (the rest statistical)');
+SELECT ok((SELECT abs(share_b - 0.5) < 0.15 FROM interp_stats WHERE t = 0.5),
+          't = 0.5: the interpolate library''s share of the length is within 0.15 of a half');
 SELECT ok((SELECT s0.share_b < s5.share_b AND s5.share_b < s1.share_b
              FROM interp_stats s0, interp_stats s5, interp_stats s1 WHERE s0.t = 0 AND s5.t = 0.5 AND s1.t = 1),
           'the interpolate library''s share grows monotonically with t');
 SELECT ok((SELECT s0.mean_length < s5.mean_length AND s5.mean_length < s1.mean_length
-                  AND s1.mean_length > 1.2 * s0.mean_length
+                  AND s1.mean_length > 1.5 * s0.mean_length
              FROM interp_stats s0, interp_stats s5, interp_stats s1 WHERE s0.t = 0 AND s5.t = 0.5 AND s1.t = 1),
-          'mean edge length moves monotonically from tokyo''s to canberra''s as t goes 0, 0.5, 1');
+          'mean street length moves monotonically from tokyo''s towards canberra''s as t goes 0, 0.5, 1 (x 1.5 at least)');
 SELECT is((SELECT count(*) FROM interp a JOIN interp b ON a.t = b.t AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
             WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
           0::bigint, 'interpolation: planar');
