@@ -2199,10 +2199,10 @@ class Grower {
       // end on the seed.
       std::vector<std::uint32_t> order = seed_patches_;
       for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[uniform(i)]);
-      if (styles_ > 1) {  // interpolation: the drawn style's patches first, the other's only for 0 < t < 1
+      if (styles_ > 1) {  // interpolation: the drawn style's patches first, the other's with its own probability
         const int want = uniform01() < t_here ? 1 : 0;
         auto mid = std::stable_partition(order.begin(), order.end(), [&](std::uint32_t j) { return library_[j].style == want; });
-        if (t_here <= 0.0 || t_here >= 1.0) order.erase(mid, order.end());
+        if (!(uniform01() < (want == 0 ? t_here : 1.0 - t_here))) order.erase(mid, order.end());
       }
       int tries = 0;
       for (std::uint32_t j : order) {
@@ -2230,10 +2230,12 @@ class Grower {
     const double window = params_.patch.angle_window * kPi / 180.0;
     const double cap = 3.0 * street_stats_.length_mean;
     int level = 0;
-    // Interpolation: the patch comes from the second style with probability t, from the other
-    // style when none of the drawn one is legal (for 0 < t < 1: at t = 0 or 1, one style only).
+    // Interpolation: the patch comes from the second style with probability t; when none of the
+    // drawn style is legal, the other style is tried with its own probability (so a style with
+    // weight near 0 does not leak in wherever the other's patches fail; at t = 0 or 1, one style).
     const int want = styles_ > 1 ? (uniform01() < t_here ? 1 : 0) : -1;
-    const int passes = styles_ > 1 && t_here > 0.0 && t_here < 1.0 ? 2 : 1;
+    int passes = 1;
+    if (styles_ > 1 && t_here > 0.0 && t_here < 1.0) passes = uniform01() < (want == 0 ? t_here : 1.0 - t_here) ? 2 : 1;
     for (int pass = 0; pass < passes; ++pass) {
     const int style = want < 0 ? -1 : (pass == 0 ? want : 1 - want);
     ++stamp_;
