@@ -251,7 +251,10 @@ class Grower {
            ++reseeds) {
         grow();
       }
-      if (new_edges_ >= std::min<std::size_t>(kMinGrowth, params_.max_edges) || restart == kRestarts) break;
+      if (new_edges_ >= std::min<std::size_t>(kMinGrowth, params_.max_edges) || restart == kRestarts) {
+        if (params_.use_patches && params_.patch.prune_dangling) prune_dangling();
+        break;
+      }
       ++stats_.restarts;
       nodes_.clear();
       edges_.clear();
@@ -274,6 +277,7 @@ class Grower {
       bridge_hint_.clear();
       bridge_landing_.clear();
       bridge_end_.clear();
+      example_dead_end_.clear();
       load_existing();
       place_seeds();
     }
@@ -1926,6 +1930,42 @@ class Grower {
     const Point d = q - origin;
     return at + Point{warp_cos_ * d.x - warp_sin_ * d.y, warp_sin_ * d.x + warp_cos_ * d.y};
   }
+  // The dangling-edge post-process (PatchGrowParams::prune_dangling): every dead end but the
+  // example's own and those that cannot go on (a step on is illegal) is cut back, through its
+  // shape points, to the junction it left; a junction left with one street is cut back in turn.
+  void prune_dangling() {
+    std::vector<std::uint32_t> ends;
+    for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
+      if (nodes_[v].edges.size() == 1 && !is_pruned(v)) ends.push_back(v);
+    }
+    const double step = std::max(snap_, min_length_);
+    for (std::uint32_t v : ends) {
+      std::uint32_t cur = v;
+      while (nodes_[cur].edges.size() == 1) {
+        poll_interrupts();
+        const std::uint32_t e = nodes_[cur].edges[0];
+        const OEdge& edge = edges_[e];
+        const std::uint32_t w = edge.a == cur ? edge.b : edge.a;
+        const Point p = nodes_[cur].p;
+        bool keep = edge.level < 0 || edge.bridge || example_dead_end_.count(cur) != 0 || bridge_end_.count(cur) != 0;
+        if (!keep) {
+          const Point d = unit(p - nodes_[w].p);
+          keep = !legal(p, p + step * d);
+        }
+        if (keep) {
+          ++stats_.dead_ends_kept;
+          break;
+        }
+        remove_edge(e);
+        node_tree_.remove(PointValue(BPoint(p.x, p.y), cur));
+        pruned_.resize(nodes_.size(), 0);
+        pruned_[cur] = 1;
+        ++stats_.dangling_pruned;
+        cur = w;
+      }
+    }
+  }
+  std::unordered_set<std::uint32_t> example_dead_end_;  // ends of patch dead-end edges
   int styles_ = 1;
   StreetStatistics style_stats_[2];
   StreetStatistics style_level_stats_[2][2];
@@ -2647,6 +2687,7 @@ class Grower {
         prev = next;
         line_nodes_.push_back(next);
       }
+      if (lp.edges[pl.edge].role == PatchEdgeRole::dead_end) example_dead_end_.insert(prev);
       if (seeds_local) {  // the local junctions of the example along this arterial street
         const LibEdge& le = lp.edges[pl.edge];
         for (const auto& [vk, local] : le.local_seeds) {

@@ -72,6 +72,11 @@ struct PatchGrowParams {
   // curvature statistics interpolated with weight t. GrowParams::blend (gradient or points, one
   // point per library: Gaussian fall-off from each style's seed) makes t vary over the region.
   double t = 0.0;
+  // Dangling-edge post-process (Nishida et al.): after growth, a street ending in a dead end is cut
+  // back to its junction unless the dead end is the example's (the end of a patch's dead-end
+  // edge), the street ends at the region's edge, an obstacle, water or a slope too steep (a step
+  // on is illegal), or it is a bridge or the existing network.
+  bool prune_dangling = false;
 };
 
 struct GrowParams {
@@ -171,6 +176,8 @@ struct GrowStats {
   std::size_t patch_edges = 0;     // output segments copied from patches
   std::size_t patches_dropped = 0; // library patches that cross themselves (never used)
   std::size_t patches_b_placed = 0;  // interpolation: of patches_placed, those from the second library
+  std::size_t dangling_pruned = 0;   // prune_dangling: output segments cut back from dangling streets
+  std::size_t dead_ends_kept = 0;    // prune_dangling: dead ends left (the example's, or blocked)
   std::size_t arterial_patches_placed = 0;  // levels: patches placed in the arterial phase
   std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
