@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "core/error.hpp"
 #include "core/growth/grow_example.hpp"
@@ -176,4 +177,37 @@ TEST(PatchOperations, BadParametersAreRejected) {
   GrowInput point_guide = in;
   point_guide.guide = {{{5.0, 5.0}, {5.0, 5.0}}};
   EXPECT_NE(message(point_guide, p).find("guide has no segment"), std::string::npos);
+}
+
+TEST(PatchOperations, PruneDanglingLeavesNoDeadEndTheExampleDoesNotHave) {
+  Fixture f;
+  GrowInput in = f.input();  // the avenue grid has no dead end
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 4;
+  p.max_edges = 800;  // stops with open fronts inside the region
+  auto interior_dead_ends = [](const GrowResult& r) {
+    std::map<std::int64_t, int> degree;
+    std::map<std::int64_t, Point> at;
+    for (const GrownEdge& e : r.edges) {
+      ++degree[e.from_node];
+      ++degree[e.to_node];
+      at[e.from_node] = e.a;
+      at[e.to_node] = e.b;
+    }
+    int n = 0;
+    for (const auto& [node, d] : degree) {
+      const Point q = at[node];
+      n += d == 1 && std::abs(q.x) < 1300 && std::abs(q.y) < 1300;
+    }
+    return n;
+  };
+  GrowResult kept = grow_example(f.geos, in, p);
+  p.patch.prune_dangling = true;
+  GrowResult pruned = grow_example(f.geos, in, p);
+  EXPECT_GT(interior_dead_ends(kept), 10);
+  EXPECT_EQ(interior_dead_ends(pruned), 0);
+  EXPECT_GT(pruned.stats.dangling_pruned, 10u);
+  EXPECT_LT(pruned.edges.size(), kept.edges.size());
+  EXPECT_GT(pruned.edges.size(), kept.edges.size() / 2);
 }
