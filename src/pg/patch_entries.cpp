@@ -114,7 +114,8 @@ LibraryArg read_library(FunctionCallInfo fcinfo, int a_ids, int a_roles, int a_c
       ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE),
                       errmsg("patch edge role must be 'inner', 'connector' or 'dead_end'"),
                       errdetail("%sPatch row %d (patch_id %lld) has role %s.", what, i + 1,
-                                static_cast<long long>(e.patch_id), roles.nulls[i] ? "NULL" : quote_literal_cstr(role))));
+                                static_cast<long long>(e.patch_id),
+                                roles.nulls[i] ? "NULL" : quote_literal_cstr(role))));
     }
     e.road_class = classes.count != 0 && !classes.nulls[i] ? TextDatumGetCString(classes.values[i]) : "unclassified";
     e.max_uses = uses.count != 0 && !uses.nulls[i] ? DatumGetInt32(uses.values[i]) : 0;
@@ -370,8 +371,8 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
     std::vector<core::SridGeometry> guide_geom;
     if (has_guide) {
       guide_geom.push_back(core::read_ewkb(geos, guide.data, guide.size, "guide"));
-      core::append_linestrings(geos, guide_geom.back().geom.get(), "guide", "guide must be a LineString or MultiLineString",
-                               "", input.guide);
+      core::append_linestrings(geos, guide_geom.back().geom.get(), "guide",
+                               "guide must be a LineString or MultiLineString", "", input.guide);
     }
     std::vector<core::SridGeometry> region_and_obstacles;
     int srid = pg::read_region_and_obstacles(geos, region, obstacles, obstacle_count, input, region_and_obstacles);

@@ -437,7 +437,9 @@ class Grower {
       if (pp.tries <= 0) throw_invalid_argument("tries must be > 0", "It is " + std::to_string(pp.tries) + ".");
       if (pp.max_uses < 0) throw_invalid_argument("max_uses must be >= 0", "It is " + std::to_string(pp.max_uses) + ".");
       if (!std::isfinite(pp.rotation)) throw_invalid_argument("rotation must be a finite number of degrees");
-      if (!(pp.t >= 0.0 && pp.t <= 1.0)) throw_invalid_argument("t must be in [0, 1]", "It is " + std::to_string(pp.t) + ".");
+      if (!(pp.t >= 0.0 && pp.t <= 1.0)) {
+        throw_invalid_argument("t must be in [0, 1]", "It is " + std::to_string(pp.t) + ".");
+      }
       if (!std::isfinite(pp.clearance) || pp.clearance < 0.0) {
         throw_invalid_argument("clearance must be a finite number > 0", "It is " + std::to_string(pp.clearance) + " m.");
       }
@@ -1768,27 +1770,28 @@ class Grower {
     const double cs = std::cos(rot), sn = std::sin(rot);
     std::vector<ExampleEdge> example;
     std::size_t with_connectors = 0, with_connectors_b = 0;
-    for (int style = 0; style < styles_; ++style)
-    for (const Patch& p : style == 0 ? patches : patches_b) {
-      LibPatch lp{p.id, {}, {}, p.max_uses > 0 ? p.max_uses : params_.patch.max_uses};
-      lp.style = style;
-      lp.arterial = params_.patch.levels && std::find(p.tags.begin(), p.tags.end(), "arterial") != p.tags.end();
-      for (const PatchEdge& e : p.edges) {
-        if (e.line.size() < 2) continue;
-        LibEdge le{e.line, level_of(e.road_class), e.role};
-        for (Point& q : le.line) q = {cs * q.x - sn * q.y, sn * q.x + cs * q.y};
-        if (length(le.line) <= kContact) continue;
-        if (le.role == PatchEdgeRole::connector) lp.connectors.push_back(static_cast<std::uint32_t>(lp.edges.size()));
-        example.push_back({le.line, e.road_class, p.id, 0});
-        lp.edges.push_back(std::move(le));
+    for (int style = 0; style < styles_; ++style) {
+      for (const Patch& p : style == 0 ? patches : patches_b) {
+        LibPatch lp{p.id, {}, {}, p.max_uses > 0 ? p.max_uses : params_.patch.max_uses};
+        lp.style = style;
+        lp.arterial = params_.patch.levels && std::find(p.tags.begin(), p.tags.end(), "arterial") != p.tags.end();
+        for (const PatchEdge& e : p.edges) {
+          if (e.line.size() < 2) continue;
+          LibEdge le{e.line, level_of(e.road_class), e.role};
+          for (Point& q : le.line) q = {cs * q.x - sn * q.y, sn * q.x + cs * q.y};
+          if (length(le.line) <= kContact) continue;
+          if (le.role == PatchEdgeRole::connector) lp.connectors.push_back(static_cast<std::uint32_t>(lp.edges.size()));
+          example.push_back({le.line, e.road_class, p.id, 0});
+          lp.edges.push_back(std::move(le));
+        }
+        (style == 0 ? with_connectors : with_connectors_b) += !lp.connectors.empty();
+        if (lp.edges.empty()) continue;
+        if (self_crossing(lp.edges)) {  // a bridge in the example: its patch cannot be placed planar
+          ++stats_.patches_dropped;
+          continue;
+        }
+        library_.push_back(std::move(lp));
       }
-      (style == 0 ? with_connectors : with_connectors_b) += !lp.connectors.empty();
-      if (lp.edges.empty()) continue;
-      if (self_crossing(lp.edges)) {  // a bridge in the example: its patch cannot be placed planar
-        ++stats_.patches_dropped;
-        continue;
-      }
-      library_.push_back(std::move(lp));
     }
     if (with_connectors == 0) {
       throw_invalid_argument("no patch has a connector",
@@ -1892,9 +1895,13 @@ class Grower {
     shape_.length = std::max(mix(a.length_mean, b.length_mean), 2.0 * min_length_);
     shape_.length_deviation = std::min(0.5 * shape_.length, mix(a.length_sd, b.length_sd));
     shape_.min_length = std::min(shape_.length, std::max(min_length_, 0.25 * shape_.length));
-    shape_.angle_deviation = std::clamp(mix(a.curvature_mean, b.curvature_mean) * shape_.length * 180.0 / kPi, 0.0, 45.0);
-    const std::vector<double>& ca = level >= 0 && !style_level_cdf_[0][level].empty() ? style_level_cdf_[0][level] : style_cdf_[0];
-    const std::vector<double>& cb = level >= 0 && !style_level_cdf_[1][level].empty() ? style_level_cdf_[1][level] : style_cdf_[1];
+    const double turn = mix(a.curvature_mean, b.curvature_mean) * shape_.length;  // radians per street
+    shape_.angle_deviation = std::clamp(turn * 180.0 / kPi, 0.0, 45.0);
+    auto cdf_of = [&](int s) -> const std::vector<double>& {
+      return level >= 0 && !style_level_cdf_[s][level].empty() ? style_level_cdf_[s][level] : style_cdf_[s];
+    };
+    const std::vector<double>& ca = cdf_of(0);
+    const std::vector<double>& cb = cdf_of(1);
     if (ca.size() == cb.size() && !ca.empty()) {
       degree_cdf_.resize(ca.size());
       for (std::size_t k = 0; k < ca.size(); ++k) degree_cdf_[k] = mix(ca[k], cb[k]);
@@ -2241,7 +2248,8 @@ class Grower {
       for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[uniform(i)]);
       if (styles_ > 1) {  // interpolation: the drawn style's patches first, the other's with its own probability
         const int want = uniform01() < t_here ? 1 : 0;
-        auto mid = std::stable_partition(order.begin(), order.end(), [&](std::uint32_t j) { return library_[j].style == want; });
+        auto mid = std::stable_partition(order.begin(), order.end(),
+                                         [&](std::uint32_t j) { return library_[j].style == want; });
         if (!(uniform01() < (want == 0 ? t_here : 1.0 - t_here))) order.erase(mid, order.end());
       }
       int tries = 0;

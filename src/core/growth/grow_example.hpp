@@ -67,10 +67,11 @@ struct PatchGrowParams {
   bool levels = true;         // patches tagged arterial grow first, then the others from seeds along the
                               // arterial streets (Nishida's section 4.4); false: all patches at once
   // Interpolation of two styles (Nishida et al. 2016, section 5): with GrowInput::patches_b, a
-  // front draws its patch from the second library with probability t (the first when none there is
-  // legal, and the other way round), and the statistical fallback takes the two styles' length and
-  // curvature statistics interpolated with weight t. GrowParams::blend (gradient or points, one
-  // point per library: Gaussian fall-off from each style's seed) makes t vary over the region.
+  // front draws its patch from the second library with probability t (else the first; when none of
+  // the drawn one is legal, the other is tried with its own probability), and the statistical
+  // fallback takes the two styles' length and curvature statistics interpolated with weight t.
+  // GrowParams::blend (gradient or points, one point per library: Gaussian fall-off from each
+  // style's seed) makes t vary over the region.
   double t = 0.0;
   // Dangling-edge post-process (Nishida et al.): after growth, a street ending in a dead end is cut
   // back to its junction unless the dead end is the example's (the end of a patch's dead-end
@@ -123,9 +124,9 @@ struct GrowInput {
   std::vector<Polyline> guide;           // direction control: θ follows the tangent of the nearest guide
                                          // point (undirected) instead of node matching; may be empty
   std::vector<Patch> patches;            // use_patches: the patch library (extract_patches)
-  std::vector<Patch> patches_b;          // use_patches: a second style's library, interpolated (PatchGrowParams::t);
-                                         // empty: none. The guide warps patch growth: each patch is turned so
-                                         // the library's dominant direction follows the nearest guide tangent
+  std::vector<Patch> patches_b;          // use_patches: a second style's library (PatchGrowParams::t); empty:
+                                         // none. With patches, the guide warps the growth: each patch is turned
+                                         // so the library's dominant direction follows the nearest tangent
   // Blending by a weight raster: band k is the weight of example k (>= 0), sampled bilinearly at
   // the node; where every band is nodata, or all weights are 0, blend (gradient or points) decides,
   // and without one every example is equally likely. Empty: no weight raster.
