@@ -173,6 +173,23 @@ SELECT is((SELECT count(*) FROM dangle a JOIN dangle b ON a.prune AND b.prune AN
             WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
           0::bigint, 'prune_dangling: planar');
 
+-- ---- Determinism ------------------------------------------------------------------------------
+-- The same seed gives the same rows with every operation on (guide, interpolate with blend, prune).
+CREATE FUNCTION pg_temp.ops(seed integer) RETURNS TABLE (id bigint, origin text, geom geometry) LANGUAGE sql AS $$
+  SELECT g.id, g.origin, g.geom FROM sq, guide,
+         streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', sq.geom, 'MULTIPOINT((-600 0), (600 0))', NULL,
+                                jsonb_build_object('seed', seed, 'max_edges', 600, 'blend', 'points',
+                                                   'blend_points', '[[-600, 0], [600, 0]]'::jsonb, 'prune_dangling', true,
+                                                   'interpolate', 'SELECT * FROM pt WHERE name = ''canberra_south_large'''),
+                                NULL, NULL, guide.geom) AS g
+$$;
+SELECT is((SELECT count(*) FROM pg_temp.ops(9) a FULL JOIN pg_temp.ops(9) b
+             ON a.id = b.id AND a.origin = b.origin AND ST_Equals(a.geom, b.geom) WHERE a.id IS NULL OR b.id IS NULL),
+          0::bigint, 'determinism: the same seed gives the same rows with guide, blend and prune_dangling');
+SELECT ok((SELECT count(*) FROM pg_temp.ops(9) a FULL JOIN pg_temp.ops(10) b
+             ON a.id = b.id AND a.origin = b.origin AND ST_Equals(a.geom, b.geom) WHERE a.id IS NULL OR b.id IS NULL) > 0,
+          'and another seed other rows');
+
 -- ---- Bad input --------------------------------------------------------------------------------
 CREATE FUNCTION pg_temp.bad(params jsonb, guide geometry DEFAULT NULL) RETURNS bigint LANGUAGE sql AS $$
   SELECT count(*) FROM sq, streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', sq.geom, 'POINT(0 0)', NULL,
