@@ -55,7 +55,7 @@ enum GrowArg {
   kGArterials, kGLevels, kGWater, kGDemGrid, kGDemValues, kGMaxSlope, kGBridgeDistance, kGBridgeTurn,
   // Operations: warping (guide), interpolation (a second library, t) and blending.
   kGGuide, kGGuideReach, kGPatchIdsB, kGRolesB, kGClassesB, kGGeomsB, kGMaxUsesB, kGArterialsB, kGT, kGBlendMode,
-  kGBlendAngle, kGBlendX, kGBlendY, kGBlendSigma, kGPruneDangling, kGArgs
+  kGBlendAngle, kGBlendX, kGBlendY, kGBlendSigma, kGPruneDangling, kGDirectionGrid, kGDirectionValues, kGArgs
 };
 
 // One patch library's rows, read in phase 1 (palloc'd plain data).
@@ -282,11 +282,12 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       "rotation", "fallback", "clearance", "arterials", "levels", "water", "dem grid", "dem", "max_slope",
       "bridge_distance", "bridge_turn", "guide", "guide_reach", "interpolate patch ids", "interpolate roles",
       "interpolate road classes", "interpolate patch edges", "interpolate max_uses", "interpolate arterials", "t",
-      "blend", "blend_angle", "blend_points x", "blend_points y", "blend_sigma", "prune_dangling"};
+      "blend", "blend_angle", "blend_points x", "blend_points y", "blend_sigma", "prune_dangling", "direction grid",
+      "direction"};
   for (int a = kGRegion; a < kGArgs; ++a) {
     if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && a != kGArterials && a != kGWater && a != kGDemGrid &&
         a != kGDemValues && a != kGGuide && !(a >= kGPatchIdsB && a <= kGArterialsB) && a != kGBlendX &&
-        a != kGBlendY && PG_ARGISNULL(a)) {
+        a != kGBlendY && a != kGDirectionGrid && a != kGDirectionValues && PG_ARGISNULL(a)) {
       pg::raise_null_argument(names[a]);
     }
   }
@@ -306,6 +307,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   pg::ArrayArg obstacle_arg = pg::array_arg(fcinfo, kGObstacles, BYTEAOID, "obstacles");
   pg::ArrayArg water_arg = pg::array_arg(fcinfo, kGWater, BYTEAOID, "water");
   pg::GridArg dem = pg::grid_arg(fcinfo, kGDemGrid, kGDemValues, "dem");
+  pg::GridArg direction = pg::grid_arg(fcinfo, kGDirectionGrid, kGDirectionValues, "direction");
   int seed_count = 0;
   double* seed_xy = pg::xy_pairs(xs, ys, "a seed coordinate", &seed_count);
   int obstacle_count = 0;
@@ -385,6 +387,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       input.water.push_back(water_parts.back().geom.get());
     }
     pg::to_field(dem, input.dem);
+    pg::to_field(direction, input.direction);
     for (int i = 0; i < seed_count; ++i) input.seeds.push_back({seed_xy[2 * i], seed_xy[2 * i + 1]});
     core::GrowResult result = core::grow_example(geos, input, params);
     stats = result.stats;
