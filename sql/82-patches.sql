@@ -22,6 +22,10 @@ CREATE FUNCTION streetgen._streetgen_grow_patches(patch_ids bigint[], roles text
     rotation double precision, fallback boolean, clearance double precision, arterials boolean[], levels boolean,
     water bytea[], dem_grid double precision[], dem_values double precision[], max_slope double precision,
     bridge_distance double precision, bridge_turn double precision,
+    guide bytea, guide_reach double precision, patch_ids_b bigint[], roles_b text[], classes_b text[], geoms_b bytea[],
+    max_uses_b integer[], arterials_b boolean[], t double precision, blend text, blend_angle double precision,
+    blend_x double precision[], blend_y double precision[], blend_sigma double precision, prune_dangling boolean,
+    direction_grid double precision[], direction_values double precision[],
     OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text, OUT geom bytea)
   RETURNS SETOF record
   LANGUAGE c IMMUTABLE PARALLEL SAFE
@@ -116,8 +120,61 @@ $$;
 COMMENT ON FUNCTION streetgen.extract_patches(text, jsonb) IS
   'Decomposes an example road network into patches (Nishida et al. 2016): roundabouts (the example''s roundabout column, or small compact faces found by polygonize) and clusters of 3 or more junctions closer than cluster_distance are detected first, then each structure and every other junction is grown by its streets shorter than short_edge. One row per patch edge: role inner, connector (shared with the neighbouring patch, oriented outwards) or dead_end (towards the dead end); semantic tags (Teng & Bidarra) per patch (roundabout, cluster, loop, cul-de-sac, curved, straight, terminal, initial, main, local), per edge (main, local, connector, dead-end, snappable, curved, straight, roundabout) and per end vertex (intersection, connectable, dead-end); max_uses NULL (set it to limit a patch''s uses in grow_patches). Levels (when the example has main and local streets): arterial patches (tag arterial) from the graph of the main streets alone, then local patches around the junctions where a local street meets. example: a query (geom, optionally road_class or type, id, roundabout) or a model name. params: short_edge (m, 0.4 x the median street length), cluster_distance (m, short_edge), detect_circles (true), circle_min_diameter (m, 8), circle_max_diameter (m, 100), circle_compactness (0.85), levels (true), crop_margin (m, 0 = off: a dead end this close to the example''s convex hull is a street the crop cut, a connector tagged cut)';
 
+-- A patch query's rows as the arrays of the C call (what names the parameter in errors): rows of
+-- extract_patches (all columns there) are read directly, others through jsonb. patch_id, role and
+-- geom; optionally road_class, max_uses, edge_index (order), tags (arterial: the first phase).
+CREATE FUNCTION streetgen._patch_arrays(patches text, what text,
+    OUT pids bigint[], OUT roles text[], OUT classes text[], OUT geoms bytea[], OUT uses integer[],
+    OUT arterials boolean[], OUT srids integer[])
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  AS $$
+DECLARE
+  complete boolean;
+BEGIN
+  BEGIN
+    EXECUTE format('SELECT array_agg(q.patch_id::bigint ORDER BY q.patch_id, q.edge_index),
+                           array_agg(q.role::text ORDER BY q.patch_id, q.edge_index),
+                           array_agg(q.road_class::text ORDER BY q.patch_id, q.edge_index),
+                           array_agg(ST_AsEWKB(q.geom::geometry) ORDER BY q.patch_id, q.edge_index),
+                           array_agg(q.max_uses::integer ORDER BY q.patch_id, q.edge_index),
+                           array_agg(coalesce(''arterial'' = ANY (q.tags::text[]), false) ORDER BY q.patch_id, q.edge_index),
+                           array_agg(DISTINCT ST_SRID(q.geom::geometry)) FILTER (WHERE q.geom IS NOT NULL)
+                      FROM (%s) AS q', patches)
+      INTO pids, roles, classes, geoms, uses, arterials, srids;
+  EXCEPTION WHEN undefined_column THEN
+    SELECT array_agg((r.j ->> 'patch_id')::bigint ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg(r.j ->> 'role' ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg(r.j ->> 'road_class' ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg(ST_AsEWKB(r.geom) ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg((r.j ->> 'max_uses')::integer ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg(coalesce(jsonb_typeof(r.j -> 'tags') = 'array' AND (r.j -> 'tags') ? 'arterial', false)
+                     ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
+           array_agg(DISTINCT ST_SRID(r.geom)) FILTER (WHERE r.geom IS NOT NULL),
+           bool_and(r.j ? 'patch_id' AND r.j ? 'role')
+      INTO pids, roles, classes, geoms, uses, arterials, srids, complete
+      FROM streetgen._rows_with_geom(patches, what) AS r;
+    IF NOT complete THEN
+      RAISE EXCEPTION 'the % query must return the columns patch_id, role and geom', what
+        USING ERRCODE = 'invalid_parameter_value', HINT = 'Use the rows of streetgen.extract_patches.';
+    END IF;
+  END;
+  IF pids IS NULL THEN
+    RAISE EXCEPTION '% has no rows', what USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = 'The patch query returned no patch edge.',
+      HINT = 'Fill the patch table with streetgen.extract_patches(example).';
+  END IF;
+  IF cardinality(srids) > 1 THEN
+    RAISE EXCEPTION '% edges must share one SRID', CASE WHEN what = 'patches' THEN 'patch' ELSE what || ' patch' END
+      USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('The query returns SRIDs %s.', array_to_string(srids, ', '));
+  END IF;
+END
+$$;
+
 CREATE FUNCTION streetgen.grow_patches(patches text, region geometry, seeds geometry, obstacles geometry DEFAULT NULL,
-    params jsonb DEFAULT '{}', water geometry DEFAULT NULL, dem raster DEFAULT NULL,
+    params jsonb DEFAULT '{}', water geometry DEFAULT NULL, dem raster DEFAULT NULL, guide geometry DEFAULT NULL,
+    direction raster DEFAULT NULL,
     OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text,
     OUT geom geometry)
   RETURNS SETOF record
@@ -128,21 +185,18 @@ CREATE FUNCTION streetgen.grow_patches(patches text, region geometry, seeds geom
   AS $$
 DECLARE
   p jsonb := coalesce(params, '{}'::jsonb);
-  pids bigint[];
-  roles text[];
-  classes text[];
-  geoms bytea[];
-  uses integer[];
-  arterials boolean[];
-  srids integer[];
   xs double precision[];
   ys double precision[];
   obstacle_geoms bytea[];
   seed_types text[];
   water_geoms bytea[];
   dem_r record;
+  dir_r record;
   k text;
-  complete boolean;
+  lib record;
+  lib_b record;
+  bxs double precision[];
+  bys double precision[];
 BEGIN
   IF patches IS NULL THEN
     RAISE EXCEPTION 'patches must not be null' USING ERRCODE = 'null_value_not_allowed';
@@ -153,13 +207,83 @@ BEGIN
   IF seeds IS NULL THEN
     RAISE EXCEPTION 'seeds must not be null' USING ERRCODE = 'null_value_not_allowed';
   END IF;
-  PERFORM streetgen._require_params(p, ARRAY['angle_window', 'bridge_distance', 'bridge_turn', 'clearance', 'fallback',
-                                             'levels', 'max_distance', 'max_edges', 'max_slope', 'max_uses', 'min_angle',
-                                             'rotation', 'scale', 'seed', 'snap', 'tries']);
-  IF p ? 'levels' AND jsonb_typeof(p -> 'levels') <> 'boolean' THEN
-    RAISE EXCEPTION 'levels must be true or false' USING ERRCODE = 'invalid_parameter_value',
-      DETAIL = format('It is %s.', p -> 'levels');
+  PERFORM streetgen._require_params(p, ARRAY['angle_window', 'blend', 'blend_angle', 'blend_points', 'blend_sigma',
+                                             'bridge_distance', 'bridge_turn', 'clearance', 'fallback', 'guide_reach',
+                                             'interpolate', 'levels', 'max_distance', 'max_edges', 'max_slope',
+                                             'max_uses', 'min_angle', 'prune_dangling', 'rotation', 'scale', 'seed',
+                                             'snap', 't', 'tries']);
+  -- Operations (Nishida et al. 2016, section 5): warping (guide, guide_reach), interpolation
+  -- (interpolate, t) and blending (blend, blend_angle, blend_points, blend_sigma).
+  IF p ? 'guide_reach' AND NOT coalesce(jsonb_typeof(p -> 'guide_reach') = 'number'
+                                        AND (p ->> 'guide_reach')::double precision > 0, false) THEN
+    RAISE EXCEPTION 'guide_reach must be a number > 0' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It is %s.', p -> 'guide_reach'), HINT = 'Leave it out for a guide that acts everywhere.';
   END IF;
+  IF p ? 'guide_reach' AND guide IS NULL THEN
+    RAISE EXCEPTION 'guide_reach needs a guide' USING ERRCODE = 'invalid_parameter_value',
+      HINT = 'Pass a (Multi)LineString as the guide argument.';
+  END IF;
+  IF p ? 'interpolate' AND NOT coalesce(jsonb_typeof(p -> 'interpolate') = 'string' AND p ->> 'interpolate' <> '', false) THEN
+    RAISE EXCEPTION 'interpolate must be the query of a second patch library' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It is %s.', p -> 'interpolate'), HINT = 'Rows of streetgen.extract_patches of a second example.';
+  END IF;
+  IF p ? 't' AND NOT coalesce(jsonb_typeof(p -> 't') = 'number' AND (p ->> 't')::double precision BETWEEN 0 AND 1, false) THEN
+    RAISE EXCEPTION 't must be a number in [0, 1]' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It is %s.', p -> 't'), HINT = '0 is the patches'' style, 1 the interpolate library''s.';
+  END IF;
+  IF p ? 'blend' AND NOT coalesce(jsonb_typeof(p -> 'blend') = 'string' AND p ->> 'blend' IN ('gradient', 'points'), false) THEN
+    RAISE EXCEPTION 'blend must be ''gradient'' or ''points''' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It is %s.', p -> 'blend');
+  END IF;
+  IF p ? 'blend_angle' AND jsonb_typeof(p -> 'blend_angle') <> 'number' THEN
+    RAISE EXCEPTION 'blend_angle must be a number (degrees)' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It is %s.', p -> 'blend_angle');
+  END IF;
+  IF p ? 'blend_sigma' AND NOT coalesce(jsonb_typeof(p -> 'blend_sigma') = 'number'
+                                        AND (p ->> 'blend_sigma')::double precision > 0, false) THEN
+    RAISE EXCEPTION 'blend_sigma must be a number > 0' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It is %s.', p -> 'blend_sigma');
+  END IF;
+  IF p ? 'blend_points' THEN
+    IF jsonb_typeof(p -> 'blend_points') <> 'array' OR jsonb_array_length(p -> 'blend_points') <> 2 OR EXISTS (
+         SELECT 1 FROM jsonb_array_elements(p -> 'blend_points') AS e
+          WHERE jsonb_typeof(e) <> 'array' OR jsonb_array_length(e) <> 2 OR jsonb_typeof(e -> 0) <> 'number'
+             OR jsonb_typeof(e -> 1) <> 'number') THEN
+      RAISE EXCEPTION 'blend_points must be an array of two [x, y] pairs' USING ERRCODE = 'invalid_parameter_value',
+        DETAIL = format('It is %s.', p -> 'blend_points'),
+        HINT = 'The seed of the patches'' style, then the interpolate library''s, in the region''s SRID.';
+    END IF;
+    SELECT array_agg((e ->> 0)::double precision ORDER BY n), array_agg((e ->> 1)::double precision ORDER BY n)
+      INTO bxs, bys FROM jsonb_array_elements(p -> 'blend_points') WITH ORDINALITY AS q(e, n);
+  END IF;
+  IF p ->> 'blend' = 'points' AND NOT p ? 'blend_points' THEN
+    RAISE EXCEPTION 'blend ''points'' needs blend_points' USING ERRCODE = 'invalid_parameter_value',
+      HINT = 'Give the two styles'' seeds as [[x, y], [x, y]].';
+  END IF;
+  IF (p ? 'blend' OR p ? 't') AND NOT p ? 'interpolate' THEN
+    RAISE EXCEPTION '% needs interpolate', CASE WHEN p ? 'blend' THEN 'blend' ELSE 't' END
+      USING ERRCODE = 'invalid_parameter_value', HINT = 'Set params interpolate to a second patch library''s query.';
+  END IF;
+  IF p ? 'blend' AND p ? 't' THEN
+    RAISE EXCEPTION 'blend and t exclude each other' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = 'Blending sets the weight t at every point.';
+  END IF;
+  IF guide IS NOT NULL THEN
+    IF ST_SRID(guide) <> ST_SRID(region) THEN
+      RAISE EXCEPTION 'guide must have the SRID of the region' USING ERRCODE = 'invalid_parameter_value',
+        DETAIL = format('The guide has SRID %s, the region %s.', ST_SRID(guide), ST_SRID(region));
+    END IF;
+    IF ST_GeometryType(guide) NOT IN ('ST_LineString', 'ST_MultiLineString') THEN
+      RAISE EXCEPTION 'guide must be a LineString or MultiLineString' USING ERRCODE = 'invalid_parameter_value',
+        DETAIL = format('It is a %s.', ST_GeometryType(guide));
+    END IF;
+  END IF;
+  FOREACH k IN ARRAY ARRAY['levels', 'prune_dangling'] LOOP
+    IF p ? k AND jsonb_typeof(p -> k) <> 'boolean' THEN
+      RAISE EXCEPTION '% must be true or false', k USING ERRCODE = 'invalid_parameter_value',
+        DETAIL = format('It is %s.', p -> k);
+    END IF;
+  END LOOP;
   FOREACH k IN ARRAY ARRAY['scale', 'snap', 'max_distance', 'angle_window', 'clearance', 'max_slope'] LOOP
     IF p ? k AND NOT coalesce(jsonb_typeof(p -> k) = 'number' AND (p ->> k)::double precision > 0, false) THEN
       RAISE EXCEPTION '% must be a number > 0', k USING ERRCODE = 'invalid_parameter_value',
@@ -197,6 +321,11 @@ BEGIN
   END IF;
   -- SRID, skew, overlap with the region and size are checked there; NULL cells are unknown terrain.
   dem_r := streetgen._control_raster(dem, 'dem', region);
+  IF direction IS NOT NULL AND NOT ST_IsEmpty(direction) AND ST_NumBands(direction) > 1 THEN
+    RAISE EXCEPTION 'direction raster must have one band' USING ERRCODE = 'invalid_parameter_value',
+      DETAIL = format('It has %s.', ST_NumBands(direction)), HINT = 'ST_Band(rast, n) picks one.';
+  END IF;
+  dir_r := streetgen._control_raster(direction, 'direction', region);
   SELECT array_agg(DISTINCT ST_GeometryType(d.geom)) INTO seed_types
     FROM ST_Dump(seeds) AS d WHERE ST_GeometryType(d.geom) <> 'ST_Point';
   IF seed_types IS NOT NULL THEN
@@ -207,60 +336,38 @@ BEGIN
     FROM ST_Dump(seeds) AS d;
   SELECT array_agg(ST_AsEWKB(d.geom) ORDER BY d.path) INTO obstacle_geoms FROM ST_Dump(obstacles) AS d;
   SELECT array_agg(ST_AsEWKB(d.geom) ORDER BY d.path) INTO water_geoms FROM ST_Dump(water) AS d;
-  -- The patch rows: patch_id, role and geom; optionally road_class, max_uses, edge_index (order),
-  -- tags (a patch tagged arterial grows in the first phase).
-  -- Rows of extract_patches (all columns there) are read directly, others through jsonb.
-  BEGIN
-    EXECUTE format('SELECT array_agg(q.patch_id::bigint ORDER BY q.patch_id, q.edge_index),
-                           array_agg(q.role::text ORDER BY q.patch_id, q.edge_index),
-                           array_agg(q.road_class::text ORDER BY q.patch_id, q.edge_index),
-                           array_agg(ST_AsEWKB(q.geom::geometry) ORDER BY q.patch_id, q.edge_index),
-                           array_agg(q.max_uses::integer ORDER BY q.patch_id, q.edge_index),
-                           array_agg(coalesce(''arterial'' = ANY (q.tags::text[]), false) ORDER BY q.patch_id, q.edge_index),
-                           array_agg(DISTINCT ST_SRID(q.geom::geometry)) FILTER (WHERE q.geom IS NOT NULL)
-                      FROM (%s) AS q', patches)
-      INTO pids, roles, classes, geoms, uses, arterials, srids;
-  EXCEPTION WHEN undefined_column THEN
-    SELECT array_agg((r.j ->> 'patch_id')::bigint ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
-           array_agg(r.j ->> 'role' ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
-           array_agg(r.j ->> 'road_class' ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
-           array_agg(ST_AsEWKB(r.geom) ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
-           array_agg((r.j ->> 'max_uses')::integer ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
-           array_agg(coalesce(jsonb_typeof(r.j -> 'tags') = 'array' AND (r.j -> 'tags') ? 'arterial', false)
-                     ORDER BY (r.j ->> 'patch_id')::bigint, (r.j ->> 'edge_index')::integer, r.n),
-           array_agg(DISTINCT ST_SRID(r.geom)) FILTER (WHERE r.geom IS NOT NULL),
-           bool_and(r.j ? 'patch_id' AND r.j ? 'role')
-      INTO pids, roles, classes, geoms, uses, arterials, srids, complete
-      FROM streetgen._rows_with_geom(patches, 'patches') AS r;
-    IF NOT complete THEN
-      RAISE EXCEPTION 'the patches query must return the columns patch_id, role and geom'
-        USING ERRCODE = 'invalid_parameter_value', HINT = 'Use the rows of streetgen.extract_patches.';
+  SELECT * INTO lib FROM streetgen._patch_arrays(patches, 'patches');
+  IF p ? 'interpolate' THEN
+    SELECT * INTO lib_b FROM streetgen._patch_arrays(p ->> 'interpolate', 'interpolate');
+    IF lib_b.srids <> lib.srids THEN
+      RAISE EXCEPTION 'interpolate patches must have the SRID of the patches' USING ERRCODE = 'invalid_parameter_value',
+        DETAIL = format('The interpolate patches have SRID %s, the patches %s.', lib_b.srids[1], lib.srids[1]);
     END IF;
-  END;
-  IF pids IS NULL THEN
-    RAISE EXCEPTION 'patches has no rows' USING ERRCODE = 'invalid_parameter_value',
-      DETAIL = 'The patch query returned no patch edge.',
-      HINT = 'Fill the patch table with streetgen.extract_patches(example).';
-  END IF;
-  IF cardinality(srids) > 1 THEN
-    RAISE EXCEPTION 'patch edges must share one SRID' USING ERRCODE = 'invalid_parameter_value',
-      DETAIL = format('The query returns SRIDs %s.', array_to_string(srids, ', '));
+  ELSE
+    SELECT NULL::bigint[] AS pids, NULL::text[] AS roles, NULL::text[] AS classes, NULL::bytea[] AS geoms,
+           NULL::integer[] AS uses, NULL::boolean[] AS arterials INTO lib_b;
   END IF;
   RETURN QUERY
   SELECT g.id, g.from_node, g.to_node, g.road_class, g.origin, ST_GeomFromEWKB(g.geom)
     FROM streetgen._streetgen_grow_patches(
-           pids, roles, classes, geoms, uses, ST_AsEWKB(region), coalesce(xs, '{}'), coalesce(ys, '{}'),
+           lib.pids, lib.roles, lib.classes, lib.geoms, lib.uses, ST_AsEWKB(region), coalesce(xs, '{}'), coalesce(ys, '{}'),
            coalesce(obstacle_geoms, '{}'), coalesce((p ->> 'seed')::bigint, 0),
            coalesce((p ->> 'max_edges')::integer, 10000), coalesce((p ->> 'snap')::double precision, 0),
            coalesce((p ->> 'min_angle')::double precision, 20), coalesce((p ->> 'scale')::double precision, 0.1),
            coalesce((p ->> 'max_distance')::double precision, 0), coalesce((p ->> 'angle_window')::double precision, 30),
            coalesce((p ->> 'tries')::integer, 24), coalesce((p ->> 'max_uses')::integer, 0),
            coalesce((p ->> 'rotation')::double precision, 0), coalesce((p ->> 'fallback')::boolean, true),
-           coalesce((p ->> 'clearance')::double precision, 0), arterials, coalesce((p ->> 'levels')::boolean, true),
+           coalesce((p ->> 'clearance')::double precision, 0), lib.arterials, coalesce((p ->> 'levels')::boolean, true),
            coalesce(water_geoms, '{}'), dem_r.grid, dem_r.vals, coalesce((p ->> 'max_slope')::double precision, 12),
            coalesce((p ->> 'bridge_distance')::double precision, 300),
-           coalesce((p ->> 'bridge_turn')::double precision, 30)) AS g;
+           coalesce((p ->> 'bridge_turn')::double precision, 30),
+           ST_AsEWKB(guide), coalesce((p ->> 'guide_reach')::double precision, 0),
+           lib_b.pids, lib_b.roles, lib_b.classes, lib_b.geoms, lib_b.uses, lib_b.arterials,
+           coalesce((p ->> 't')::double precision, 0), coalesce(p ->> 'blend', 'none'),
+           coalesce((p ->> 'blend_angle')::double precision, 0), bxs, bys,
+           coalesce((p ->> 'blend_sigma')::double precision, 0), coalesce((p ->> 'prune_dangling')::boolean, false),
+           dir_r.grid, dir_r.vals) AS g;
 END
 $$;
-COMMENT ON FUNCTION streetgen.grow_patches(text, geometry, geometry, geometry, jsonb, geometry, raster) IS
-  'Grows a road network inside region from seeds with example patches (Nishida et al. 2016): fronts are processed breadth first; at each, a patch is drawn with probability proportional to exp(-d / scale), d the smallest Hausdorff distance between one of its connectors (inner end on the front) and the front''s streets, among the patches that pass the legality checks (inside region, outside obstacles, no crossing, min_angle, degree); its vertices within snap of nodes are merged, its connectors become new fronts. Where no patch is legal, growth I''s parametric rule with the patch streets'' length statistics (origin grow_parametric). patches: a query with patch_id, role, geom (optionally road_class, max_uses, edge_index): the rows of extract_patches. params: seed (0), max_edges (10000), snap (m, 0.45 x the mean segment), min_angle (deg, 20), scale (m, 0.1), max_distance (m, a quarter of the mean street), angle_window (deg, 30), tries (24), max_uses (0: unlimited, for patches without their own), rotation (deg, 0), fallback (true), clearance (m, 4 % of the mean street: new patch streets keep this far from streets they do not meet), levels (true: patches tagged arterial grow first, without the fallback; then local streets from the example''s local junctions along the arterial streets, with those junctions'' patches, local streets only). origin: grow_patches:<patch_id> or grow_parametric; the example-based share is count(*) FILTER (WHERE origin LIKE ''grow_patches:%'') / count(*). water: (Multi)Polygons in the region''s SRID that no street crosses (patches with an edge over it are illegal, open connectors and statistical streets stop at its edge) except an arterial (main road class) that meets it: it goes on across, turned up to bridge_turn for a shorter crossing, to a far bank within bridge_distance with room for a street; that edge has origin bridge (insert layer 1 for it: CASE origin WHEN ''bridge'' THEN 1 ELSE 0 END). Seeds must not lie in water; water over the whole region is an error. Unlike obstacles (nothing crosses them). dem: a one-band raster of heights (m) in the region''s SRID overlapping it, NULL cells unknown: no new street is steeper than max_slope (patch edges steeper make the patch illegal, open connectors are cut where they get steeper); a statistical street that would be bends towards the contour (in 5 degree steps) to the first direction under max_slope, else is discarded. params also: max_slope (percent, 12), bridge_distance (m, 300; 0: no bridges), bridge_turn (deg, 30)';
+COMMENT ON FUNCTION streetgen.grow_patches(text, geometry, geometry, geometry, jsonb, geometry, raster, geometry, raster) IS
+  'Grows a road network inside region from seeds with example patches (Nishida et al. 2016): fronts are processed breadth first; at each, a patch is drawn with probability proportional to exp(-d / scale), d the smallest Hausdorff distance between one of its connectors (inner end on the front) and the front''s streets, among the patches that pass the legality checks (inside region, outside obstacles, no crossing, min_angle, degree); its vertices within snap of nodes are merged, its connectors become new fronts. Where no patch is legal, growth I''s parametric rule with the patch streets'' length statistics (origin grow_parametric). patches: a query with patch_id, role, geom (optionally road_class, max_uses, edge_index): the rows of extract_patches. params: seed (0), max_edges (10000), snap (m, 0.45 x the mean segment), min_angle (deg, 20), scale (m, 0.1), max_distance (m, a quarter of the mean street), angle_window (deg, 30), tries (24), max_uses (0: unlimited, for patches without their own), rotation (deg, 0), fallback (true), clearance (m, 4 % of the mean street: new patch streets keep this far from streets they do not meet), levels (true: patches tagged arterial grow first, without the fallback; then local streets from the example''s local junctions along the arterial streets, with those junctions'' patches, local streets only). origin: grow_patches:<patch_id> or grow_parametric; the example-based share is count(*) FILTER (WHERE origin LIKE ''grow_patches:%'') / count(*). water: (Multi)Polygons in the region''s SRID that no street crosses (patches with an edge over it are illegal, open connectors and statistical streets stop at its edge) except an arterial (main road class) that meets it: it goes on across, turned up to bridge_turn for a shorter crossing, to a far bank within bridge_distance with room for a street; that edge has origin bridge (insert layer 1 for it: CASE origin WHEN ''bridge'' THEN 1 ELSE 0 END). Seeds must not lie in water; water over the whole region is an error. Unlike obstacles (nothing crosses them). dem: a one-band raster of heights (m) in the region''s SRID overlapping it, NULL cells unknown: no new street is steeper than max_slope (patch edges steeper make the patch illegal, open connectors are cut where they get steeper); a statistical street that would be bends towards the contour (in 5 degree steps) to the first direction under max_slope, else is discarded. params also: max_slope (percent, 12), bridge_distance (m, 300; 0: no bridges), bridge_turn (deg, 30). Operations (Nishida et al. 2016, section 5): guide, a (Multi)LineString in the region''s SRID, warps the growth: each patch (and the statistical fallback''s lattice) is turned so that the patches'' dominant street direction follows the tangent of the nearest guide point (params guide_reach, m: only this close to the guide; everywhere without it); direction, a one-band raster in the region''s SRID of azimuths (degrees clockwise from north, undirected), warps the same way where it has a value, before the guide (as grow_example''s direction). params interpolate: the query of a second patch library (another style, rows of extract_patches), with t (0..1, 0): a front takes its patch from the second library with probability t (else the first; the other when none of the drawn one is legal) and the statistical fallback interpolates the two styles'' street length and curvature statistics and junction mixes with weight t; such edges have origin grow_patches:<patch_id>:b. blend (with interpolate, instead of t) makes t vary over the region: gradient (blend_angle, deg: 0 runs from the first style in the west to the second in the east) or points (blend_points [[x, y], [x, y]]: each style''s seed; t = w2 / (w1 + w2) with Gaussian fall-off w = exp(-d^2 / (2 blend_sigma^2)), blend_sigma m, a quarter of the region''s extent diagonal). prune_dangling (false): the dangling-edge post-process: after growth every dead end is cut back to its junction except the example''s own (the end of a patch''s dead_end edge), ends where a step on is illegal (the region''s edge, obstacles, water, too steep), bridges and the existing network';

@@ -52,8 +52,113 @@ enum ExtractArg {
 enum GrowArg {
   kGPatchIds, kGRoles, kGClasses, kGGeoms, kGMaxUses, kGRegion, kGSeedsX, kGSeedsY, kGObstacles, kGSeed, kGMaxEdges,
   kGSnap, kGMinAngle, kGScale, kGMaxDistance, kGAngleWindow, kGTries, kGDefaultMaxUses, kGRotation, kGFallback, kGClearance,
-  kGArterials, kGLevels, kGWater, kGDemGrid, kGDemValues, kGMaxSlope, kGBridgeDistance, kGBridgeTurn, kGArgs
+  kGArterials, kGLevels, kGWater, kGDemGrid, kGDemValues, kGMaxSlope, kGBridgeDistance, kGBridgeTurn,
+  // Operations: warping (guide), interpolation (a second library, t) and blending.
+  kGGuide, kGGuideReach, kGPatchIdsB, kGRolesB, kGClassesB, kGGeomsB, kGMaxUsesB, kGArterialsB, kGT, kGBlendMode,
+  kGBlendAngle, kGBlendX, kGBlendY, kGBlendSigma, kGPruneDangling, kGDirectionGrid, kGDirectionValues, kGArgs
 };
+
+// One patch library's rows, read in phase 1 (palloc'd plain data).
+struct EdgeArg {
+  std::int64_t patch_id;
+  core::PatchEdgeRole role;
+  const char* road_class;
+  int max_uses;
+  bool arterial;
+  pg::ByteView geom;
+};
+struct LibraryArg {
+  EdgeArg* edges = nullptr;
+  int count = 0;
+  const char* what = "";  // "" for the first library, "interpolate " for the second
+};
+
+LibraryArg read_library(FunctionCallInfo fcinfo, int a_ids, int a_roles, int a_classes, int a_geoms, int a_uses,
+                        int a_arterials, const char* what) {
+  pg::ArrayArg pids = pg::array_arg(fcinfo, a_ids, INT8OID, "patch ids");
+  pg::ArrayArg roles = pg::array_arg(fcinfo, a_roles, TEXTOID, "roles");
+  pg::ArrayArg classes = pg::array_arg(fcinfo, a_classes, TEXTOID, "road classes");
+  pg::ArrayArg geoms = pg::array_arg(fcinfo, a_geoms, BYTEAOID, "patch edges");
+  pg::ArrayArg uses = pg::array_arg(fcinfo, a_uses, INT4OID, "max_uses");
+  pg::ArrayArg arterials = pg::array_arg(fcinfo, a_arterials, BOOLOID, "arterials");
+  pg::require_same_length(geoms, "patch edges", pids, "patch ids");
+  pg::require_same_length(geoms, "patch edges", roles, "roles");
+  if (classes.count != 0) pg::require_same_length(geoms, "patch edges", classes, "road classes");
+  if (uses.count != 0) pg::require_same_length(geoms, "patch edges", uses, "max_uses");
+  if (arterials.count != 0) pg::require_same_length(geoms, "patch edges", arterials, "arterials");
+  LibraryArg lib;
+  lib.what = what;
+  lib.count = geoms.count;
+  auto* edges = static_cast<EdgeArg*>(palloc0(sizeof(EdgeArg) * (geoms.count > 0 ? geoms.count : 1)));
+  lib.edges = edges;
+  for (int i = 0; i < geoms.count; ++i) {
+    if (pids.nulls[i]) {
+      ereport(ERROR, (errcode(ERRCODE_NULL_VALUE_NOT_ALLOWED), errmsg("patch_id must not be null"),
+                      errdetail("%sPatch row %d has no patch_id.", what, i + 1)));
+    }
+    EdgeArg& e = edges[i];
+    e.patch_id = DatumGetInt64(pids.values[i]);
+    if (geoms.nulls[i]) {
+      ereport(ERROR, (errcode(ERRCODE_NULL_VALUE_NOT_ALLOWED), errmsg("patch edge geometry must not be null"),
+                      errdetail("%sPatch row %d (patch_id %lld) has no geom.", what, i + 1,
+                                static_cast<long long>(e.patch_id))));
+    }
+    const char* role = roles.nulls[i] ? "" : TextDatumGetCString(roles.values[i]);
+    if (strcmp(role, "inner") == 0) {
+      e.role = core::PatchEdgeRole::inner;
+    } else if (strcmp(role, "connector") == 0) {
+      e.role = core::PatchEdgeRole::connector;
+    } else if (strcmp(role, "dead_end") == 0) {
+      e.role = core::PatchEdgeRole::dead_end;
+    } else {
+      ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE),
+                      errmsg("patch edge role must be 'inner', 'connector' or 'dead_end'"),
+                      errdetail("%sPatch row %d (patch_id %lld) has role %s.", what, i + 1,
+                                static_cast<long long>(e.patch_id),
+                                roles.nulls[i] ? "NULL" : quote_literal_cstr(role))));
+    }
+    e.road_class = classes.count != 0 && !classes.nulls[i] ? TextDatumGetCString(classes.values[i]) : "unclassified";
+    e.max_uses = uses.count != 0 && !uses.nulls[i] ? DatumGetInt32(uses.values[i]) : 0;
+    if (e.max_uses < 0) {
+      ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("max_uses must be >= 0"),
+                      errdetail("%sPatch row %d (patch_id %lld) has max_uses %d.", what, i + 1,
+                                static_cast<long long>(e.patch_id), e.max_uses)));
+    }
+    e.arterial = arterials.count != 0 && !arterials.nulls[i] && DatumGetBool(arterials.values[i]);
+    e.geom = pg::byte_view(geoms.values[i]);
+  }
+  return lib;
+}
+
+// Phase 2: rows of one patch_id make one patch, in the order given.
+void build_patches(core::GeosContext& geos, const LibraryArg& lib, std::vector<core::Patch>& out) {
+  core::InterruptPoller poller(1024);
+  std::map<std::int64_t, std::size_t> index;  // patch_id -> position in out
+  for (int i = 0; i < lib.count; ++i) {
+    poller.tick();
+    const EdgeArg& e = lib.edges[i];
+    std::string name = std::string(lib.what) + "patch row " + std::to_string(i + 1) + " (patch_id " +
+                       std::to_string(e.patch_id) + ")";
+    core::SridGeometry g = core::read_ewkb(geos, e.geom.data, e.geom.size, name.c_str());
+    std::vector<core::Polyline> lines;
+    core::append_linestrings(geos, g.geom.get(), name, "patch edges must be LineStrings", "", lines);
+    if (lines.size() != 1) core::throw_invalid_argument(name + " must be one LineString");
+    auto [it, added] = index.emplace(e.patch_id, out.size());
+    if (added) {
+      out.push_back({});
+      out.back().id = e.patch_id;
+    }
+    core::Patch& patch = out[it->second];
+    patch.max_uses = std::max(patch.max_uses, e.max_uses);
+    if (e.arterial && patch.tags.empty()) patch.tags.emplace_back("arterial");
+    core::PatchEdge pe;
+    pe.line = std::move(lines[0]);
+    pe.role = e.role;
+    pe.road_class = e.road_class;
+    pe.example_id = e.patch_id;
+    patch.edges.push_back(std::move(pe));
+  }
+}
 
 }  // namespace
 
@@ -175,74 +280,34 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       "patch ids", "roles", "road classes", "patch edges", "max_uses", "region", "seeds x", "seeds y", "obstacles",
       "seed", "max_edges", "snap", "min_angle", "scale", "max_distance", "angle_window", "tries", "max_uses",
       "rotation", "fallback", "clearance", "arterials", "levels", "water", "dem grid", "dem", "max_slope",
-      "bridge_distance", "bridge_turn"};
+      "bridge_distance", "bridge_turn", "guide", "guide_reach", "interpolate patch ids", "interpolate roles",
+      "interpolate road classes", "interpolate patch edges", "interpolate max_uses", "interpolate arterials", "t",
+      "blend", "blend_angle", "blend_points x", "blend_points y", "blend_sigma", "prune_dangling", "direction grid",
+      "direction"};
   for (int a = kGRegion; a < kGArgs; ++a) {
     if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && a != kGArterials && a != kGWater && a != kGDemGrid &&
-        a != kGDemValues && PG_ARGISNULL(a)) {
+        a != kGDemValues && a != kGGuide && !(a >= kGPatchIdsB && a <= kGArterialsB) && a != kGBlendX &&
+        a != kGBlendY && a != kGDirectionGrid && a != kGDirectionValues && PG_ARGISNULL(a)) {
       pg::raise_null_argument(names[a]);
     }
   }
-  pg::ArrayArg pids = pg::array_arg(fcinfo, kGPatchIds, INT8OID, "patch ids");
-  pg::ArrayArg roles = pg::array_arg(fcinfo, kGRoles, TEXTOID, "roles");
-  pg::ArrayArg classes = pg::array_arg(fcinfo, kGClasses, TEXTOID, "road classes");
-  pg::ArrayArg geoms = pg::array_arg(fcinfo, kGGeoms, BYTEAOID, "patch edges");
-  pg::ArrayArg uses = pg::array_arg(fcinfo, kGMaxUses, INT4OID, "max_uses");
-  pg::ArrayArg arterials = pg::array_arg(fcinfo, kGArterials, BOOLOID, "arterials");
-  pg::require_same_length(geoms, "patch edges", pids, "patch ids");
-  pg::require_same_length(geoms, "patch edges", roles, "roles");
-  if (classes.count != 0) pg::require_same_length(geoms, "patch edges", classes, "road classes");
-  if (uses.count != 0) pg::require_same_length(geoms, "patch edges", uses, "max_uses");
-  if (arterials.count != 0) pg::require_same_length(geoms, "patch edges", arterials, "arterials");
+  LibraryArg lib = read_library(fcinfo, kGPatchIds, kGRoles, kGClasses, kGGeoms, kGMaxUses, kGArterials, "");
+  LibraryArg lib_b = read_library(fcinfo, kGPatchIdsB, kGRolesB, kGClassesB, kGGeomsB, kGMaxUsesB, kGArterialsB,
+                                  "interpolate ");
+  pg::ArrayArg blend_xs = pg::array_arg(fcinfo, kGBlendX, FLOAT8OID, "blend_points x");
+  pg::ArrayArg blend_ys = pg::array_arg(fcinfo, kGBlendY, FLOAT8OID, "blend_points y");
+  pg::require_same_length(blend_xs, "blend_points x", blend_ys, "blend_points y");
+  int blend_count = 0;
+  double* blend_xy = pg::xy_pairs(blend_xs, blend_ys, "a blend point coordinate", &blend_count);
+  bool has_guide = !PG_ARGISNULL(kGGuide);
+  pg::ByteView guide = has_guide ? pg::byte_view(PG_GETARG_DATUM(kGGuide)) : pg::ByteView{nullptr, 0};
   pg::ArrayArg xs = pg::array_arg(fcinfo, kGSeedsX, FLOAT8OID, "seeds x");
   pg::ArrayArg ys = pg::array_arg(fcinfo, kGSeedsY, FLOAT8OID, "seeds y");
   pg::require_same_length(xs, "seeds x", ys, "seeds y");
   pg::ArrayArg obstacle_arg = pg::array_arg(fcinfo, kGObstacles, BYTEAOID, "obstacles");
   pg::ArrayArg water_arg = pg::array_arg(fcinfo, kGWater, BYTEAOID, "water");
   pg::GridArg dem = pg::grid_arg(fcinfo, kGDemGrid, kGDemValues, "dem");
-  struct EdgeArg {
-    std::int64_t patch_id;
-    core::PatchEdgeRole role;
-    const char* road_class;
-    int max_uses;
-    bool arterial;
-    pg::ByteView geom;
-  };
-  auto* edges = static_cast<EdgeArg*>(palloc0(sizeof(EdgeArg) * (geoms.count > 0 ? geoms.count : 1)));
-  for (int i = 0; i < geoms.count; ++i) {
-    if (pids.nulls[i]) {
-      ereport(ERROR, (errcode(ERRCODE_NULL_VALUE_NOT_ALLOWED), errmsg("patch_id must not be null"),
-                      errdetail("Patch row %d has no patch_id.", i + 1)));
-    }
-    EdgeArg& e = edges[i];
-    e.patch_id = DatumGetInt64(pids.values[i]);
-    if (geoms.nulls[i]) {
-      ereport(ERROR, (errcode(ERRCODE_NULL_VALUE_NOT_ALLOWED), errmsg("patch edge geometry must not be null"),
-                      errdetail("Patch row %d (patch_id %lld) has no geom.", i + 1, static_cast<long long>(e.patch_id))));
-    }
-    const char* role = roles.nulls[i] ? "" : TextDatumGetCString(roles.values[i]);
-    if (strcmp(role, "inner") == 0) {
-      e.role = core::PatchEdgeRole::inner;
-    } else if (strcmp(role, "connector") == 0) {
-      e.role = core::PatchEdgeRole::connector;
-    } else if (strcmp(role, "dead_end") == 0) {
-      e.role = core::PatchEdgeRole::dead_end;
-    } else {
-      ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE),
-                      errmsg("patch edge role must be 'inner', 'connector' or 'dead_end'"),
-                      errdetail("Patch row %d (patch_id %lld) has role %s.", i + 1, static_cast<long long>(e.patch_id),
-                                roles.nulls[i] ? "NULL" : quote_literal_cstr(role))));
-    }
-    e.road_class = classes.count != 0 && !classes.nulls[i] ? TextDatumGetCString(classes.values[i]) : "unclassified";
-    e.max_uses = uses.count != 0 && !uses.nulls[i] ? DatumGetInt32(uses.values[i]) : 0;
-    if (e.max_uses < 0) {
-      ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("max_uses must be >= 0"),
-                      errdetail("Patch row %d (patch_id %lld) has max_uses %d.", i + 1,
-                                static_cast<long long>(e.patch_id), e.max_uses)));
-    }
-    e.arterial = arterials.count != 0 && !arterials.nulls[i] && DatumGetBool(arterials.values[i]);
-    e.geom = pg::byte_view(geoms.values[i]);
-  }
-  int edge_count = geoms.count;
+  pg::GridArg direction = pg::grid_arg(fcinfo, kGDirectionGrid, kGDirectionValues, "direction");
   int seed_count = 0;
   double* seed_xy = pg::xy_pairs(xs, ys, "a seed coordinate", &seed_count);
   int obstacle_count = 0;
@@ -274,6 +339,22 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   params.bridge_distance = PG_GETARG_FLOAT8(kGBridgeDistance);
   params.bridge_turn = PG_GETARG_FLOAT8(kGBridgeTurn);
   params.rotation = true;  // the fallback's streets turn from the front's street, as Nishida's (about 90°)
+  params.guide_reach = PG_GETARG_FLOAT8(kGGuideReach);
+  params.patch.t = PG_GETARG_FLOAT8(kGT);
+  const char* blend_mode = TextDatumGetCString(PG_GETARG_DATUM(kGBlendMode));
+  if (strcmp(blend_mode, "none") == 0) {
+    params.blend.mode = core::BlendParams::Mode::none;
+  } else if (strcmp(blend_mode, "gradient") == 0) {
+    params.blend.mode = core::BlendParams::Mode::gradient;
+  } else if (strcmp(blend_mode, "points") == 0) {
+    params.blend.mode = core::BlendParams::Mode::points;
+  } else {
+    ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("blend must be 'gradient' or 'points'"),
+                    errdetail("It is '%s'.", blend_mode)));
+  }
+  params.blend.angle = PG_GETARG_FLOAT8(kGBlendAngle);
+  params.blend.sigma = PG_GETARG_FLOAT8(kGBlendSigma);
+  params.patch.prune_dangling = PG_GETARG_BOOL(kGPruneDangling);
   InitMaterializedSRF(fcinfo, 0);
   auto rows = pg::OwnedResult<std::vector<pg::GrownRow>>::create();
   core::GrowStats stats;
@@ -286,30 +367,14 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
     core::GeosContext& geos = pg::backend_geos();
     core::GrowInput input;
     core::InterruptPoller poller(1024);
-    // Rows of one patch_id make one patch, in the order given.
-    std::map<std::int64_t, std::size_t> index;  // patch_id -> position in input.patches
-    for (int i = 0; i < edge_count; ++i) {
-      poller.tick();
-      const EdgeArg& e = edges[i];
-      std::string name = "patch row " + std::to_string(i + 1) + " (patch_id " + std::to_string(e.patch_id) + ")";
-      core::SridGeometry g = core::read_ewkb(geos, e.geom.data, e.geom.size, name.c_str());
-      std::vector<core::Polyline> lines;
-      core::append_linestrings(geos, g.geom.get(), name, "patch edges must be LineStrings", "", lines);
-      if (lines.size() != 1) core::throw_invalid_argument(name + " must be one LineString");
-      auto [it, added] = index.emplace(e.patch_id, input.patches.size());
-      if (added) {
-        input.patches.push_back({});
-        input.patches.back().id = e.patch_id;
-      }
-      core::Patch& patch = input.patches[it->second];
-      patch.max_uses = std::max(patch.max_uses, e.max_uses);
-      if (e.arterial && patch.tags.empty()) patch.tags.emplace_back("arterial");
-      core::PatchEdge pe;
-      pe.line = std::move(lines[0]);
-      pe.role = e.role;
-      pe.road_class = e.road_class;
-      pe.example_id = e.patch_id;
-      patch.edges.push_back(std::move(pe));
+    build_patches(geos, lib, input.patches);
+    build_patches(geos, lib_b, input.patches_b);
+    for (int i = 0; i < blend_count; ++i) params.blend.points.push_back({blend_xy[2 * i], blend_xy[2 * i + 1]});
+    std::vector<core::SridGeometry> guide_geom;
+    if (has_guide) {
+      guide_geom.push_back(core::read_ewkb(geos, guide.data, guide.size, "guide"));
+      core::append_linestrings(geos, guide_geom.back().geom.get(), "guide",
+                               "guide must be a LineString or MultiLineString", "", input.guide);
     }
     std::vector<core::SridGeometry> region_and_obstacles;
     int srid = pg::read_region_and_obstacles(geos, region, obstacles, obstacle_count, input, region_and_obstacles);
@@ -322,6 +387,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       input.water.push_back(water_parts.back().geom.get());
     }
     pg::to_field(dem, input.dem);
+    pg::to_field(direction, input.direction);
     for (int i = 0; i < seed_count; ++i) input.seeds.push_back({seed_xy[2 * i], seed_xy[2 * i + 1]});
     core::GrowResult result = core::grow_example(geos, input, params);
     stats = result.stats;
@@ -338,6 +404,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       if (e.bridge) ++bridges;
       std::string origin = e.bridge           ? std::string("bridge")
                            : e.example < 0 ? std::string("grow_parametric")
+                           : e.example == 1 ? "grow_patches:" + std::to_string(e.example_id) + ":b"
                                            : "grow_patches:" + std::to_string(e.example_id);
       out.push_back(pg::grown_row(e, std::move(origin), srid));
     }
@@ -350,11 +417,14 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           "%zu illegal, %zu self-crossing patches dropped, %zu restarts; levels: %zu arterial patches "
                           "placed, %zu local seeds (%zu with their example patch), %zu local streets ended on arterials; "
                           "terrain: %zu bridges (%zu bridge attempts failed), %zu bent along the contour, %zu too steep; "
+                          "operations: %zu warped steps, %zu patches from the interpolate library, %zu dangling "
+                          "segments pruned, %zu dead ends kept; "
                           "example-based share %.1f %% of the edges, %.1f %% of the length",
                           stats.steps, stats.patches_placed, stats.fallback, stats.patch_candidates, stats.patch_illegal,
                           stats.patches_dropped, stats.restarts, stats.arterial_patches_placed, stats.local_seeds,
                           stats.local_seeds_used, stats.ended_on_arterial, bridges, stats.bridges_failed, stats.bent,
-                          stats.too_steep, total > 0 ? 100.0 * from_patches / total : 0.0,
+                          stats.too_steep, stats.guided, stats.patches_b_placed, stats.dangling_pruned,
+                          stats.dead_ends_kept, total > 0 ? 100.0 * from_patches / total : 0.0,
                           length_total > 0 ? 100.0 * length_patches / length_total : 0.0)));
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();

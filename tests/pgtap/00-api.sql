@@ -84,10 +84,11 @@ SELECT set_eq(
     ('streetgen.grow_example(text[],geometry,geometry,geometry,jsonb,text,geometry,raster,raster)', 'SETOF record', 'v', false),
     ('streetgen.grow_parametric(geometry,geometry,geometry,jsonb,text,geometry,raster)', 'SETOF record', 'v', false),
     ('streetgen._streetgen_extract_patches(bytea[],text[],bigint[],boolean[],double precision,double precision,boolean,double precision,double precision,double precision,double precision,boolean)', 'SETOF record', 'i', false),
-    ('streetgen._streetgen_grow_patches(bigint[],text[],text[],bytea[],integer[],bytea,double precision[],double precision[],bytea[],bigint,integer,double precision,double precision,double precision,double precision,double precision,integer,integer,double precision,boolean,double precision,boolean[],boolean,bytea[],double precision[],double precision[],double precision,double precision,double precision)', 'SETOF record', 'i', false),
+    ('streetgen._streetgen_grow_patches(bigint[],text[],text[],bytea[],integer[],bytea,double precision[],double precision[],bytea[],bigint,integer,double precision,double precision,double precision,double precision,double precision,integer,integer,double precision,boolean,double precision,boolean[],boolean,bytea[],double precision[],double precision[],double precision,double precision,double precision,bytea,double precision,bigint[],text[],text[],bytea[],integer[],boolean[],double precision,text,double precision,double precision[],double precision[],double precision,boolean,double precision[],double precision[])', 'SETOF record', 'i', false),
     ('streetgen._rows_with_geom(text,text)', 'TABLE(j jsonb, geom geometry, n bigint)', 'v', false),
     ('streetgen.extract_patches(text,jsonb)', 'SETOF record', 'v', false),
-    ('streetgen.grow_patches(text,geometry,geometry,geometry,jsonb,geometry,raster)', 'SETOF record', 'v', false),
+    ('streetgen._patch_arrays(text,text)', 'record', 'v', false),
+    ('streetgen.grow_patches(text,geometry,geometry,geometry,jsonb,geometry,raster,geometry,raster)', 'SETOF record', 'v', false),
     ('streetgen.rasterise_network(text,double precision,integer,geometry)', 'raster', 'v', false),
     ('streetgen._streetgen_raster_to_network(bytea,double precision,integer,integer,double precision,double precision,integer,double precision)', 'SETOF record', 'i', false),
     ('streetgen.raster_to_network(raster,jsonb)', 'SETOF record', 'i', false),
@@ -137,9 +138,9 @@ SELECT is(pg_temp.argument_names('streetgen.grow_parametric(geometry,geometry,ge
 SELECT is(pg_temp.argument_names('streetgen.extract_patches(text,jsonb)'),
           'example,params,patch_id,edge_index,role,road_class,tags,edge_tags,start_tags,end_tags,max_uses,example_id,geom',
           'extract_patches(example, params) -> (patch_id, edge_index, role, road_class, tags, edge_tags, start_tags, end_tags, max_uses, example_id, geom)');
-SELECT is(pg_temp.argument_names('streetgen.grow_patches(text,geometry,geometry,geometry,jsonb,geometry,raster)'),
-          'patches,region,seeds,obstacles,params,water,dem,id,from_node,to_node,road_class,origin,geom',
-          'grow_patches(patches, region, seeds, obstacles, params, water, dem) -> (id, from_node, to_node, road_class, origin, geom)');
+SELECT is(pg_temp.argument_names('streetgen.grow_patches(text,geometry,geometry,geometry,jsonb,geometry,raster,geometry,raster)'),
+          'patches,region,seeds,obstacles,params,water,dem,guide,direction,id,from_node,to_node,road_class,origin,geom',
+          'grow_patches(patches, region, seeds, obstacles, params, water, dem, guide, direction) -> (id, from_node, to_node, road_class, origin, geom)');
 
 SELECT is(pg_temp.argument_names('streetgen.rasterise_network(text,double precision,integer,geometry)'),
           'edges,pixel_size,road_width_px,extent', 'rasterise_network(edges, pixel_size, road_width_px, extent)');

@@ -203,7 +203,7 @@ class Grower {
       level_of(shape_.road_class);
       max_degree_ = static_cast<std::size_t>(shape_.max_degree);
     } else if (params.use_patches) {
-      build_library(input.patches);
+      build_library(input.patches, input.patches_b);
     } else {
       build_examples(input.example);
     }
@@ -251,7 +251,10 @@ class Grower {
            ++reseeds) {
         grow();
       }
-      if (new_edges_ >= std::min<std::size_t>(kMinGrowth, params_.max_edges) || restart == kRestarts) break;
+      if (new_edges_ >= std::min<std::size_t>(kMinGrowth, params_.max_edges) || restart == kRestarts) {
+        if (params_.use_patches && params_.patch.prune_dangling) prune_dangling();
+        break;
+      }
       ++stats_.restarts;
       nodes_.clear();
       edges_.clear();
@@ -274,6 +277,7 @@ class Grower {
       bridge_hint_.clear();
       bridge_landing_.clear();
       bridge_end_.clear();
+      example_dead_end_.clear();
       load_existing();
       place_seeds();
     }
@@ -433,6 +437,9 @@ class Grower {
       if (pp.tries <= 0) throw_invalid_argument("tries must be > 0", "It is " + std::to_string(pp.tries) + ".");
       if (pp.max_uses < 0) throw_invalid_argument("max_uses must be >= 0", "It is " + std::to_string(pp.max_uses) + ".");
       if (!std::isfinite(pp.rotation)) throw_invalid_argument("rotation must be a finite number of degrees");
+      if (!(pp.t >= 0.0 && pp.t <= 1.0)) {
+        throw_invalid_argument("t must be in [0, 1]", "It is " + std::to_string(pp.t) + ".");
+      }
       if (!std::isfinite(pp.clearance) || pp.clearance < 0.0) {
         throw_invalid_argument("clearance must be a finite number > 0", "It is " + std::to_string(pp.clearance) + " m.");
       }
@@ -488,7 +495,8 @@ class Grower {
       throw_invalid_argument("several examples need a blend", "There are " + std::to_string(count) + " examples.",
                              "Set params blend to 'gradient' or 'points', or pass a weight raster.");
     }
-    if (params_.blend.mode == BlendParams::Mode::points && params_.blend.points.size() != examples_.size()) {
+    if (!params_.use_patches && params_.blend.mode == BlendParams::Mode::points &&
+        params_.blend.points.size() != examples_.size()) {
       throw_invalid_argument("blend_points must hold one point per example",
                              "There are " + std::to_string(params_.blend.points.size()) + " points and " +
                                  std::to_string(count) + " examples.");
@@ -1706,6 +1714,7 @@ class Grower {
     int max_uses;
     int uses = 0;
     bool arterial = false;  // levels: grown in the first phase
+    int style = 0;          // interpolation: 0 the first library, 1 the second (GrowInput::patches_b)
   };
   struct LibConnector {
     std::uint32_t patch, edge;
@@ -1743,40 +1752,58 @@ class Grower {
     return false;
   }
 
-  void build_library(const std::vector<Patch>& patches) {
+  void build_library(const std::vector<Patch>& patches, const std::vector<Patch>& patches_b) {
     if (patches.empty()) {
       throw_invalid_argument("patches has no rows", "The patch query returned no patch edge.",
                              "Fill the patch table with streetgen.extract_patches(example).");
     }
+    styles_ = patches_b.empty() ? 1 : 2;
+    if (params_.blend.mode != BlendParams::Mode::none && styles_ < 2) {
+      throw_invalid_argument("blend needs a second patch library", "Blending weighs two styles against each other.",
+                             "Set params interpolate to the second library's query.");
+    }
+    if (params_.blend.mode == BlendParams::Mode::points && params_.blend.points.size() != 2) {
+      throw_invalid_argument("blend_points must hold two points, one per patch library",
+                             "There are " + std::to_string(params_.blend.points.size()) + " points.");
+    }
     const double rot = params_.patch.rotation * kPi / 180.0;
     const double cs = std::cos(rot), sn = std::sin(rot);
     std::vector<ExampleEdge> example;
-    std::size_t with_connectors = 0;
-    for (const Patch& p : patches) {
-      LibPatch lp{p.id, {}, {}, p.max_uses > 0 ? p.max_uses : params_.patch.max_uses};
-      lp.arterial = params_.patch.levels && std::find(p.tags.begin(), p.tags.end(), "arterial") != p.tags.end();
-      for (const PatchEdge& e : p.edges) {
-        if (e.line.size() < 2) continue;
-        LibEdge le{e.line, level_of(e.road_class), e.role};
-        for (Point& q : le.line) q = {cs * q.x - sn * q.y, sn * q.x + cs * q.y};
-        if (length(le.line) <= kContact) continue;
-        if (le.role == PatchEdgeRole::connector) lp.connectors.push_back(static_cast<std::uint32_t>(lp.edges.size()));
-        example.push_back({le.line, e.road_class, p.id, 0});
-        lp.edges.push_back(std::move(le));
+    std::size_t with_connectors = 0, with_connectors_b = 0;
+    for (int style = 0; style < styles_; ++style) {
+      for (const Patch& p : style == 0 ? patches : patches_b) {
+        LibPatch lp{p.id, {}, {}, p.max_uses > 0 ? p.max_uses : params_.patch.max_uses};
+        lp.style = style;
+        lp.arterial = params_.patch.levels && std::find(p.tags.begin(), p.tags.end(), "arterial") != p.tags.end();
+        for (const PatchEdge& e : p.edges) {
+          if (e.line.size() < 2) continue;
+          LibEdge le{e.line, level_of(e.road_class), e.role};
+          for (Point& q : le.line) q = {cs * q.x - sn * q.y, sn * q.x + cs * q.y};
+          if (length(le.line) <= kContact) continue;
+          if (le.role == PatchEdgeRole::connector) lp.connectors.push_back(static_cast<std::uint32_t>(lp.edges.size()));
+          example.push_back({le.line, e.road_class, p.id, 0});
+          lp.edges.push_back(std::move(le));
+        }
+        (style == 0 ? with_connectors : with_connectors_b) += !lp.connectors.empty();
+        if (lp.edges.empty()) continue;
+        if (self_crossing(lp.edges)) {  // a bridge in the example: its patch cannot be placed planar
+          ++stats_.patches_dropped;
+          continue;
+        }
+        library_.push_back(std::move(lp));
       }
-      with_connectors += !lp.connectors.empty();
-      if (lp.edges.empty()) continue;
-      if (self_crossing(lp.edges)) {  // a bridge in the example: its patch cannot be placed planar
-        ++stats_.patches_dropped;
-        continue;
-      }
-      library_.push_back(std::move(lp));
     }
     if (with_connectors == 0) {
       throw_invalid_argument("no patch has a connector",
                              "There are " + std::to_string(patches.size()) +
                                  " patches and none has an edge with role 'connector', so none can be attached "
                                  "to another.",
+                             "Extract the patches from a larger example, or use a smaller short_edge.");
+    }
+    if (styles_ > 1 && with_connectors_b == 0) {
+      throw_invalid_argument("no patch of the interpolate library has a connector",
+                             "There are " + std::to_string(patches_b.size()) +
+                                 " patches in it and none has an edge with role 'connector'.",
                              "Extract the patches from a larger example, or use a smaller short_edge.");
     }
     build_examples(example);  // statistics, degrees and levels of the patch streets
@@ -1810,7 +1837,149 @@ class Grower {
       }
     }
     prepare_levels();
+    prepare_styles();
   }
+
+  // ---- operations: interpolation, blending and warping (Nishida et al. 2016, section 5) ------
+  // Each style's street statistics and junction mix (per level too), for the fallback at weight t.
+  void prepare_styles() {
+    if (styles_ < 2) return;
+    for (int s = 0; s < 2; ++s) {
+      std::vector<const Polyline*> all, level[2];
+      for (const LibPatch& lp : library_) {
+        if (lp.style != s) continue;
+        for (const LibEdge& e : lp.edges) {
+          all.push_back(&e.line);
+          level[lp.arterial ? 0 : 1].push_back(&e.line);
+        }
+      }
+      style_stats_[s] = street_statistics(all);
+      style_cdf_[s] = degree_cdf_of(all);
+      for (int l = 0; l < 2; ++l) {
+        style_level_stats_[s][l] = street_statistics(level[l]);
+        style_level_cdf_[s][l] = degree_cdf_of(level[l]);
+      }
+    }
+  }
+  // The weight of the second style at p: blend's (gradient across the region, or Gaussian
+  // fall-off exp(-d^2 / (2 sigma^2)) from each style's point, normalised), else params t.
+  double style_t(Point p) const {
+    if (styles_ < 2) return 0.0;
+    const BlendParams& b = params_.blend;
+    if (b.mode == BlendParams::Mode::gradient) {
+      const double a = b.angle * kPi / 180.0;
+      double u = (p.x * std::cos(a) + p.y * std::sin(a) - blend_min_) / std::max(blend_max_ - blend_min_, 1e-9);
+      return std::clamp(u, 0.0, 1.0);
+    }
+    if (b.mode == BlendParams::Mode::points) {
+      const double d0 = distance(p, b.points[0]), d1 = distance(p, b.points[1]);
+      const double w0 = std::exp(-d0 * d0 / (2.0 * blend_sigma_ * blend_sigma_));
+      const double w1 = std::exp(-d1 * d1 / (2.0 * blend_sigma_ * blend_sigma_));
+      if (!(w0 + w1 > 0.0)) return d1 < d0 ? 1.0 : 0.0;  // far from both: the nearer style
+      return w1 / (w0 + w1);
+    }
+    return params_.patch.t;
+  }
+  // The fallback's shape at weight t: the two styles' length and curvature statistics (and
+  // junction mixes) interpolated. Curvature (radians per metre) times the street length is the
+  // turn a street makes: the fallback's angle_deviation (capped at 45 degrees).
+  void apply_style_shape(double t) {
+    if (styles_ < 2) return;
+    const int level = hierarchy_ ? (phase_arterial_ ? 0 : 1) : -1;
+    auto stats_of = [&](int s) -> const StreetStatistics& {
+      return level >= 0 && style_level_stats_[s][level].length_mean > 0.0 ? style_level_stats_[s][level]
+                                                                          : style_stats_[s];
+    };
+    const StreetStatistics &a = stats_of(0), &b = stats_of(1);
+    auto mix = [t](double x, double y) { return (1.0 - t) * x + t * y; };
+    shape_.length = std::max(mix(a.length_mean, b.length_mean), 2.0 * min_length_);
+    shape_.length_deviation = std::min(0.5 * shape_.length, mix(a.length_sd, b.length_sd));
+    shape_.min_length = std::min(shape_.length, std::max(min_length_, 0.25 * shape_.length));
+    const double turn = mix(a.curvature_mean, b.curvature_mean) * shape_.length;  // radians per street
+    shape_.angle_deviation = std::clamp(turn * 180.0 / kPi, 0.0, 45.0);
+    auto cdf_of = [&](int s) -> const std::vector<double>& {
+      return level >= 0 && !style_level_cdf_[s][level].empty() ? style_level_cdf_[s][level] : style_cdf_[s];
+    };
+    const std::vector<double>& ca = cdf_of(0);
+    const std::vector<double>& cb = cdf_of(1);
+    if (ca.size() == cb.size() && !ca.empty()) {
+      degree_cdf_.resize(ca.size());
+      for (std::size_t k = 0; k < ca.size(); ++k) degree_cdf_[k] = mix(ca[k], cb[k]);
+    } else if (!(t < 0.5 ? ca : cb).empty()) {
+      degree_cdf_ = t < 0.5 ? ca : cb;
+    }
+  }
+  // Warping: at p, patches are turned so that the library's dominant direction follows the guide's
+  // (or the direction raster's) tangent there, the nearer way round; no guide there: not turned.
+  void set_warp(Point p) {
+    warp_ = 0.0;
+    guide_here_ = NAN;
+    if (!guide_segments_.empty() || !direction_->empty()) {
+      guide_here_ = direction_angle(p);
+      if (!std::isnan(guide_here_)) {
+        ++stats_.guided;
+        double w = wrap(guide_here_ - examples_[0].orientation);
+        if (w >= kPi / 2.0) w -= kPi;
+        if (w < -kPi / 2.0) w += kPi;
+        warp_ = w;
+      }
+    }
+    warp_cos_ = std::cos(warp_);
+    warp_sin_ = std::sin(warp_);
+  }
+  void set_warp_angle(double w) {
+    warp_ = w;
+    warp_cos_ = std::cos(w);
+    warp_sin_ = std::sin(w);
+  }
+  // Patch point q (library coordinates) placed with `origin` (library) on `at` (output), turned by the warp.
+  Point warped(Point q, Point origin, Point at) const {
+    const Point d = q - origin;
+    return at + Point{warp_cos_ * d.x - warp_sin_ * d.y, warp_sin_ * d.x + warp_cos_ * d.y};
+  }
+  // The dangling-edge post-process (PatchGrowParams::prune_dangling): every dead end but the
+  // example's own and those that cannot go on (a step on is illegal) is cut back, through its
+  // shape points, to the junction it left; a junction left with one street is cut back in turn.
+  void prune_dangling() {
+    std::vector<std::uint32_t> ends;
+    for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
+      if (nodes_[v].edges.size() == 1 && !is_pruned(v)) ends.push_back(v);
+    }
+    const double step = std::max(snap_, min_length_);
+    for (std::uint32_t v : ends) {
+      std::uint32_t cur = v;
+      while (nodes_[cur].edges.size() == 1) {
+        poll_interrupts();
+        const std::uint32_t e = nodes_[cur].edges[0];
+        const OEdge& edge = edges_[e];
+        const std::uint32_t w = edge.a == cur ? edge.b : edge.a;
+        const Point p = nodes_[cur].p;
+        bool keep = edge.level < 0 || edge.bridge || example_dead_end_.count(cur) != 0 || bridge_end_.count(cur) != 0;
+        if (!keep) {
+          const Point d = unit(p - nodes_[w].p);
+          keep = !legal(p, p + step * d);
+        }
+        if (keep) {
+          ++stats_.dead_ends_kept;
+          break;
+        }
+        remove_edge(e);
+        node_tree_.remove(PointValue(BPoint(p.x, p.y), cur));
+        pruned_.resize(nodes_.size(), 0);
+        pruned_[cur] = 1;
+        ++stats_.dangling_pruned;
+        cur = w;
+      }
+    }
+  }
+  std::unordered_set<std::uint32_t> example_dead_end_;  // ends of patch dead-end edges
+  int styles_ = 1;
+  StreetStatistics style_stats_[2];
+  StreetStatistics style_level_stats_[2][2];
+  std::vector<double> style_cdf_[2];
+  std::vector<double> style_level_cdf_[2][2];
+  double warp_ = 0.0, warp_cos_ = 1.0, warp_sin_ = 0.0;
+  double guide_here_ = NAN;  // the guide's tangent at the current front (NaN: none)
 
   // Levels (Nishida et al. 2016, sections 4.3-4.4): with arterial patches (and others) in the
   // library, the arterial ones grow first; each arterial street then seeds the local phase at the
@@ -1915,6 +2084,7 @@ class Grower {
     std::uint32_t node;
     std::uint32_t patch;  // library index of the example's local patch there
     Point anchor;         // its junction in patch coordinates
+    double warp;          // the arterial patch's turn (warping): the local patch is turned alike
   };
   bool hierarchy_ = false, phase_arterial_ = false;
   int phase_level_[2] = {0, 0};  // the fallback's road class (level) in each phase
@@ -2051,14 +2221,17 @@ class Grower {
       return;
     }
     const Point p = nodes_[v].p;
+    const double t_here = style_t(p);
     // A local seed on an arterial street: the example's own local patch there first (its arterial
-    // edges double the street and are left out, its local streets leave from it).
+    // edges double the street and are left out, its local streets leave from it), turned as the
+    // arterial patch was.
     if (!phase_arterial_ && !local_hint_.empty()) {
       auto it = local_hint_.find(v);
       if (it != local_hint_.end()) {
         const LocalSeed ls = it->second;
         local_hint_.erase(it);
         const LibPatch& lp = library_[ls.patch];
+        set_warp_angle(ls.warp);
         if ((lp.max_uses == 0 || lp.uses < lp.max_uses) && place_patch(v, ls.patch, ls.anchor, UINT32_MAX, true)) {
           ++stats_.local_seeds_used;
           done_ = true;
@@ -2066,12 +2239,19 @@ class Grower {
         }
       }
     }
+    set_warp(p);
     if (nodes_[v].edges.empty()) {
       if (crowded(p, min_length_, v)) return;
       // A seed: a patch with two or more connectors, drawn at random, its first connector's inner
       // end on the seed.
       std::vector<std::uint32_t> order = seed_patches_;
       for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[uniform(i)]);
+      if (styles_ > 1) {  // interpolation: the drawn style's patches first, the other's with its own probability
+        const int want = uniform01() < t_here ? 1 : 0;
+        auto mid = std::stable_partition(order.begin(), order.end(),
+                                         [&](std::uint32_t j) { return library_[j].style == want; });
+        if (!(uniform01() < (want == 0 ? t_here : 1.0 - t_here))) order.erase(mid, order.end());
+      }
       int tries = 0;
       for (std::uint32_t j : order) {
         if (tries++ >= params_.patch.tries) break;
@@ -2088,7 +2268,8 @@ class Grower {
       }
       if (!params_.fallback) return;
       ++stats_.fallback;
-      parametric_step(v, hierarchy_ ? phase_level_[phase_arterial_ ? 0 : 1] : 0, NAN);
+      apply_style_shape(t_here);
+      parametric_step(v, hierarchy_ ? phase_level_[phase_arterial_ ? 0 : 1] : 0, guide_here_);
       return;
     }
     // Fronts: every connector leaving within angle_window of one of v's streets, placed with its
@@ -2096,13 +2277,21 @@ class Grower {
     // shorter length); each patch keeps its best pair.
     const double window = params_.patch.angle_window * kPi / 180.0;
     const double cap = 3.0 * street_stats_.length_mean;
+    int level = 0;
+    // Interpolation: the patch comes from the second style with probability t; when none of the
+    // drawn style is legal, the other style is tried with its own probability (so a style with
+    // weight near 0 does not leak in wherever the other's patches fail; at t = 0 or 1, one style).
+    const int want = styles_ > 1 ? (uniform01() < t_here ? 1 : 0) : -1;
+    int passes = 1;
+    if (styles_ > 1 && t_here > 0.0 && t_here < 1.0) passes = uniform01() < (want == 0 ? t_here : 1.0 - t_here) ? 2 : 1;
+    for (int pass = 0; pass < passes; ++pass) {
+    const int style = want < 0 ? -1 : (pass == 0 ? want : 1 - want);
     ++stamp_;
     if (best_.size() < library_.size()) {
       best_.resize(library_.size());
       best_stamp_.resize(library_.size(), 0);
     }
     touched_.clear();
-    int level = 0;
     for (std::size_t k = 0; k < nodes_[v].edges.size(); ++k) {
       std::uint32_t e = nodes_[v].edges[k];
       const int street_level = edges_[e].level;
@@ -2115,7 +2304,7 @@ class Grower {
       const bool whole = edges_[e].source >= 0;
       const double street_reach = reach_of(street);
       Point q = point_at(street, std::min(street_len, probe_));
-      double angle = std::atan2(q.y - p.y, q.x - p.x);
+      double angle = std::atan2(q.y - p.y, q.x - p.x) - warp_;  // in the library's frame
       int span = static_cast<int>(std::ceil(window / (2.0 * kPi / kBuckets)));
       int centre = bucket_of(angle);
       for (int db = -span; db <= span; ++db) {
@@ -2135,14 +2324,14 @@ class Grower {
           const LibPatch& lp = library_[c.patch];
           if (lp.max_uses > 0 && lp.uses >= lp.max_uses) continue;
           if (!in_phase(lp)) continue;
+          if (style >= 0 && lp.style != style) continue;
           const Polyline& line = lp.edges[c.edge].line;
           double bound = best_stamp_[c.patch] == stamp_ ? std::min(best_[c.patch].d, max_distance_) : max_distance_;
           // Both start at v: the Hausdorff distance is at least the difference of their reaches.
           if (whole && std::abs(c.reach - street_reach) > bound) continue;
           double s = whole ? std::max(street_len, c.length) : std::min(street_len, c.length);
           Polyline placed = substring(line, 0.0, s);
-          Point t = p - line[0];
-          for (Point& x : placed) x = x + t;
+          for (Point& x : placed) x = warped(x, line[0], p);
           Polyline cut = substring(street, 0.0, s);
           double d = hausdorff(placed, cut, bound);
           if (d > bound || (best_stamp_[c.patch] == stamp_ && d >= best_[c.patch].d)) continue;
@@ -2176,6 +2365,7 @@ class Grower {
         return;
       }
     }
+    }  // pass
     // A front that two patches already reached is connected: the fallback only continues streets
     // that would otherwise end where the example did not end them.
     // Levels: an arterial street no arterial patch continues ends there (the local phase fills
@@ -2202,7 +2392,8 @@ class Grower {
     ++stats_.fallback;
     // Levels: the local phase's streets are local streets, also where they continue an arterial.
     if (hierarchy_ && !phase_arterial_ && level_is_main(level)) level = phase_level_[1];
-    parametric_step(v, level, NAN);
+    apply_style_shape(t_here);
+    parametric_step(v, level, guide_here_);
   }
   struct BestPair {
     double d;
@@ -2221,7 +2412,7 @@ class Grower {
   // legal as a whole.
   bool place_patch(std::uint32_t v, std::uint32_t j, Point anchor, std::uint32_t skip, bool local_only = false) {
     const LibPatch& lp = library_[j];
-    const Point t = nodes_[v].p - anchor;
+    const Point at_v = nodes_[v].p;
     // Patch vertices (edge ends): an existing node (>= 0), or a new one (-(index into fresh) - 1).
     std::unordered_map<MillimetreKey, std::int64_t, MillimetreKeyHash> vertex;
     std::vector<Point> fresh;
@@ -2231,7 +2422,7 @@ class Grower {
       auto it = vertex.find(key);
       if (it != vertex.end()) return it->second;
       std::int64_t id;
-      Point at = q + t;
+      Point at = warped(q, anchor, at_v);
       if (key == anchor_key) {
         id = v;
       } else {
@@ -2276,9 +2467,9 @@ class Grower {
         continue;
       }
       Planned pl{{}, a, b, e.level, e.role == PatchEdgeRole::connector && b < 0, e.role == PatchEdgeRole::connector,
-                 e.line.front() + t, e.line.back() + t, k, false};
+                 warped(e.line.front(), anchor, at_v), warped(e.line.back(), anchor, at_v), k, false};
       pl.line.reserve(e.line.size());
-      for (Point q : e.line) pl.line.push_back(q + t);
+      for (Point q : e.line) pl.line.push_back(warped(q, anchor, at_v));
       pl.line.front() = pos(a);
       pl.line.back() = pos(b);
       plan.push_back(std::move(pl));
@@ -2498,17 +2689,18 @@ class Grower {
       for (std::size_t k = 1; k < pl.line.size(); ++k) {
         std::uint32_t next = k + 1 == pl.line.size() ? node_id(pl.b) : add_node(pl.line[k]);
         if (k + 1 < pl.line.size()) completed_[next] = 1;
-        add_edge(prev, next, pl.level, lp.id, 0);
+        add_edge(prev, next, pl.level, lp.id, lp.style);
         ++stats_.accepted;
         ++stats_.patch_edges;
         prev = next;
         line_nodes_.push_back(next);
       }
+      if (lp.edges[pl.edge].role == PatchEdgeRole::dead_end) example_dead_end_.insert(prev);
       if (seeds_local) {  // the local junctions of the example along this arterial street
         const LibEdge& le = lp.edges[pl.edge];
         for (const auto& [vk, local] : le.local_seeds) {
           if (vk >= line_nodes_.size() || (pl.clipped && vk + 1 == line_nodes_.size())) continue;
-          pending_local_.push_back({line_nodes_[vk], local, le.line[vk]});
+          pending_local_.push_back({line_nodes_[vk], local, le.line[vk], warp_});
         }
       }
       if (pl.open_end) {
@@ -2550,6 +2742,7 @@ class Grower {
     }
     ++library_[j].uses;
     ++stats_.patches_placed;
+    stats_.patches_b_placed += lp.style == 1;
     stats_.arterial_patches_placed += seeds_local;
     return true;
   }

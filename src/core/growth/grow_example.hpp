@@ -66,6 +66,18 @@ struct PatchGrowParams {
                               // 0: 4 % of the mean street length
   bool levels = true;         // patches tagged arterial grow first, then the others from seeds along the
                               // arterial streets (Nishida's section 4.4); false: all patches at once
+  // Interpolation of two styles (Nishida et al. 2016, section 5): with GrowInput::patches_b, a
+  // front draws its patch from the second library with probability t (else the first; when none of
+  // the drawn one is legal, the other is tried with its own probability), and the statistical
+  // fallback takes the two styles' length and curvature statistics interpolated with weight t.
+  // GrowParams::blend (gradient or points, one point per library: Gaussian fall-off from each
+  // style's seed) makes t vary over the region.
+  double t = 0.0;
+  // Dangling-edge post-process (Nishida et al.): after growth, a street ending in a dead end is cut
+  // back to its junction unless the dead end is the example's (the end of a patch's dead-end
+  // edge), the street ends at the region's edge, an obstacle, water or a slope too steep (a step
+  // on is illegal), or it is a bridge or the existing network.
+  bool prune_dangling = false;
 };
 
 struct GrowParams {
@@ -112,6 +124,9 @@ struct GrowInput {
   std::vector<Polyline> guide;           // direction control: θ follows the tangent of the nearest guide
                                          // point (undirected) instead of node matching; may be empty
   std::vector<Patch> patches;            // use_patches: the patch library (extract_patches)
+  std::vector<Patch> patches_b;          // use_patches: a second style's library (PatchGrowParams::t); empty:
+                                         // none. With patches, the guide warps the growth: each patch is turned
+                                         // so the library's dominant direction follows the nearest tangent
   // Blending by a weight raster: band k is the weight of example k (>= 0), sampled bilinearly at
   // the node; where every band is nodata, or all weights are 0, blend (gradient or points) decides,
   // and without one every example is equally likely. Empty: no weight raster.
@@ -161,6 +176,9 @@ struct GrowStats {
   std::size_t patch_illegal = 0;   // drawn patches that failed a legality check
   std::size_t patch_edges = 0;     // output segments copied from patches
   std::size_t patches_dropped = 0; // library patches that cross themselves (never used)
+  std::size_t patches_b_placed = 0;  // interpolation: of patches_placed, those from the second library
+  std::size_t dangling_pruned = 0;   // prune_dangling: output segments cut back from dangling streets
+  std::size_t dead_ends_kept = 0;    // prune_dangling: dead ends left (the example's, or blocked)
   std::size_t arterial_patches_placed = 0;  // levels: patches placed in the arterial phase
   std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
