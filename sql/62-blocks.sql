@@ -28,8 +28,11 @@ CREATE FUNCTION streetgen._streetgen_faces_minus(faces bytea[], pieces bytea[], 
 -- The blocks of MODEL whose faces lie inside AREA (all of them when AREA is NULL), from its
 -- stored sections, junctions and sidewalks, into pg_temp._sg_blocks. With CHANGED (the box
 -- around every street surface and sidewalk a refresh rewrote, old and new), a face that keeps
--- its key and lies off CHANGED keeps its stored block: nothing it is cut by has changed (an
+-- its key and does not meet CHANGED keeps its stored block: nothing it is cut by has changed (an
 -- edit of one street recomputed every block of its box, twenty-five faces on Liechtenstein).
+-- The face itself must miss the box, not only its own box: Liechtenstein's faces are large and
+-- ragged, and over 40 random edits the faces cut again fell from 735,000 m² to 429,000 m² on
+-- average.
 -- The faces to cut again go to the overlay in one call, with every ground-level piece in the box
 -- around them (the overlay finds each face's own pieces with a tree).
 CREATE FUNCTION streetgen._compute_blocks(model text, area geometry, changed geometry DEFAULT NULL)
@@ -63,7 +66,7 @@ BEGIN
       FROM (SELECT ('x' || substr(md5(ST_AsEWKB(ST_Normalize(g.face))), 1, 16))::bit(64)::bigint AS id, g.face
               FROM pg_temp._sg_faces g) AS f
            LEFT JOIN LATERAL (SELECT b.id, b.geom, b.axis_ids, b.kind FROM %1$I.block b
-                               WHERE $2 IS NOT NULL AND b.id = f.id AND NOT (f.face && $2)) AS kept ON true,
+                               WHERE $2 IS NOT NULL AND b.id = f.id AND NOT ST_Intersects(f.face, $2)) AS kept ON true,
            LATERAL (SELECT array_agg(DISTINCT s.axis_id ORDER BY s.axis_id) AS axis_ids,
                            bool_and(a.oneway OR a.road_class LIKE '%%\_link') AS one_way_or_link,
                            bool_or(a.road_class LIKE '%%\_link') AS has_link, count(DISTINCT s.axis_id) AS axis_count
