@@ -244,6 +244,32 @@ TEST(GrowExample, ExtendsAnExistingNetworkWithoutCrossingIt) {
   EXPECT_GT(touching_border, 5u);  // the growth is attached to the network around the hole
 }
 
+TEST(GrowExample, FreeEndsHalfASegmentShortOfAStreetJoinIt) {
+  // The 80 m grid from (500, 500) with rotation off puts nodes at x = 500 + 80 k; an existing street
+  // at x = 780 is 40 m beyond the column x = 740, half a mean segment. The default snap (0.55 mean
+  // segments, 44 m) joins the ends copied towards it to the street; at 0.45 (36 m) they stayed
+  // fronts 40 m short of it and grew a parallel street there.
+  Fixture f;
+  GrowInput in = f.input();
+  in.existing = {{{780.0, 0.0}, {780.0, 1000.0}}};
+  GrowParams p;
+  p.seed = 4;
+  p.rotation = false;
+  p.max_edges = 400;
+  GrowResult r = grow_example(f.geos, in, p);
+  EXPECT_NEAR(r.stats.snap, 0.55 * 80.0, 1e-9);
+  ASSERT_GT(r.edges.size(), 100u);
+  std::size_t short_of_street = 0, joined = 0;
+  for (const GrownEdge& e : r.edges) {
+    for (Point q : {e.a, e.b}) {
+      short_of_street += q.x > 730.0 && q.x < 770.0;
+      joined += std::abs(q.x - 780.0) < 1e-6;
+    }
+  }
+  EXPECT_EQ(short_of_street, 0u);
+  EXPECT_GT(joined, 3u);
+}
+
 TEST(GrowParametric, GrowsAPlanarNetworkWithinTheParameters) {
   Fixture f;
   GrowInput in;

@@ -87,7 +87,7 @@ struct GrowParams {
   std::uint64_t seed = 0;      // the only source of randomness
   std::size_t max_edges = 10000;
   bool match_levels = true;    // match incident edges of the same road class only
-  double snap = 0.0;           // metres: snap distance for free ends; 0: 0.45 x mean example segment length
+  double snap = 0.0;           // metres: snap distance for free ends; 0: 0.55 x mean example segment length (patches: 0.45)
   double min_angle = 20.0;     // degrees: smallest angle between two edges at a node
   std::size_t candidates = 16; // node matches compared by neighbourhood matching per step
   bool parametric = false;     // grow by parameters only (no example): grow_parametric
