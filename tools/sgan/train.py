@@ -105,12 +105,18 @@ def main():
                          "discriminator wins by telling binary from non-binary pixels")
     ap.add_argument("--noise-decay", type=int, default=4000)
     ap.add_argument("--lr", type=float, default=2e-4)
+    ap.add_argument("--lr-d", type=float, default=None,
+                    help="discriminator learning rate (default --lr); lower it when D(fake) falls below ~0.05 early")
     ap.add_argument("--beta1", type=float, default=0.5)
     ap.add_argument("--min-road", type=float, default=0.05, help="redraw patches with less road than this share")
     ap.add_argument("--augment", action="store_true", help="random 90-degree rotations and flips of patches")
     ap.add_argument("--crop", default=None, help="x,y,w,h: train on this window of the raster only")
     ap.add_argument("--metres-per-pixel", type=float, default=None,
                     help="pixel size stored in the generator (default: the raster's, or 3 without one)")
+    ap.add_argument("--share-weight", type=float, default=0.0,
+                    help="weight of a road-share term in the generator loss: (mean road of the fake batch - mean "
+                         "road of the real batch)^2, road = (tanh + 1) / 2. Without it the samples drew too much "
+                         "road (0.56-0.66 against 0.48 on new-york at 3 m/px)")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--threads", type=int, default=1, help="torch.set_num_threads (default 1: shared machine)")
     ap.add_argument("--sample-side", type=int, default=257, help="side of the per-epoch sample PNG")
@@ -139,7 +145,7 @@ def main():
     G.apply(sgan.init_weights)
     D.apply(sgan.init_weights)
     opt_g = torch.optim.Adam(G.parameters(), lr=args.lr, betas=(args.beta1, 0.999))
-    opt_d = torch.optim.Adam(D.parameters(), lr=args.lr, betas=(args.beta1, 0.999))
+    opt_d = torch.optim.Adam(D.parameters(), lr=args.lr_d or args.lr, betas=(args.beta1, 0.999))
     bce = nn.BCEWithLogitsLoss()
     start_epoch = 0
     if args.resume:
@@ -171,6 +177,7 @@ def main():
         for _ in range(args.iters_per_epoch):
             iteration += 1
             real = data.batch(args.batch)
+            real_clean = real
             z = torch.rand(args.batch, args.noise_channels, args.noise_side, args.noise_side) * 2.0 - 1.0
             fake = G(z)
             # Discriminator: every patch logit of a real image says 1, of a fake one 0.
@@ -191,6 +198,9 @@ def main():
             opt_g.zero_grad()
             out = D(seen_fake)
             g_loss = bce(out, torch.ones_like(out))
+            if args.share_weight > 0:
+                share_gap = ((fake + 1.0) * 0.5).mean() - ((real_clean + 1.0) * 0.5).mean()
+                g_loss = g_loss + args.share_weight * share_gap * share_gap
             g_loss.backward()
             opt_g.step()
             writer.writerow([epoch, iteration, f"{d_loss.item():.5f}", f"{g_loss.item():.5f}",
