@@ -154,8 +154,9 @@ def main():
     G.apply(sgan.init_weights)
     if args.out_init_std:
         # The DCGAN init (std 0.02) gives the tanh layer pre-activations of about +-0.2: grey images that
-        # the discriminator tells from the binary real patches at once, and Adam needs ~1000 steps of
-        # 2e-4 to scale the weights up. Start near the real contrast and the real road share instead.
+        # the discriminator tells from the binary real patches at once (D(fake) 0.008 by iteration 150 on
+        # paris at 6 m/px), while Adam's steps of 2e-4 take hundreds of iterations to scale the weights
+        # up. Start near the real contrast and the real road share instead (D(fake) stayed 0.1-0.3).
         last = G.net[-2]
         nn.init.normal_(last.weight, 0.0, args.out_init_std)
         share = float(np.clip(road.mean(), 0.02, 0.98))
