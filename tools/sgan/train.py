@@ -169,7 +169,13 @@ def main():
     if args.resume:
         state = torch.load(args.resume)
         G.load_state_dict(state["generator"])
-        D.load_state_dict(state["discriminator"])
+        d_state = state["discriminator"]
+        if not any(k.startswith("out.") for k in d_state):
+            # Checkpoints before --minibatch-std kept the last convolution at the end of D.net.
+            last = max(int(k.split(".")[1]) for k in d_state if k.startswith("net."))
+            d_state = {("out." + k.split(".", 2)[2] if k.startswith(f"net.{last}.") else k): v
+                       for k, v in d_state.items()}
+        D.load_state_dict(d_state)
         opt_g.load_state_dict(state["opt_g"])
         opt_d.load_state_dict(state["opt_d"])
         torch.set_rng_state(state["torch_rng"])
