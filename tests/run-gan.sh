@@ -4,7 +4,7 @@
 # road raster (3 m/px, roads 15 px wide), train two epochs of three iterations (tools/sgan/train.py),
 # then tests/gan/check_gan.py: outputs of the training, export, parity of the SQL sampler with
 # PyTorch (< 1e-4), and gan_sample's size and determinism; a second training with the same seed must
-# write the same generator file.
+# write the same generator file. Then tests/gan/check_models.py on the shipped generators.
 source "$(dirname "$0")/lib.sh"
 mark=$(log_mark)
 fresh_db streetgen_gan streetgen
@@ -30,5 +30,12 @@ if [ $status -eq 0 ]; then
   fi
 fi
 [ $status -eq 0 ] && { /usr/bin/python3 "$SRC"/tests/gan/check_gan.py streetgen_gan "$work/train" "$work" || status=$?; }
+# The shipped generators (models/sgan): parity, and a sample traced back into a graph against the
+# example city rasterised and extracted the same way (dead-end share within 20 %: issue 9).
+if ls "$SRC"/models/sgan/*.sgan >/dev/null 2>&1; then
+  started=$(date +%s)
+  /usr/bin/python3 "$SRC"/tests/gan/check_models.py streetgen_gan "$SRC/models/sgan" "${STREETGEN_SHARED_DATA:?}" || status=1
+  echo "gan: shipped generators checked in $(( $(date +%s) - started )) s"
+fi
 assert_no_crash_since "$mark" || status=1
 exit $status

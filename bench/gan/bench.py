@@ -33,7 +33,7 @@ def main():
     weights = open(path, "rb").read()
     folded, _ = sgan.read_generator(path)
     folded.eval()
-    n = sgan.noise_size(side, folded.layer_count)
+    n = sgan.noise_size(side, folded.layer_count, folded.kernel, folded.stride, folded.padding)
     print(f"PyTorch {torch.__version__}; generator {path}: {len(weights)} bytes; sample {side} x {side} px from noise {folded.noise_channels} x "
           f"{n} x {n}; median of {runs} runs after a warm-up")
     with psycopg.connect(autocommit=True) as conn:

@@ -3,7 +3,7 @@
 # from 25 x 25 noise) on one backend, against PyTorch's own forward pass of the same generator on
 # the same noise in the same run (1 and 2 threads), as a ratio.
 #
-#   bash bench/gan/run.sh [GENERATOR_FILE]   default: tools/sgan/models/*.sgan if one is shipped,
+#   bash bench/gan/run.sh [GENERATOR_FILE]   default: models/sgan/*.sgan if one is shipped,
 #                                            else a random generator of the shipped shape
 #   SIDE=1025 RUNS=9 bash bench/gan/run.sh   another size, more runs
 # Nothing is built or installed here: the extension must be installed for the pg_config on PATH.
@@ -15,7 +15,7 @@ runs="${RUNS:-5}"
 work=$(mktemp -d /tmp/streetgen-bench-gan.XXXXXX)
 generator="${1:-}"
 if [ -z "$generator" ]; then
-  generator=$(ls "$repo"/tools/sgan/models/*.sgan 2>/dev/null | head -1 || true)
+  generator=$(ls "$repo"/models/sgan/*.sgan 2>/dev/null | head -1 || true)
 fi
 if [ -z "$generator" ]; then
   generator="$work/random.sgan"

@@ -19,7 +19,9 @@ import sgan  # noqa: E402
 def load_checkpoint_generator(path):
     state = torch.load(path)
     args = state["args"]
-    g = sgan.Generator(args["noise_channels"], tuple(int(v) for v in args["gen_channels"].split(",")))
+    kernel = args.get("gen_kernel", sgan.KERNEL)  # checkpoints before --gen-kernel: 5
+    g = sgan.Generator(args["noise_channels"], tuple(int(v) for v in args["gen_channels"].split(",")), kernel,
+                       sgan.STRIDE, (kernel - 1) // 2)
     g.load_state_dict(state["generator"])
     g.eval()
     return g, state
