@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,16 @@ struct GrownRow {
   std::string road_class, origin;
   core::Bytes geom;
 };
+
+// Phase 1: the `blend` parameter of either grower; anything else is 22023.
+inline core::BlendParams::Mode blend_mode_of(const char* mode) {
+  if (strcmp(mode, "none") == 0) return core::BlendParams::Mode::none;
+  if (strcmp(mode, "gradient") == 0) return core::BlendParams::Mode::gradient;
+  if (strcmp(mode, "points") == 0) return core::BlendParams::Mode::points;
+  ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("blend must be 'gradient' or 'points'"),
+                  errdetail("It is '%s'.", mode)));
+  return core::BlendParams::Mode::none;  // (not reached: ereport(ERROR) does not return)
+}
 
 // Phase 2: the region and the obstacles, parsed into `input` (which points into `keep`). Returns
 // the region's SRID, the output's.

@@ -342,16 +342,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   params.guide_reach = PG_GETARG_FLOAT8(kGGuideReach);
   params.patch.t = PG_GETARG_FLOAT8(kGT);
   const char* blend_mode = TextDatumGetCString(PG_GETARG_DATUM(kGBlendMode));
-  if (strcmp(blend_mode, "none") == 0) {
-    params.blend.mode = core::BlendParams::Mode::none;
-  } else if (strcmp(blend_mode, "gradient") == 0) {
-    params.blend.mode = core::BlendParams::Mode::gradient;
-  } else if (strcmp(blend_mode, "points") == 0) {
-    params.blend.mode = core::BlendParams::Mode::points;
-  } else {
-    ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("blend must be 'gradient' or 'points'"),
-                    errdetail("It is '%s'.", blend_mode)));
-  }
+  params.blend.mode = pg::blend_mode_of(blend_mode);
   params.blend.angle = PG_GETARG_FLOAT8(kGBlendAngle);
   params.blend.sigma = PG_GETARG_FLOAT8(kGBlendSigma);
   params.patch.prune_dangling = PG_GETARG_BOOL(kGPruneDangling);
