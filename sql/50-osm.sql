@@ -316,3 +316,75 @@ END
 $$;
 COMMENT ON FUNCTION streetgen.load_osm_ways(text, regclass) IS
   'Loads staged OSM ways (source, tags, geom) into a model''s axes; returns counts loaded, not driveable, degenerate';
+
+-- Street parking mapped as its own area. OSM's parking:<side>=separate says a road's parking is
+-- drawn as separate objects: street-side bays (amenity=parking, parking=street_side) along the
+-- curb, which a city's carriageway includes. Those areas are not axes, so their depth becomes the
+-- roadway's: for each axis side tagged separate (parking:<side> or parking:both), the staged
+-- areas reaching within 2 m of that side's half roadway are clipped to the side (a one-sided,
+-- flat-ended buffer) and measured along the axis. When they line at least half of the side,
+-- the side gets tag parking:<side>:separate_width (a streetgen key, not OSM's: the mean depth,
+-- area over length lined, 1 to 10 m) and the roadway widens by it, so the engine draws a
+-- parking lane there (src/core/streets/lanes.cpp). Sides lined less are left alone: a lane along
+-- the whole side would be mostly where no bay is. Sides are those of the stored axis, as the
+-- engine reads parking tags. Sides that already carry the key are left alone (loading twice
+-- does not widen twice).
+-- STAGING: source text, tags jsonb, geom (multi)polygons in any SRID with a known transformation.
+CREATE FUNCTION streetgen.load_osm_street_parking(model text, staging regclass,
+    OUT sides_widened bigint, OUT areas_used bigint)
+  RETURNS record
+  LANGUAGE plpgsql VOLATILE
+  SET search_path FROM CURRENT
+  AS $$
+DECLARE
+  model_srid integer := streetgen.model_srid(model);
+BEGIN
+  IF staging IS NULL THEN
+    RAISE EXCEPTION 'staging must not be null' USING ERRCODE = 'null_value_not_allowed';
+  END IF;
+  EXECUTE format($q$
+    WITH area AS MATERIALIZED (
+      SELECT s.source, ST_CollectionExtract(ST_MakeValid(ST_Transform(s.geom, %2$s)), 3) AS geom
+        FROM %3$s AS s
+       WHERE ST_Dimension(s.geom) = 2 AND ST_SRID(s.geom) <> 0 AND NOT ST_IsEmpty(s.geom)
+    ), side AS (
+      SELECT a.id, a.geom, a.roadway_width, s.side
+        FROM %1$I.axis AS a, (VALUES ('left'), ('right')) AS s(side)
+       WHERE coalesce(a.tags->>('parking:' || s.side), a.tags->>'parking:both') = 'separate'
+         AND NOT a.tags ? ('parking:' || s.side || ':separate_width')
+    ), lining AS (
+      SELECT d.id, d.side, d.geom AS axis_geom, a.source, c.part
+        FROM side AS d
+        JOIN area AS a ON ST_DWithin(a.geom, d.geom, d.roadway_width / 2 + 2)
+        CROSS JOIN LATERAL (SELECT ST_CollectionExtract(ST_Intersection(a.geom,
+                              ST_Buffer(d.geom, d.roadway_width / 2 + 12, 'side=' || d.side || ' endcap=flat')), 3) AS part) AS c
+       WHERE ST_Area(c.part) > 0.5
+    ), span AS (
+      SELECT l.id, l.side, l.source, ST_Area(l.part) AS area, ST_Length(l.axis_geom) AS axis_length,
+             (SELECT numrange(min(f)::numeric, max(f)::numeric)
+                FROM (SELECT ST_LineLocatePoint(l.axis_geom, p.geom) AS f FROM ST_DumpPoints(l.part) AS p) AS x) AS along
+        FROM lining AS l
+    ), measured AS (
+      SELECT id, side, array_agg(source) AS sources,
+             (SELECT sum(upper(r) - lower(r)) FROM unnest(range_agg(along)) AS r)::double precision AS lined,
+             sum(area) / nullif(sum(upper(along) - lower(along))::double precision * min(axis_length), 0) AS depth
+        FROM span GROUP BY id, side
+    ), kept AS (
+      SELECT id, side, sources, round(depth::numeric, 1) AS depth
+        FROM measured WHERE lined >= 0.5 AND depth BETWEEN 1 AND 10
+    ), widened AS (
+      SELECT id, jsonb_object_agg('parking:' || side || ':separate_width', depth::text) AS tags,
+             sum(depth)::double precision AS extra
+        FROM kept GROUP BY id
+    ), updated AS (
+      UPDATE %1$I.axis AS a SET tags = a.tags || w.tags, roadway_width = least(200, a.roadway_width + w.extra)
+        FROM widened AS w WHERE a.id = w.id
+      RETURNING a.id
+    )
+    SELECT (SELECT count(*) FROM kept WHERE id IN (SELECT id FROM updated)),
+           (SELECT count(DISTINCT s) FROM kept, unnest(sources) AS s WHERE id IN (SELECT id FROM updated))
+  $q$, model, model_srid, staging) INTO sides_widened, areas_used;
+END
+$$;
+COMMENT ON FUNCTION streetgen.load_osm_street_parking(text, regclass) IS
+  'Widens the roadway of axis sides tagged parking:<side>=separate by the depth of the staged street-side parking areas lining at least half of the side; returns sides widened and areas used';

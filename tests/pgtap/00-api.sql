@@ -46,6 +46,7 @@ SELECT set_eq(
     ('streetgen.model_network_stats(text,double precision,geometry,boolean,boolean)', 'streetgen.network_metrics', 's', false),
     ('streetgen.compare_networks(streetgen.network_metrics,streetgen.network_metrics)', 'SETOF record', 'i', false),
     ('streetgen.load_osm_ways(text,regclass)', 'record', 'v', false),
+    ('streetgen.load_osm_street_parking(text,regclass)', 'record', 'v', false),
     ('streetgen._settings_vector(jsonb)', 'double precision[]', 's', false),
     ('streetgen._create_output_tables(text,integer)', 'void', 'v', false),
     ('streetgen._streetgen_street_surfaces(bigint[],bytea[],double precision[],double precision[],integer[],double precision[],double precision[],bigint[],bigint[],double precision[],integer[],boolean[],text[],double precision[],double precision[])', 'SETOF record', 'i', false),
@@ -111,6 +112,8 @@ SELECT is(pg_temp.argument_names('streetgen.roadway_borders(geometry,double prec
           'roadway_borders(axis, roadway_width) -> (side, geom)');
 SELECT is(pg_temp.argument_names('streetgen.load_osm_ways(text,regclass)'), 'model,staging,loaded,not_driveable,degenerate',
           'load_osm_ways(model, staging) -> (loaded, not_driveable, degenerate)');
+SELECT is(pg_temp.argument_names('streetgen.load_osm_street_parking(text,regclass)'), 'model,staging,sides_widened,areas_used',
+          'load_osm_street_parking(model, staging) -> (sides_widened, areas_used)');
 SELECT is(pg_temp.argument_names('streetgen.create_model(text,integer)'), 'name,srid', 'create_model(name, srid)');
 SELECT is(pg_temp.argument_names('streetgen.compare_networks(streetgen.network_metrics,streetgen.network_metrics)'),
           'reference,candidate,metric,kind,reference_value,candidate_value,relative_difference,ks,wasserstein,score',

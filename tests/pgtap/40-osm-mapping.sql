@@ -138,5 +138,51 @@ INSERT INTO staging_out_of_range VALUES ('osm:way/13', '{"highway": "residential
 SELECT throws_ok($$SELECT * FROM streetgen.load_osm_ways('staged', 'staging_out_of_range')$$, '22023', NULL,
                  'a latitude of 95 degrees cannot be transformed: a clear 22023, not an internal error');
 
+-- Street parking mapped as its own area (parking:<side>=separate): the bays lining at least half
+-- of a side widen its roadway by their depth; other sides stay as they were.
+SELECT streetgen.create_model('parked', 32631);
+INSERT INTO parked.axis (id, geom, roadway_width, speed_kmh, road_class, tags) VALUES
+  (1, 'SRID=32631;LINESTRING(0 0, 100 0)', 8, 30, 'residential', '{"parking:left": "lane", "parking:right": "separate"}'),
+  (2, 'SRID=32631;LINESTRING(0 100, 100 100)', 8, 30, 'residential', '{"parking:both": "separate"}'),
+  (3, 'SRID=32631;LINESTRING(0 200, 100 200)', 8, 30, 'residential', '{}');
+CREATE TEMP TABLE staging_parking (source text, tags jsonb, geom geometry);
+INSERT INTO staging_parking VALUES
+  -- axis 1, right (south): two 5 m deep bays along 60 % of it; left (north, a parking lane, not
+  -- separate): a bay all along, which must not count
+  ('osm:way/21', '{"amenity": "parking", "parking": "street_side"}', 'SRID=32631;POLYGON((0 -3, 30 -3, 30 -8, 0 -8, 0 -3))'),
+  ('osm:way/22', '{"amenity": "parking", "parking": "street_side"}', 'SRID=32631;POLYGON((40 -3, 70 -3, 70 -8, 40 -8, 40 -3))'),
+  ('osm:way/23', '{"amenity": "parking", "parking": "street_side"}', 'SRID=32631;POLYGON((0 4, 100 4, 100 9, 0 9, 0 4))'),
+  -- axis 2: 2 m deep on the right along 60 %, on the left along 30 % only
+  ('osm:way/24', '{"amenity": "parking", "parking": "street_side"}', 'SRID=32631;POLYGON((0 96, 60 96, 60 98, 0 98, 0 96))'),
+  ('osm:way/25', '{"amenity": "parking", "parking": "street_side"}', 'SRID=32631;POLYGON((0 103, 30 103, 30 108, 0 108, 0 103))'),
+  -- axis 3 has no parking:*=separate: its bay is not its roadway
+  ('osm:way/26', '{"amenity": "parking", "parking": "street_side"}', 'SRID=32631;POLYGON((0 196, 100 196, 100 191, 0 191, 0 196))'),
+  -- not an area: ignored
+  ('osm:way/27', '{"amenity": "parking", "parking": "street_side"}', 'SRID=32631;LINESTRING(0 -3, 100 -3)');
+SELECT results_eq($$SELECT sides_widened, areas_used FROM streetgen.load_osm_street_parking('parked', 'staging_parking')$$,
+                  $$VALUES (2::bigint, 3::bigint)$$, 'two sides widened, by three bays');
+SELECT results_eq($$SELECT id, roadway_width, tags->>'parking:left:separate_width', tags->>'parking:right:separate_width'
+                      FROM parked.axis ORDER BY id$$,
+                  $$VALUES (1::bigint, 13::float8, NULL, '5.0'), (2, 10, NULL, '2.0'), (3, 8, NULL, NULL)$$,
+                  'the lined sides widen by the bays'' depth; a side lined along 30 %, a parking lane side and an untagged road do not');
+SELECT results_eq($$SELECT sides_widened, areas_used FROM streetgen.load_osm_street_parking('parked', 'staging_parking')$$,
+                  $$VALUES (0::bigint, 0::bigint)$$, 'loading again widens nothing twice');
+SELECT is((SELECT roadway_width FROM parked.axis WHERE id = 1), 13::float8, 'the width after the second load');
+SELECT streetgen.generate('parked');
+SELECT results_eq($$SELECT type, direction, width FROM parked.lane WHERE axis_id = 1 ORDER BY lane_index$$,
+                  $$VALUES ('parking', 'backward', 2::float8), ('driving', 'backward', 3::float8),
+                           ('driving', 'forward', 3::float8), ('parking', 'forward', 5::float8)$$,
+                  'the engine draws the separate parking as a 5 m parking lane at the right curb');
+SELECT cmp_ok((SELECT abs(ST_YMin(ST_Collect(geom)) + 8) FROM parked.section WHERE axis_id = 1), '<', 1e-6::float8,
+              'the section reaches the far edge of the bays (3 m of traffic lane, then 5 m of bays)');
+SELECT cmp_ok((SELECT abs(ST_YMax(ST_Collect(geom)) - 5) FROM parked.section WHERE axis_id = 1), '<', 1e-6::float8,
+              'and the parking lane on the left still ends at 5 m');
+SELECT throws_ok($$SELECT * FROM streetgen.load_osm_street_parking('parked', NULL)$$, '22004', NULL,
+                 'street parking from a NULL staging table');
+SELECT throws_ok($$SELECT * FROM streetgen.load_osm_street_parking('parked', 'no_such_table')$$, '42P01', NULL,
+                 'street parking from a missing table');
+SELECT throws_ok($$SELECT * FROM streetgen.load_osm_street_parking('nope', 'staging_parking')$$, '42704', NULL,
+                 'street parking into an unknown model');
+
 SELECT * FROM finish();
 ROLLBACK;

@@ -296,6 +296,20 @@ TEST(PlanLanes, StreetParkingAtTheCurbs) {
   p = plan_lanes(input(2, false, {{"parking:right", "lane"}, {"parking:right:width", "wide"}}), 7.0);
   EXPECT_DOUBLE_EQ(p.lanes.back().width, 2.0);
   EXPECT_TRUE(noted(p, "lane_tag_ignored"));
+  // Separately mapped bays take the depth the importer measured along that side
+  // (parking:<side>:separate_width), and nothing without it.
+  p = plan_lanes(input(2, false, {{"parking:left", "lane"}, {"parking:right", "separate"},
+                                  {"parking:right:separate_width", "5.1"}}), 13.1);
+  EXPECT_EQ(layout(p), "parking/backward driving/backward driving/forward parking/forward");
+  EXPECT_DOUBLE_EQ(p.lanes.back().width, 5.1);
+  EXPECT_NEAR(p.lanes[1].width + p.lanes[2].width, 6.0, 1e-12);
+  EXPECT_TRUE(p.notes.empty());
+  EXPECT_EQ(street_parking_widths(input(2, false, {{"parking:both", "separate"}, {"parking:left:separate_width", "2"}})),
+            std::make_pair(2.0, 0.0));
+  EXPECT_EQ(plan_lanes(input(2, false, {{"parking:right", "separate"}}), 7.0).lanes.size(), 2u);
+  p = plan_lanes(input(2, false, {{"parking:right", "separate"}, {"parking:right:separate_width", "5 m"}}), 7.0);
+  EXPECT_EQ(p.lanes.size(), 2u);
+  EXPECT_TRUE(noted(p, "lane_tag_ignored"));
   // Parking that leaves no driving lane goes, and says so: the roadway is centred again.
   p = plan_lanes(input(2, false, {{"parking:both", "lane"}, {"parking:both:orientation", "perpendicular"}}), 11.0);
   EXPECT_EQ(layout(p), "driving/backward driving/forward");

@@ -124,7 +124,9 @@ SideExtras side_extras(const LaneInput& in, const std::string& base, std::vector
 // Street parking on one side of the roadway (OSM street parking scheme, `parking:<side>=lane`,
 // and the older `parking:lane:<side>=parallel|diagonal|perpendicular`): the width it takes in
 // the roadway, 0 when none. `half_on_kerb` puts half of it in the roadway; lay-bys
-// (`street_side`), kerbs and separately mapped parking take nothing. Widths from
+// (`street_side`) and kerbs take nothing, nor does separately mapped parking (`separate`) unless
+// the importer measured the bays along that side (`parking:<side>:separate_width`, a streetgen
+// key: they line at least half of it). Widths from
 // `parking:<side>:width` when tagged, else by orientation (LaneRules). OSM draws a way along
 // the middle of its traffic lanes (the `placement` default), so parking widens the roadway on
 // its side only.
@@ -146,6 +148,17 @@ double parking_width(const LaneInput& in, const std::string& side, const LaneRul
     static const std::set<std::string> outside = {"no", "separate", "street_side", "on_kerb", "shoulder", "yes", "none"};
     if (*v == "lane") share = 1.0;
     else if (*v == "half_on_kerb") share = 0.5;
+    else if (*v == "separate") {
+      // Separately mapped bays along the curb: the importer measured their depth
+      // (streetgen.load_osm_street_parking) and widened the roadway by it.
+      if (const std::string* w = first({"parking:" + side + ":separate_width"})) {
+        char* end = nullptr;
+        double depth = std::strtod(w->c_str(), &end);
+        if (end != w->c_str() && *end == '\0' && std::isfinite(depth) && depth >= 1.0 && depth <= 10.0) return depth;
+        notes.push_back({"lane_tag_ignored", "parking:" + side + ":separate_width=" + *w + " is not a width in metres (1..10)"});
+      }
+      return 0.0;
+    }
     else if (outside.count(*v) == 0) notes.push_back({"lane_tag_ignored", "parking:" + side + "=" + *v + " is not a known value"});
     orientation = first({"parking:" + side + ":orientation", "parking:both:orientation"});
   } else if (const std::string* o = first({"parking:lane:" + side, "parking:lane:both"})) {
