@@ -326,9 +326,9 @@ COMMENT ON FUNCTION streetgen.load_osm_ways(text, regclass) IS
 -- the side gets tag parking:<side>:separate_width (a streetgen key, not OSM's: the mean depth,
 -- area over length lined, 1 to 10 m) and the roadway widens by it, so the engine draws a
 -- parking lane there (src/core/streets/lanes.cpp). Sides lined less are left alone: a lane along
--- the whole side would be mostly where no bay is. Sides are those of the stored axis, as the
--- engine reads parking tags. Sides that already carry the key are left alone (loading twice
--- does not widen twice).
+-- the whole side would be mostly where no bay is. Sides are the way's, as its tags say (a
+-- oneway=-1 way is stored reversed: its right is the axis' left). Sides that already carry the
+-- key are left alone (loading twice does not widen twice).
 -- STAGING: source text, tags jsonb, geom (multi)polygons in any SRID with a known transformation.
 CREATE FUNCTION streetgen.load_osm_street_parking(model text, staging regclass,
     OUT sides_widened bigint, OUT areas_used bigint)
@@ -348,7 +348,11 @@ BEGIN
         FROM %3$s AS s
        WHERE ST_Dimension(s.geom) = 2 AND ST_SRID(s.geom) <> 0 AND NOT ST_IsEmpty(s.geom)
     ), side AS (
-      SELECT a.id, a.geom, a.roadway_width, s.side
+      -- side: as the way's tags say it; geom_side: of the stored axis (oneway=-1 ways are stored
+      -- reversed, see streetgen._lane_tags)
+      SELECT a.id, a.geom, a.roadway_width, s.side,
+             CASE WHEN lower(a.tags->>'oneway') IN ('-1', 'reverse')
+                  THEN CASE s.side WHEN 'left' THEN 'right' ELSE 'left' END ELSE s.side END AS geom_side
         FROM %1$I.axis AS a, (VALUES ('left'), ('right')) AS s(side)
        WHERE coalesce(a.tags->>('parking:' || s.side), a.tags->>'parking:both') = 'separate'
          AND NOT a.tags ? ('parking:' || s.side || ':separate_width')
@@ -357,7 +361,7 @@ BEGIN
         FROM side AS d
         JOIN area AS a ON ST_DWithin(a.geom, d.geom, d.roadway_width / 2 + 2)
         CROSS JOIN LATERAL (SELECT ST_CollectionExtract(ST_Intersection(a.geom,
-                              ST_Buffer(d.geom, d.roadway_width / 2 + 12, 'side=' || d.side || ' endcap=flat')), 3) AS part) AS c
+                              ST_Buffer(d.geom, d.roadway_width / 2 + 12, 'side=' || d.geom_side || ' endcap=flat')), 3) AS part) AS c
        WHERE ST_Area(c.part) > 0.5
     ), span AS (
       SELECT l.id, l.side, l.source, ST_Area(l.part) AS area, ST_Length(l.axis_geom) AS axis_length,

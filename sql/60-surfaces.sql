@@ -19,14 +19,24 @@ CREATE FUNCTION streetgen._streetgen_street_surfaces(
 
 -- The OSM tags that shape a street's lanes (and, by its street parking and placement, where its
 -- roadway lies), as "key=value" lines for the engine (sorted: equal tags give equal text, so the
--- update trigger can compare them).
+-- update trigger can compare them). The engine reads sides and directions along the stored axis:
+-- oneway=-1 ways are stored reversed by the importer, so their keys' left and right, forward and
+-- backward swap here (parking:left of the way is parking:right of the axis). placement, which
+-- counts lanes from the way's left, is passed as it is.
 CREATE FUNCTION streetgen._lane_tags(tags jsonb)
   RETURNS text
   LANGUAGE sql IMMUTABLE PARALLEL SAFE
   SET search_path FROM CURRENT
   AS $$
-    SELECT string_agg(t.key || '=' || replace(t.value, E'\n', ' '), E'\n' ORDER BY t.key)
-      FROM jsonb_each_text(CASE WHEN jsonb_typeof(tags) = 'object' THEN tags ELSE '{}' END) AS t
+    SELECT string_agg(k.key || '=' || replace(t.value, E'\n', ' '), E'\n' ORDER BY k.key)
+      FROM jsonb_each_text(CASE WHEN jsonb_typeof(tags) = 'object' THEN tags ELSE '{}' END) AS t,
+           LATERAL (SELECT CASE WHEN lower(tags->>'oneway') IN ('-1', 'reverse')
+                                THEN array_to_string(ARRAY(
+                                       SELECT CASE p WHEN 'left' THEN 'right' WHEN 'right' THEN 'left'
+                                                     WHEN 'forward' THEN 'backward' WHEN 'backward' THEN 'forward'
+                                                     ELSE p END
+                                         FROM unnest(string_to_array(t.key, ':')) WITH ORDINALITY AS u(p, i) ORDER BY i), ':')
+                                ELSE t.key END AS key) AS k
      WHERE t.key ~ '^(lanes|turn:lanes|cycleway|busway|parking|placement)(:|$)'
   $$;
 

@@ -145,6 +145,9 @@ INSERT INTO parked.axis (id, geom, roadway_width, speed_kmh, road_class, tags) V
   (1, 'SRID=32631;LINESTRING(0 0, 100 0)', 8, 30, 'residential', '{"parking:left": "lane", "parking:right": "separate"}'),
   (2, 'SRID=32631;LINESTRING(0 100, 100 100)', 8, 30, 'residential', '{"parking:both": "separate"}'),
   (3, 'SRID=32631;LINESTRING(0 200, 100 200)', 8, 30, 'residential', '{}');
+-- a oneway=-1 way drawn eastwards, stored reversed: its left (north) is the axis' right
+INSERT INTO parked.axis (id, geom, roadway_width, speed_kmh, road_class, oneway, tags) VALUES
+  (4, 'SRID=32631;LINESTRING(100 300, 0 300)', 3, 30, 'residential', true, '{"oneway": "-1", "parking:left": "separate"}');
 CREATE TEMP TABLE staging_parking (source text, tags jsonb, geom geometry);
 INSERT INTO staging_parking VALUES
   -- axis 1, right (south): two 5 m deep bays along 60 % of it; left (north, a parking lane, not
@@ -157,14 +160,16 @@ INSERT INTO staging_parking VALUES
   ('osm:way/25', '{"amenity": "parking", "parking": "street_side"}', 'SRID=32631;POLYGON((0 103, 30 103, 30 108, 0 108, 0 103))'),
   -- axis 3 has no parking:*=separate: its bay is not its roadway
   ('osm:way/26', '{"amenity": "parking", "parking": "street_side"}', 'SRID=32631;POLYGON((0 196, 100 196, 100 191, 0 191, 0 196))'),
+  -- axis 4: bays north of it, all along
+  ('osm:way/28', '{"amenity": "parking", "parking": "street_side"}', 'SRID=32631;POLYGON((0 301.5, 100 301.5, 100 306.5, 0 306.5, 0 301.5))'),
   -- not an area: ignored
   ('osm:way/27', '{"amenity": "parking", "parking": "street_side"}', 'SRID=32631;LINESTRING(0 -3, 100 -3)');
 SELECT results_eq($$SELECT sides_widened, areas_used FROM streetgen.load_osm_street_parking('parked', 'staging_parking')$$,
-                  $$VALUES (2::bigint, 3::bigint)$$, 'two sides widened, by three bays');
+                  $$VALUES (3::bigint, 4::bigint)$$, 'three sides widened, by four bays');
 SELECT results_eq($$SELECT id, roadway_width, tags->>'parking:left:separate_width', tags->>'parking:right:separate_width'
                       FROM parked.axis ORDER BY id$$,
-                  $$VALUES (1::bigint, 13::float8, NULL, '5.0'), (2, 10, NULL, '2.0'), (3, 8, NULL, NULL)$$,
-                  'the lined sides widen by the bays'' depth; a side lined along 30 %, a parking lane side and an untagged road do not');
+                  $$VALUES (1::bigint, 13::float8, NULL, '5.0'), (2, 10, NULL, '2.0'), (3, 8, NULL, NULL), (4, 8, '5.0', NULL)$$,
+                  'the lined sides widen by the bays'' depth (the reversed way''s left by the bays on the axis'' right); a side lined along 30 %, a parking lane side and an untagged road do not');
 SELECT results_eq($$SELECT sides_widened, areas_used FROM streetgen.load_osm_street_parking('parked', 'staging_parking')$$,
                   $$VALUES (0::bigint, 0::bigint)$$, 'loading again widens nothing twice');
 SELECT is((SELECT roadway_width FROM parked.axis WHERE id = 1), 13::float8, 'the width after the second load');
@@ -177,6 +182,11 @@ SELECT cmp_ok((SELECT abs(ST_YMin(ST_Collect(geom)) + 8) FROM parked.section WHE
               'the section reaches the far edge of the bays (3 m of traffic lane, then 5 m of bays)');
 SELECT cmp_ok((SELECT abs(ST_YMax(ST_Collect(geom)) - 5) FROM parked.section WHERE axis_id = 1), '<', 1e-6::float8,
               'and the parking lane on the left still ends at 5 m');
+SELECT results_eq($$SELECT type, direction, width FROM parked.lane WHERE axis_id = 4 ORDER BY lane_index$$,
+                  $$VALUES ('driving', 'forward', 3::float8), ('parking', 'forward', 5::float8)$$,
+                  'a reversed way''s parking:left is drawn at the stored axis'' right curb');
+SELECT cmp_ok((SELECT abs(ST_YMax(ST_Collect(geom)) - 306.5) FROM parked.section WHERE axis_id = 4), '<', 1e-6::float8,
+              'its section reaches the bays north of it');
 SELECT throws_ok($$SELECT * FROM streetgen.load_osm_street_parking('parked', NULL)$$, '22004', NULL,
                  'street parking from a NULL staging table');
 SELECT throws_ok($$SELECT * FROM streetgen.load_osm_street_parking('parked', 'no_such_table')$$, '42P01', NULL,
