@@ -25,7 +25,7 @@ CREATE FUNCTION streetgen._streetgen_grow_patches(patch_ids bigint[], roles text
     guide bytea, guide_reach double precision, patch_ids_b bigint[], roles_b text[], classes_b text[], geoms_b bytea[],
     max_uses_b integer[], arterials_b boolean[], t double precision, blend text, blend_angle double precision,
     blend_x double precision[], blend_y double precision[], blend_sigma double precision, prune_dangling boolean,
-    direction_grid double precision[], direction_values double precision[],
+    direction_grid double precision[], direction_values double precision[], connect_dangling boolean,
     OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT road_class text, OUT origin text, OUT geom bytea)
   RETURNS SETOF record
   LANGUAGE c IMMUTABLE PARALLEL SAFE
@@ -208,7 +208,8 @@ BEGIN
     RAISE EXCEPTION 'seeds must not be null' USING ERRCODE = 'null_value_not_allowed';
   END IF;
   PERFORM streetgen._require_params(p, ARRAY['angle_window', 'blend', 'blend_angle', 'blend_points', 'blend_sigma',
-                                             'bridge_distance', 'bridge_turn', 'clearance', 'fallback', 'guide_reach',
+                                             'bridge_distance', 'bridge_turn', 'clearance',
+                                             'connect_dangling', 'fallback', 'guide_reach',
                                              'interpolate', 'levels', 'max_distance', 'max_edges', 'max_slope',
                                              'max_uses', 'min_angle', 'prune_dangling', 'rotation', 'scale', 'seed',
                                              'snap', 't', 'tries']);
@@ -278,7 +279,7 @@ BEGIN
         DETAIL = format('It is a %s.', ST_GeometryType(guide));
     END IF;
   END IF;
-  FOREACH k IN ARRAY ARRAY['levels', 'prune_dangling'] LOOP
+  FOREACH k IN ARRAY ARRAY['levels', 'prune_dangling', 'connect_dangling'] LOOP
     IF p ? k AND jsonb_typeof(p -> k) <> 'boolean' THEN
       RAISE EXCEPTION '% must be true or false', k USING ERRCODE = 'invalid_parameter_value',
         DETAIL = format('It is %s.', p -> k);
@@ -366,7 +367,7 @@ BEGIN
            coalesce((p ->> 't')::double precision, 0), coalesce(p ->> 'blend', 'none'),
            coalesce((p ->> 'blend_angle')::double precision, 0), bxs, bys,
            coalesce((p ->> 'blend_sigma')::double precision, 0), coalesce((p ->> 'prune_dangling')::boolean, false),
-           dir_r.grid, dir_r.vals) AS g;
+           dir_r.grid, dir_r.vals, coalesce((p ->> 'connect_dangling')::boolean, true)) AS g;
 END
 $$;
 COMMENT ON FUNCTION streetgen.grow_patches(text, geometry, geometry, geometry, jsonb, geometry, raster, geometry, raster) IS
