@@ -2075,6 +2075,7 @@ class Grower {
     for (const auto& [gap, v] : ends) {
       poll_interrupts();
       if (static_cast<double>(dead) <= example_dead_end_share_ * static_cast<double>(street_ends)) break;
+      if (new_edges_ + 2 > params_.max_edges) break;  // a join and the piece of a split street
       if (nodes_[v].edges.size() != 1) continue;  // an earlier extension reached it
       const std::size_t before = nodes_.size();
       const std::uint32_t w = connect_end(v);
@@ -2094,6 +2095,9 @@ class Grower {
     const OEdge& edge = edges_[nodes_[v].edges[0]];
     return edge.level >= 0 && !edge.bridge && example_dead_end_.count(v) == 0 && bridge_end_.count(v) == 0;
   }
+  // The class of a join: the street's own; with levels a local street, also where it continues an
+  // arterial (as the local phase's fallback: arterial streets are the arterial patches' alone).
+  int join_level(int level) const { return hierarchy_ && level_is_main(level) ? phase_level_[1] : level; }
   double connect_reach() const { return std::max(snap_, kConnectReach * street_stats_.length_mean); }
   // The distance from dead end v to the nearest node or street ahead of it (in the cone), or inf.
   double gap_ahead(std::uint32_t v) {
@@ -2142,7 +2146,7 @@ class Grower {
       }
       std::sort(near.begin(), near.end());
       for (const auto& [d, w] : near) {
-        if (try_connect(v, w, edge.level)) return w;
+        if (try_connect(v, w, join_level(edge.level))) return w;
       }
       const Point far = p + reach * dir;
       const Contact c = first_contact(p, far, v);
@@ -2153,14 +2157,14 @@ class Grower {
       const double near_end = std::max(snap_, clearance_);
       if (distance(x, qa) <= near_end || distance(x, qb) <= near_end) {
         const std::uint32_t w = distance(x, qa) <= distance(x, qb) ? hit.a : hit.b;
-        return w != back && try_connect(v, w, edge.level) ? w : UINT32_MAX;
+        return w != back && try_connect(v, w, join_level(edge.level)) ? w : UINT32_MAX;
       }
       const Point along = qb - qa, in = x - p;
       const double angle = std::abs(std::atan2(cross(along, in), dot(along, in)));
       if (std::min(angle, kPi - angle) < min_angle_ || distance(p, x) <= kContact) return UINT32_MAX;
       if (!legal(p, x) || !clear_of_network(p, x, clearance_, v, -1, -1, c.edge)) return UINT32_MAX;
       const std::uint32_t m = split_edge(c.edge, x);
-      add_edge(v, m, edge.level, -1, -1);
+      add_edge(v, m, join_level(edge.level), -1, -1);
       ++stats_.dangling_connected;
       return m;
     }
