@@ -55,7 +55,8 @@ enum GrowArg {
   kGArterials, kGLevels, kGWater, kGDemGrid, kGDemValues, kGMaxSlope, kGBridgeDistance, kGBridgeTurn,
   // Operations: warping (guide), interpolation (a second library, t) and blending.
   kGGuide, kGGuideReach, kGPatchIdsB, kGRolesB, kGClassesB, kGGeomsB, kGMaxUsesB, kGArterialsB, kGT, kGBlendMode,
-  kGBlendAngle, kGBlendX, kGBlendY, kGBlendSigma, kGPruneDangling, kGDirectionGrid, kGDirectionValues, kGConnectDangling, kGArgs
+  kGBlendAngle, kGBlendX, kGBlendY, kGBlendSigma, kGPruneDangling, kGDirectionGrid, kGDirectionValues, kGConnectDangling,
+  kGArgs
 };
 
 // One patch library's rows, read in phase 1 (palloc'd plain data).
@@ -415,7 +416,8 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           stats.steps, stats.patches_placed, stats.fallback, stats.patch_candidates, stats.patch_illegal,
                           stats.patches_dropped, stats.restarts, stats.arterial_patches_placed, stats.local_seeds,
                           stats.local_seeds_used, stats.ended_on_arterial, bridges, stats.bridges_failed, stats.bent,
-                          stats.too_steep, stats.guided, stats.patches_b_placed, stats.dangling_connected, stats.dangling_pruned,
+                          stats.too_steep, stats.guided, stats.patches_b_placed, stats.dangling_connected,
+                          stats.dangling_pruned,
                           stats.dead_ends_kept, total > 0 ? 100.0 * from_patches / total : 0.0,
                           length_total > 0 ? 100.0 * length_patches / length_total : 0.0)));
   pg::emit_grown_rows(fcinfo, *rows);

@@ -163,7 +163,8 @@ TEST(PatchDangling, JoinsStopAtTheExamplesOwnDeadEndShare) {
       if (i < 6) {
         example.push_back({{{j * 100.0, i * 100.0}, {j * 100.0 + 50.0, i * 100.0}}, "street", ++id, false});
         example.push_back({{{j * 100.0 + 50.0, i * 100.0}, {(j + 1) * 100.0, i * 100.0}}, "street", ++id, false});
-        example.push_back({{{j * 100.0 + 50.0, i * 100.0}, {j * 100.0 + 50.0, i * 100.0 + 40.0}}, "street", ++id, false});
+        example.push_back(
+            {{{j * 100.0 + 50.0, i * 100.0}, {j * 100.0 + 50.0, i * 100.0 + 40.0}}, "street", ++id, false});
       } else {
         example.push_back({{{j * 100.0, i * 100.0}, {(j + 1) * 100.0, i * 100.0}}, "street", ++id, false});
       }

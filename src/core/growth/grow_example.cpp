@@ -2174,7 +2174,9 @@ class Grower {
     const Point p = nodes_[v].p, q = nodes_[w].p;
     const std::size_t d0 = nodes_[w].edges.size();
     if (d0 + 1 > max_degree_ || has_edge(v, w)) return false;
-    if (!angle_free(w, std::atan2(p.y - q.y, p.x - q.x)) || !angle_free(v, std::atan2(q.y - p.y, q.x - p.x))) return false;
+    if (!angle_free(w, std::atan2(p.y - q.y, p.x - q.x)) || !angle_free(v, std::atan2(q.y - p.y, q.x - p.x))) {
+      return false;
+    }
     if (!legal(p, q) || first_contact(p, q, v, w).found || !clear_of_network(p, q, clearance_, v, v, w)) return false;
     if (d0 >= 3 && !example_allows_one_more(d0)) return false;
     add_edge(v, w, level, -1, -1);
