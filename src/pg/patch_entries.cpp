@@ -55,7 +55,8 @@ enum GrowArg {
   kGArterials, kGLevels, kGWater, kGDemGrid, kGDemValues, kGMaxSlope, kGBridgeDistance, kGBridgeTurn,
   // Operations: warping (guide), interpolation (a second library, t) and blending.
   kGGuide, kGGuideReach, kGPatchIdsB, kGRolesB, kGClassesB, kGGeomsB, kGMaxUsesB, kGArterialsB, kGT, kGBlendMode,
-  kGBlendAngle, kGBlendX, kGBlendY, kGBlendSigma, kGPruneDangling, kGDirectionGrid, kGDirectionValues, kGArgs
+  kGBlendAngle, kGBlendX, kGBlendY, kGBlendSigma, kGPruneDangling, kGDirectionGrid, kGDirectionValues, kGConnectDangling,
+  kGArgs
 };
 
 // One patch library's rows, read in phase 1 (palloc'd plain data).
@@ -283,7 +284,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       "bridge_distance", "bridge_turn", "guide", "guide_reach", "interpolate patch ids", "interpolate roles",
       "interpolate road classes", "interpolate patch edges", "interpolate max_uses", "interpolate arterials", "t",
       "blend", "blend_angle", "blend_points x", "blend_points y", "blend_sigma", "prune_dangling", "direction grid",
-      "direction"};
+      "direction", "connect_dangling"};
   for (int a = kGRegion; a < kGArgs; ++a) {
     if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && a != kGArterials && a != kGWater && a != kGDemGrid &&
         a != kGDemValues && a != kGGuide && !(a >= kGPatchIdsB && a <= kGArterialsB) && a != kGBlendX &&
@@ -346,6 +347,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   params.blend.angle = PG_GETARG_FLOAT8(kGBlendAngle);
   params.blend.sigma = PG_GETARG_FLOAT8(kGBlendSigma);
   params.patch.prune_dangling = PG_GETARG_BOOL(kGPruneDangling);
+  params.patch.connect_dangling = PG_GETARG_BOOL(kGConnectDangling);
   InitMaterializedSRF(fcinfo, 0);
   auto rows = pg::OwnedResult<std::vector<pg::GrownRow>>::create();
   core::GrowStats stats;
@@ -409,12 +411,13 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           "placed, %zu local seeds (%zu with their example patch), %zu local streets ended on arterials; "
                           "terrain: %zu bridges (%zu bridge attempts failed), %zu bent along the contour, %zu too steep; "
                           "operations: %zu warped steps, %zu patches from the interpolate library, %zu dangling "
-                          "segments pruned, %zu dead ends kept; "
+                          "streets connected, %zu dangling segments pruned, %zu dead ends kept; "
                           "example-based share %.1f %% of the edges, %.1f %% of the length",
                           stats.steps, stats.patches_placed, stats.fallback, stats.patch_candidates, stats.patch_illegal,
                           stats.patches_dropped, stats.restarts, stats.arterial_patches_placed, stats.local_seeds,
                           stats.local_seeds_used, stats.ended_on_arterial, bridges, stats.bridges_failed, stats.bent,
-                          stats.too_steep, stats.guided, stats.patches_b_placed, stats.dangling_pruned,
+                          stats.too_steep, stats.guided, stats.patches_b_placed, stats.dangling_connected,
+                          stats.dangling_pruned,
                           stats.dead_ends_kept, total > 0 ? 100.0 * from_patches / total : 0.0,
                           length_total > 0 ? 100.0 * length_patches / length_total : 0.0)));
   pg::emit_grown_rows(fcinfo, *rows);

@@ -257,6 +257,7 @@ class Grower {
         grow();
       }
       if (new_edges_ >= std::min<std::size_t>(kMinGrowth, params_.max_edges) || restart == kRestarts) {
+        if (params_.use_patches && params_.patch.connect_dangling) connect_dangling();
         if (params_.use_patches && params_.patch.prune_dangling) prune_dangling();
         break;
       }
@@ -1711,6 +1712,9 @@ class Grower {
     // Arterial patches: the vertices of this street where a local patch of the example has its
     // junction (vertex index, library index of that local patch): the local phase's seeds.
     std::vector<std::pair<std::uint32_t, std::uint32_t>> local_seeds = {};
+    // A dead-end edge whose dead end lies at the example's crop (near its hull's edge, or tagged
+    // cut): the street went on in the city, so its end is not one of the example's dead ends.
+    bool cut = false;
   };
   struct LibPatch {
     std::int64_t id;
@@ -1757,6 +1761,63 @@ class Grower {
     return false;
   }
 
+  // The example files are crops of cities: most of their dead ends lie on the crop's edge (measured
+  // on the six example patches: new-york 104 of 105 within 20 m of the convex hull, strasbourg 56
+  // of 63, tokyo 119 of 136). Such a dead end is where the crop cut a street, not one of the
+  // example's dead ends (Nishida et al. keep only those, section 4.5): per style, a dead-end edge
+  // ending within a quarter of the mean street of the hull of its library's streets (or tagged cut)
+  // is marked cut.
+  void mark_cut_dead_ends() {
+    const double margin = 0.25 * street_stats_.length_mean;
+    for (int style = 0; style < styles_; ++style) {
+      std::vector<Point> pts;
+      for (const LibPatch& lp : library_) {
+        if (lp.style != style) continue;
+        for (const LibEdge& e : lp.edges) pts.insert(pts.end(), e.line.begin(), e.line.end());
+      }
+      const std::vector<Point> hull = convex_hull(pts);
+      auto near_hull = [&](Point q) {
+        for (std::size_t i = 0; i < hull.size(); ++i) {
+          if (point_segment_distance(q, hull[i], hull[(i + 1) % hull.size()]) <= margin) return true;
+        }
+        return false;
+      };
+      for (LibPatch& lp : library_) {
+        if (lp.style != style) continue;
+        for (LibEdge& e : lp.edges) {
+          if (e.role == PatchEdgeRole::dead_end) e.cut = e.cut || (hull.size() >= 3 && near_hull(e.line.back()));
+        }
+      }
+    }
+    // The example's own dead-end share: of its street ends (junctions and dead ends, not the
+    // crop's), the dead ends. A connector appears in both its patches: streets are keyed by their
+    // two ends.
+    auto key_of = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
+    std::unordered_map<MillimetreKey, std::vector<MillimetreKey>, MillimetreKeyHash> around;
+    std::unordered_map<MillimetreKey, char, MillimetreKeyHash> own_dead, cut_end;
+    for (const LibPatch& lp : library_) {
+      if (lp.style != 0) continue;
+      for (const LibEdge& e : lp.edges) {
+        const MillimetreKey a = key_of(e.line.front()), b = key_of(e.line.back());
+        std::vector<MillimetreKey>& na = around[a];
+        if (std::find(na.begin(), na.end(), b) == na.end()) na.push_back(b);
+        std::vector<MillimetreKey>& nb = around[b];
+        if (std::find(nb.begin(), nb.end(), a) == nb.end()) nb.push_back(a);
+        if (e.role == PatchEdgeRole::dead_end) (e.cut ? cut_end : own_dead)[b] = 1;
+        if (e.role == PatchEdgeRole::connector && e.cut) cut_end[b] = 1;
+      }
+    }
+    double dead = 0.0, ends = 0.0;
+    for (const auto& [k, nbrs] : around) {
+      if (cut_end.count(k) != 0) continue;
+      const std::size_t d = nbrs.size();
+      if (d == 2 || (d == 1 && own_dead.count(k) == 0)) continue;
+      ends += 1.0;
+      dead += d == 1;
+    }
+    example_dead_end_share_ = ends > 0.0 ? dead / ends : 0.0;
+  }
+
   void build_library(const std::vector<Patch>& patches, const std::vector<Patch>& patches_b) {
     if (patches.empty()) {
       throw_invalid_argument("patches has no rows", "The patch query returned no patch edge.",
@@ -1783,6 +1844,7 @@ class Grower {
         for (const PatchEdge& e : p.edges) {
           if (e.line.size() < 2) continue;
           LibEdge le{e.line, level_of(e.road_class), e.role};
+          le.cut = std::find(e.tags.begin(), e.tags.end(), "cut") != e.tags.end();
           for (Point& q : le.line) q = {cs * q.x - sn * q.y, sn * q.x + cs * q.y};
           if (length(le.line) <= kContact) continue;
           if (le.role == PatchEdgeRole::connector) lp.connectors.push_back(static_cast<std::uint32_t>(lp.edges.size()));
@@ -1817,6 +1879,7 @@ class Grower {
       for (const LibEdge& e : lp.edges) streets.push_back(&e.line);
     }
     street_stats_ = street_statistics(streets);
+    mark_cut_dead_ends();
     degree_cdf_ = degree_cdf_of(streets);
     probe_ = 0.5 * street_stats_.length_mean;
     buckets_.assign(kBuckets, {});
@@ -1977,7 +2040,151 @@ class Grower {
       }
     }
   }
+  // Nishida et al.'s local constraint (section 4.3.4, Figure 6a) for the streets growth left
+  // ending where the example does not end them (an open connector whose front found no legal
+  // patch, a statistical street, a street the example's crop cut): the street is extended to the
+  // closest node ahead of it (within angle_window of its direction and half a mean street), else
+  // straight on to the first street within that reach, which is split there; never where the
+  // extension would cross a street, leave the legal area, make an angle under min_angle, come
+  // closer than clearance to another street, or make a junction busier than the example's mix
+  // allows. The example's own dead ends, bridges and the existing network stay.
+  void connect_dangling() {
+    // The ends that may join, nearest gap first (the most evident misses), while the network has
+    // more dead ends than the example's share of its street ends (its own, not the crop's: a city
+    // with cul-de-sacs keeps as many dangling streets as it has).
+    std::vector<std::pair<double, std::uint32_t>> ends;
+    long dead = 0, street_ends = 0;
+    auto is_end = [](std::size_t d) { return d == 1 || d >= 3 ? 1L : 0L; };
+    const double step = std::max(snap_, min_length_);
+    for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
+      if (is_pruned(v)) continue;
+      const std::size_t d = nodes_[v].edges.size();
+      if (d == 1) {  // a street stopped by the region's edge, an obstacle or water is no dead end of the design
+        const Point p = nodes_[v].p;
+        const std::uint32_t e = nodes_[v].edges[0];
+        const Point back = nodes_[edges_[e].a == v ? edges_[e].b : edges_[e].a].p;
+        if (!legal(p, p + step * unit(p - back), false)) continue;
+      }
+      street_ends += is_end(d);
+      dead += d == 1;
+      if (d != 1 || !may_connect(v)) continue;
+      const double gap = gap_ahead(v);
+      if (std::isfinite(gap)) ends.emplace_back(gap, v);
+    }
+    std::sort(ends.begin(), ends.end());
+    for (const auto& [gap, v] : ends) {
+      poll_interrupts();
+      if (static_cast<double>(dead) <= example_dead_end_share_ * static_cast<double>(street_ends)) break;
+      if (new_edges_ + 2 > params_.max_edges) break;  // a join and the piece of a split street
+      if (nodes_[v].edges.size() != 1) continue;  // an earlier extension reached it
+      const std::size_t before = nodes_.size();
+      const std::uint32_t w = connect_end(v);
+      if (w == UINT32_MAX) continue;
+      dead -= 1;  // v: degree 1 -> 2
+      street_ends -= 1;
+      if (w >= before) {
+        street_ends += 1;  // a street split: a new junction of degree 3
+      } else {
+        const std::size_t dw = nodes_[w].edges.size();
+        street_ends += is_end(dw) - is_end(dw - 1);
+        dead -= dw - 1 == 1;
+      }
+    }
+  }
+  bool may_connect(std::uint32_t v) const {
+    const OEdge& edge = edges_[nodes_[v].edges[0]];
+    return edge.level >= 0 && !edge.bridge && example_dead_end_.count(v) == 0 && bridge_end_.count(v) == 0;
+  }
+  // The class of a join: the street's own; with levels a local street, also where it continues an
+  // arterial (as the local phase's fallback: arterial streets are the arterial patches' alone).
+  int join_level(int level) const { return hierarchy_ && level_is_main(level) ? phase_level_[1] : level; }
+  double connect_reach() const { return std::max(snap_, kConnectReach * street_stats_.length_mean); }
+  // The distance from dead end v to the nearest node or street ahead of it (in the cone), or inf.
+  double gap_ahead(std::uint32_t v) {
+    const std::uint32_t e = nodes_[v].edges[0];
+    const std::uint32_t back = edges_[e].a == v ? edges_[e].b : edges_[e].a;
+    const Point p = nodes_[v].p;
+    const Point dir = unit(p - nodes_[back].p);
+    const double heading = std::atan2(dir.y, dir.x), reach = connect_reach();
+    const double cone = params_.patch.angle_window * kPi / 180.0;
+    double best = std::numeric_limits<double>::infinity();
+    point_hits_.clear();
+    node_tree_.query(bgi::intersects(box_around(p, reach)), std::back_inserter(point_hits_));
+    for (const PointValue& pv : point_hits_) {
+      const std::uint32_t w = pv.second;
+      if (w == v || w == back || nodes_[w].edges.empty()) continue;
+      const Point q = nodes_[w].p;
+      const double d = distance(p, q);
+      if (d > reach || d <= kContact || std::abs(wrap(std::atan2(q.y - p.y, q.x - p.x) - heading)) > cone) continue;
+      best = std::min(best, d);
+    }
+    const Contact c = first_contact(p, p + reach * dir, v);
+    if (c.found) best = std::min(best, c.t * reach);
+    return best;
+  }
+  // Joins dead end v to a node or street ahead; returns the node it reached (UINT32_MAX: none).
+  std::uint32_t connect_end(std::uint32_t v) {
+    const double reach = connect_reach();
+    const double cone = params_.patch.angle_window * kPi / 180.0;
+    std::vector<std::pair<double, std::uint32_t>> near;
+    {
+      const std::uint32_t e = nodes_[v].edges[0];
+      const OEdge edge = edges_[e];
+      const std::uint32_t back = edge.a == v ? edge.b : edge.a;
+      const Point p = nodes_[v].p;
+      const Point dir = unit(p - nodes_[back].p);
+      const double heading = std::atan2(dir.y, dir.x);
+      point_hits_.clear();
+      node_tree_.query(bgi::intersects(box_around(p, reach)), std::back_inserter(point_hits_));
+      for (const PointValue& pv : point_hits_) {
+        const std::uint32_t w = pv.second;
+        if (w == v || w == back || nodes_[w].edges.empty()) continue;
+        const Point q = nodes_[w].p;
+        const double d = distance(p, q);
+        if (d > reach || d <= kContact || std::abs(wrap(std::atan2(q.y - p.y, q.x - p.x) - heading)) > cone) continue;
+        near.emplace_back(d, w);
+      }
+      std::sort(near.begin(), near.end());
+      for (const auto& [d, w] : near) {
+        if (try_connect(v, w, join_level(edge.level))) return w;
+      }
+      const Point far = p + reach * dir;
+      const Contact c = first_contact(p, far, v);
+      if (!c.found) return UINT32_MAX;
+      const Point x = p + c.t * (far - p);
+      const OEdge hit = edges_[c.edge];
+      const Point qa = nodes_[hit.a].p, qb = nodes_[hit.b].p;
+      const double near_end = std::max(snap_, clearance_);
+      if (distance(x, qa) <= near_end || distance(x, qb) <= near_end) {
+        const std::uint32_t w = distance(x, qa) <= distance(x, qb) ? hit.a : hit.b;
+        return w != back && try_connect(v, w, join_level(edge.level)) ? w : UINT32_MAX;
+      }
+      const Point along = qb - qa, in = x - p;
+      const double angle = std::abs(std::atan2(cross(along, in), dot(along, in)));
+      if (std::min(angle, kPi - angle) < min_angle_ || distance(p, x) <= kContact) return UINT32_MAX;
+      if (!legal(p, x) || !clear_of_network(p, x, clearance_, v, -1, -1, c.edge)) return UINT32_MAX;
+      const std::uint32_t m = split_edge(c.edge, x);
+      add_edge(v, m, join_level(edge.level), -1, -1);
+      ++stats_.dangling_connected;
+      return m;
+    }
+  }
+  static constexpr double kConnectReach = 0.5;  // of the mean street
+  bool try_connect(std::uint32_t v, std::uint32_t w, int level) {
+    const Point p = nodes_[v].p, q = nodes_[w].p;
+    const std::size_t d0 = nodes_[w].edges.size();
+    if (d0 + 1 > max_degree_ || has_edge(v, w)) return false;
+    if (!angle_free(w, std::atan2(p.y - q.y, p.x - q.x)) || !angle_free(v, std::atan2(q.y - p.y, q.x - p.x))) {
+      return false;
+    }
+    if (!legal(p, q) || first_contact(p, q, v, w).found || !clear_of_network(p, q, clearance_, v, v, w)) return false;
+    if (d0 >= 3 && !example_allows_one_more(d0)) return false;
+    add_edge(v, w, level, -1, -1);
+    ++stats_.dangling_connected;
+    return true;
+  }
   std::unordered_set<std::uint32_t> example_dead_end_;  // ends of patch dead-end edges
+  double example_dead_end_share_ = 0.0;  // of the library's street ends (not cut), its own dead ends
   int styles_ = 1;
   StreetStatistics style_stats_[2];
   StreetStatistics style_level_stats_[2][2];
@@ -2700,7 +2907,7 @@ class Grower {
         prev = next;
         line_nodes_.push_back(next);
       }
-      if (lp.edges[pl.edge].role == PatchEdgeRole::dead_end) example_dead_end_.insert(prev);
+      if (lp.edges[pl.edge].role == PatchEdgeRole::dead_end && !lp.edges[pl.edge].cut) example_dead_end_.insert(prev);
       if (seeds_local) {  // the local junctions of the example along this arterial street
         const LibEdge& le = lp.edges[pl.edge];
         for (const auto& [vk, local] : le.local_seeds) {

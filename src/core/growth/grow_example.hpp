@@ -78,6 +78,10 @@ struct PatchGrowParams {
   // edge), the street ends at the region's edge, an obstacle, water or a slope too steep (a step
   // on is illegal), or it is a bridge or the existing network.
   bool prune_dangling = false;
+  // Before that: a street ending where the example's do not is extended to the closest node, or
+  // straight on to the first street, ahead of it within half a mean street (Nishida et al.'s local
+  // constraint, section 4.3.4).
+  bool connect_dangling = true;
 };
 
 struct GrowParams {
@@ -179,6 +183,7 @@ struct GrowStats {
   std::size_t patches_b_placed = 0;  // interpolation: of patches_placed, those from the second library
   std::size_t dangling_pruned = 0;   // prune_dangling: output segments cut back from dangling streets
   std::size_t dead_ends_kept = 0;    // prune_dangling: dead ends left (the example's, or blocked)
+  std::size_t dangling_connected = 0;  // connect_dangling: streets extended to a node or street ahead
   std::size_t arterial_patches_placed = 0;  // levels: patches placed in the arterial phase
   std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued

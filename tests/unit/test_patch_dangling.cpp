@@ -1,0 +1,184 @@
+// grow_patches' dangling streets: the example's crop is not one of its dead ends, and streets
+// left ending where the example does not end them join the network ahead (Nishida et al. 2016,
+// sections 4.3.4 and 4.5).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "core/growth/grow_example.hpp"
+#include "core/growth/patches.hpp"
+#include "patch_fixtures.hpp"
+#include "test_support.hpp"
+
+using namespace streetgen::core;
+using streetgen::test::avenue_grid;
+using streetgen::test::wkt;
+
+namespace {
+
+// A 7 x 7 node grid of 100 m blocks, every border node with a 64 m stub outwards at 45 degrees: an example
+// cropped across its streets (every dead end lies on its convex hull), no dead end of its own.
+std::vector<PatchInputEdge> cropped_grid() {
+  std::vector<PatchInputEdge> out;
+  std::int64_t id = 0;
+  for (int i = 0; i <= 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+      out.push_back({{{j * 100.0, i * 100.0}, {(j + 1) * 100.0, i * 100.0}}, "street", ++id, false});
+      out.push_back({{{i * 100.0, j * 100.0}, {i * 100.0, (j + 1) * 100.0}}, "street", ++id, false});
+    }
+    out.push_back({{{i * 100.0, 0.0}, {i * 100.0 + 45.0, -45.0}}, "street", ++id, false});
+    out.push_back({{{i * 100.0, 600.0}, {i * 100.0 + 45.0, 645.0}}, "street", ++id, false});
+    out.push_back({{{0.0, i * 100.0}, {-45.0, i * 100.0 + 45.0}}, "street", ++id, false});
+    out.push_back({{{600.0, i * 100.0}, {645.0, i * 100.0 + 45.0}}, "street", ++id, false});
+  }
+  return out;
+}
+
+// A 9 x 9 node grid of about 100 m blocks whose nodes are moved by up to 28 m (a fixed pattern):
+// patches glued from it meet their neighbours off by some metres, so fronts die facing streets.
+std::vector<PatchInputEdge> uneven_grid() {
+  auto at = [](int i, int j) {
+    const double dx = ((i * 37 + j * 11) % 9 - 4) * 7.0, dy = ((i * 13 + j * 29) % 9 - 4) * 7.0;
+    return Point{i * 100.0 + dx, j * 100.0 + dy};
+  };
+  std::vector<PatchInputEdge> out;
+  std::int64_t id = 0;
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      out.push_back({{at(j, i), at(j + 1, i)}, "street", ++id, false});
+      out.push_back({{at(i, j), at(i, j + 1)}, "street", ++id, false});
+    }
+  }
+  return out;
+}
+
+// Dead ends farther than 200 m inside the region's edge (x, y within +-1300 m).
+int interior_dead_ends(const GrowResult& r) {
+  std::map<std::int64_t, int> degree;
+  std::map<std::int64_t, Point> at;
+  for (const GrownEdge& e : r.edges) {
+    ++degree[e.from_node];
+    ++degree[e.to_node];
+    at[e.from_node] = e.a;
+    at[e.to_node] = e.b;
+  }
+  int n = 0;
+  for (const auto& [node, d] : degree) {
+    const Point q = at[node];
+    n += d == 1 && std::abs(q.x) < 1300 && std::abs(q.y) < 1300;
+  }
+  return n;
+}
+
+bool crosses_without_node(const GrownEdge& a, const GrownEdge& b) {
+  if (a.from_node == b.from_node || a.from_node == b.to_node || a.to_node == b.from_node || a.to_node == b.to_node) {
+    return false;
+  }
+  auto orient = [](Point p, Point q, Point r) { return cross(q - p, r - p); };
+  const double d1 = orient(a.a, a.b, b.a), d2 = orient(a.a, a.b, b.b);
+  const double d3 = orient(b.a, b.b, a.a), d4 = orient(b.a, b.b, a.b);
+  return d1 * d2 < 0 && d3 * d4 < 0;
+}
+
+struct Fixture {
+  GeosContext geos;
+  GeomPtr region = wkt(geos, "POLYGON((-1500 -1500, 1500 -1500, 1500 1500, -1500 1500, -1500 -1500))");
+  GrowInput input(const std::vector<PatchInputEdge>& example) {
+    GrowInput in;
+    in.patches = extract_patches(geos, example, PatchParams{}).patches;
+    in.region = region.get();
+    in.seeds = {{0.0, 0.0}};
+    return in;
+  }
+};
+
+}  // namespace
+
+// The cropped grid's patches carry its stubs as dead-end edges; placed inside the region they
+// were protected as the example's dead ends, so pruning left them. They are the crop's, not the
+// example's: pruned like any other dangling street.
+TEST(PatchDangling, DeadEndsAtTheExamplesCropAreNotTheExamples) {
+  Fixture f;
+  const std::vector<PatchInputEdge> example = cropped_grid();
+  GrowInput in = f.input(example);
+  std::size_t dead_end_edges = 0;
+  for (const Patch& patch : in.patches) {
+    for (const PatchEdge& e : patch.edges) dead_end_edges += e.role == PatchEdgeRole::dead_end;
+  }
+  ASSERT_GT(dead_end_edges, 10u);  // the stubs are dead-end edges of the border patches
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 4;
+  p.max_edges = 800;
+  p.patch.connect_dangling = false;
+  p.patch.prune_dangling = true;
+  p.patch.prune_dangling = false;
+  GrowResult raw = grow_example(f.geos, in, p);
+  EXPECT_GT(interior_dead_ends(raw), 100);  // the stubs, placed inside the region
+  p.patch.prune_dangling = true;
+  GrowResult pruned = grow_example(f.geos, in, p);
+  EXPECT_GT(pruned.stats.dangling_pruned, 10u);
+  EXPECT_GT(pruned.edges.size(), 200u);
+  EXPECT_EQ(interior_dead_ends(pruned), 0);
+}
+
+// The avenue grid has no dead end; a growth stopped by max_edges leaves open fronts. Those with a
+// node or street within half a street ahead join it; the joins are planar and statistical.
+TEST(PatchDangling, DanglingStreetsJoinTheNetworkAhead) {
+  Fixture f;
+  GrowInput in = f.input(uneven_grid());
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 4;
+  p.max_edges = 20000;
+  p.patch.connect_dangling = false;
+  GrowResult open = grow_example(f.geos, in, p);
+  p.patch.connect_dangling = true;
+  GrowResult joined = grow_example(f.geos, in, p);
+  EXPECT_EQ(open.stats.dangling_connected, 0u);
+  EXPECT_GT(joined.stats.dangling_connected, 0u);
+  EXPECT_LT(interior_dead_ends(joined), interior_dead_ends(open));
+  std::size_t statistical = 0;
+  for (const GrownEdge& e : joined.edges) statistical += e.example < 0;
+  std::size_t statistical_open = 0;
+  for (const GrownEdge& e : open.edges) statistical_open += e.example < 0;
+  EXPECT_GE(statistical, statistical_open + joined.stats.dangling_connected);  // and the split streets' pieces
+  for (std::size_t i = 0; i < joined.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < joined.edges.size(); ++j) {
+      ASSERT_FALSE(crosses_without_node(joined.edges[i], joined.edges[j])) << i << " " << j;
+    }
+  }
+}
+
+// An example whose own dead ends make up a large share of its street ends keeps that share: the
+// joins stop there (a city of cul-de-sacs keeps its dangling streets).
+TEST(PatchDangling, JoinsStopAtTheExamplesOwnDeadEndShare) {
+  Fixture f;
+  // The avenue grid with a 40 m cul-de-sac from the middle of every block's south side.
+  std::vector<PatchInputEdge> example;
+  std::int64_t id = 0;
+  for (int i = 0; i <= 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+      if (i < 6) {
+        example.push_back({{{j * 100.0, i * 100.0}, {j * 100.0 + 50.0, i * 100.0}}, "street", ++id, false});
+        example.push_back({{{j * 100.0 + 50.0, i * 100.0}, {(j + 1) * 100.0, i * 100.0}}, "street", ++id, false});
+        example.push_back(
+            {{{j * 100.0 + 50.0, i * 100.0}, {j * 100.0 + 50.0, i * 100.0 + 40.0}}, "street", ++id, false});
+      } else {
+        example.push_back({{{j * 100.0, i * 100.0}, {(j + 1) * 100.0, i * 100.0}}, "street", ++id, false});
+      }
+      example.push_back({{{i * 100.0, j * 100.0}, {i * 100.0, (j + 1) * 100.0}}, "street", ++id, false});
+    }
+  }
+  GrowInput grid = f.input(uneven_grid());
+  GrowInput culs = f.input(example);
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 4;
+  p.max_edges = 20000;
+  GrowResult a = grow_example(f.geos, grid, p);
+  GrowResult b = grow_example(f.geos, culs, p);
+  EXPECT_GT(a.stats.dangling_connected, 0u);
+  EXPECT_EQ(b.stats.dangling_connected, 0u);
+}
