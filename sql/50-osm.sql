@@ -342,12 +342,19 @@ BEGIN
   IF staging IS NULL THEN
     RAISE EXCEPTION 'staging must not be null' USING ERRCODE = 'null_value_not_allowed';
   END IF;
+  -- The areas in the model's SRID, indexed: each side then finds the few near it (a city has
+  -- thousands of both).
+  DROP TABLE IF EXISTS pg_temp._streetgen_parking_area;
   EXECUTE format($q$
-    WITH area AS MATERIALIZED (
-      SELECT s.source, ST_CollectionExtract(ST_MakeValid(ST_Transform(s.geom, %2$s)), 3) AS geom
-        FROM %3$s AS s
+    CREATE TEMP TABLE _streetgen_parking_area ON COMMIT DROP AS
+      SELECT s.source, ST_CollectionExtract(ST_MakeValid(ST_Transform(s.geom, %1$s)), 3) AS geom
+        FROM %2$s AS s
        WHERE ST_Dimension(s.geom) = 2 AND ST_SRID(s.geom) <> 0 AND NOT ST_IsEmpty(s.geom)
-    ), side AS (
+  $q$, model_srid, staging);
+  CREATE INDEX ON pg_temp._streetgen_parking_area USING gist (geom);
+  ANALYZE pg_temp._streetgen_parking_area;
+  EXECUTE format($q$
+    WITH side AS (
       -- side: as the way's tags say it; geom_side: of the stored axis (oneway=-1 ways are stored
       -- reversed, see streetgen._lane_tags)
       SELECT a.id, a.geom, a.roadway_width, s.side,
@@ -359,7 +366,7 @@ BEGIN
     ), lining AS (
       SELECT d.id, d.side, d.geom AS axis_geom, a.source, c.part
         FROM side AS d
-        JOIN area AS a ON ST_DWithin(a.geom, d.geom, d.roadway_width / 2 + 2)
+        JOIN pg_temp._streetgen_parking_area AS a ON ST_DWithin(a.geom, d.geom, d.roadway_width / 2 + 2)
         CROSS JOIN LATERAL (SELECT ST_CollectionExtract(ST_Intersection(a.geom,
                               ST_Buffer(d.geom, d.roadway_width / 2 + 12, 'side=' || d.geom_side || ' endcap=flat')), 3) AS part) AS c
        WHERE ST_Area(c.part) > 0.5
@@ -387,7 +394,8 @@ BEGIN
     )
     SELECT (SELECT count(*) FROM kept WHERE id IN (SELECT id FROM updated)),
            (SELECT count(DISTINCT s) FROM kept, unnest(sources) AS s WHERE id IN (SELECT id FROM updated))
-  $q$, model, model_srid, staging) INTO sides_widened, areas_used;
+  $q$, model) INTO sides_widened, areas_used;
+  DROP TABLE pg_temp._streetgen_parking_area;
 END
 $$;
 COMMENT ON FUNCTION streetgen.load_osm_street_parking(text, regclass) IS
