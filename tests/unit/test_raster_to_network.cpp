@@ -355,8 +355,10 @@ TEST(RasterToNetwork, BadParams) {
                    +[](RasterNetworkParams& p) { p.min_block_area = NAN; },
                    +[](RasterNetworkParams& p) { p.min_dead_end_length = -0.5; },
                    +[](RasterNetworkParams& p) { p.erode = -1; }, +[](RasterNetworkParams& p) { p.dilate = 101; },
-                   +[](RasterNetworkParams& p) { p.max_gap = -1; }, +[](RasterNetworkParams& p) { p.max_gap = INFINITY; },
-                   +[](RasterNetworkParams& p) { p.gap_angle = 90.5; }, +[](RasterNetworkParams& p) { p.gap_angle = NAN; }}) {
+                   +[](RasterNetworkParams& p) { p.max_gap = -1; },
+                   +[](RasterNetworkParams& p) { p.max_gap = INFINITY; },
+                   +[](RasterNetworkParams& p) { p.gap_angle = 90.5; },
+                   +[](RasterNetworkParams& p) { p.gap_angle = NAN; }}) {
     RasterNetworkParams p;
     set(p);
     try {

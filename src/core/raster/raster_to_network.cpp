@@ -412,7 +412,9 @@ GeomPtr make_sector(GeosContext& geos, Point tip, Point dir, double reach, doubl
   ring.push_back(tip);
   GEOSCoordSequence* seq = GEOSCoordSeq_create_r(h, static_cast<unsigned>(ring.size()), 2);
   if (seq == nullptr) geos.fail("GEOSCoordSeq_create");
-  for (std::size_t i = 0; i < ring.size(); ++i) GEOSCoordSeq_setXY_r(h, seq, static_cast<unsigned>(i), ring[i].x, ring[i].y);
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    GEOSCoordSeq_setXY_r(h, seq, static_cast<unsigned>(i), ring[i].x, ring[i].y);
+  }
   GEOSGeometry* shell = GEOSGeom_createLinearRing_r(h, seq);
   if (shell == nullptr) geos.fail("GEOSGeom_createLinearRing");
   return own(geos, GEOSGeom_createPolygon_r(h, shell, nullptr, 0), "GEOSGeom_createPolygon");
