@@ -252,6 +252,24 @@ TEST(RasterToNetwork, GapAheadOfADeadEndIsClosed) {
   EXPECT_EQ(run(c, near).edges.size(), 2u);
 }
 
+TEST(RasterToNetwork, RoadBrokenInTheMiddleIsWholeAgain) {
+  // A straight road across the raster with 10 px = 20 m of background in its middle: two dead
+  // ends facing each other. The first join reaches the other dead end itself (its end node), so
+  // the road is one edge again, not a T with a stub.
+  Canvas c = canvas(101, 2.0);
+  road(c, {0, 50.5}, {45, 50.5}, 5);
+  road(c, {56, 50.5}, {101, 50.5}, 5);
+  RasterNetwork net = run(c, no_morphology());
+  EXPECT_EQ(net.stats.gaps_closed, 1u);
+  ASSERT_EQ(net.edges.size(), 1u);
+  EXPECT_EQ(net.node_count, 2u);
+  EXPECT_NEAR(length(net.edges[0].line), 101 * 2.0, 2 * 2.0) << "border to border";
+
+  RasterNetworkParams off = no_morphology();
+  off.max_gap = 0;
+  EXPECT_EQ(run(c, off).edges.size(), 2u);
+}
+
 TEST(RasterToNetwork, GapClosingFollowsTheDeadEndsDirection) {
   // A side road turns to run 20 px = 40 m beside a road and ends there: the road is within
   // max_gap, but at 90 degrees from the dead end's direction (30 degrees ahead, it is 80 m away).
