@@ -89,7 +89,8 @@ COMMENT ON FUNCTION streetgen.rasterise_network(text, double precision, integer,
 
 CREATE FUNCTION streetgen._streetgen_raster_to_network(rast_wkb bytea, threshold double precision, erode integer,
     dilate integer, min_block_area double precision, min_dead_end_length double precision, smooth_iterations integer,
-    simplify_tolerance double precision, OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT geom bytea)
+    simplify_tolerance double precision, max_gap double precision, gap_angle double precision,
+    OUT id bigint, OUT from_node bigint, OUT to_node bigint, OUT geom bytea)
   RETURNS SETOF record
   LANGUAGE c IMMUTABLE PARALLEL SAFE
   COST 100000 ROWS 1000
@@ -107,8 +108,8 @@ CREATE FUNCTION streetgen.raster_to_network(rast raster, params jsonb DEFAULT '{
   SET jit = off
   AS $$
 DECLARE
-  known constant text[] := ARRAY['dilate', 'erode', 'min_block_area', 'min_dead_end_length', 'simplify_tolerance',
-                                 'smooth_iterations', 'threshold'];
+  known constant text[] := ARRAY['dilate', 'erode', 'gap_angle', 'max_gap', 'min_block_area', 'min_dead_end_length',
+                                 'simplify_tolerance', 'smooth_iterations', 'threshold'];
   integers constant text[] := ARRAY['dilate', 'erode', 'smooth_iterations'];
   p jsonb := coalesce(params, '{}'::jsonb);
   k text;
@@ -135,8 +136,10 @@ BEGIN
            coalesce((p ->> 'min_block_area')::double precision, 100),
            coalesce((p ->> 'min_dead_end_length')::double precision, 25),
            coalesce((p ->> 'smooth_iterations')::integer, 5),
-           coalesce((p ->> 'simplify_tolerance')::double precision, 3)) AS r;
+           coalesce((p ->> 'simplify_tolerance')::double precision, 3),
+           coalesce((p ->> 'max_gap')::double precision, 60),
+           coalesce((p ->> 'gap_angle')::double precision, 30)) AS r;
 END
 $$;
 COMMENT ON FUNCTION streetgen.raster_to_network(raster, jsonb) IS
-  'Traces a one-band road raster (8BUI, 32BF, 64BF or 1BB; road = value > threshold, nodata is background) into street edges in its CRS (StreetGAN post-processing): erosion and dilation with a 3 x 3 cross, Zhang-Suen thinning, a graph of the 8-connected skeleton, faces below min_block_area lose their longest edge, dead ends shorter than min_dead_end_length are pruned, chains smoothed and simplified (Douglas-Peucker). params: threshold (0.5), erode (1), dilate (5), min_block_area (m², 100), min_dead_end_length (m, 25), smooth_iterations (5), simplify_tolerance (m, 3). Returns rows for a model''s axis table';
+  'Traces a one-band road raster (8BUI, 32BF, 64BF or 1BB; road = value > threshold, nodata is background) into street edges in its CRS (StreetGAN post-processing): erosion and dilation with a 3 x 3 cross, Zhang-Suen thinning, a graph of the 8-connected skeleton, faces below min_block_area lose their longest edge, each dead end is joined to the nearest road ahead within max_gap and gap_angle of its direction (without crossing an edge), dead ends shorter than min_dead_end_length are pruned, chains smoothed and simplified (Douglas-Peucker). params: threshold (0.5), erode (1), dilate (5), min_block_area (m², 100), max_gap (m, 60; 0: no gap closing), gap_angle (degrees, 30), min_dead_end_length (m, 25), smooth_iterations (5), simplify_tolerance (m, 3). Returns rows for a model''s axis table';

@@ -69,7 +69,7 @@ BEGIN
         INSERT INTO t SELECT 'sql', extract(epoch FROM clock_timestamp() - s) * 1000 WHERE i > 0;
       ELSE
         s := clock_timestamp();
-        SELECT count(*) INTO n FROM streetgen._streetgen_raster_to_network(w, 0.5, 1, 5, 100, 25, 5, 3);
+        SELECT count(*) INTO n FROM streetgen._streetgen_raster_to_network(w, 0.5, 1, 5, 100, 25, 5, 3, 60, 30);
         INSERT INTO t SELECT 'c', extract(epoch FROM clock_timestamp() - s) * 1000 WHERE i > 0;
       END IF;
     END LOOP;

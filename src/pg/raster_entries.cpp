@@ -25,7 +25,7 @@ struct OutRow {
   core::Bytes geom;
 };
 
-constexpr int kArgs = 8;
+constexpr int kArgs = 10;
 constexpr int kColumns = 4;
 
 }  // namespace
@@ -34,14 +34,16 @@ extern "C" {
 
 PG_FUNCTION_INFO_V1(_streetgen_raster_to_network);
 // (rast_wkb bytea, threshold float8, erode int4, dilate int4, min_block_area float8,
-//  min_dead_end_length float8, smooth_iterations int4, simplify_tolerance float8)
+//  min_dead_end_length float8, smooth_iterations int4, simplify_tolerance float8, max_gap float8,
+//  gap_angle float8)
 //  -> SETOF (id int8, from_node int8, to_node int8, geom bytea)
 Datum _streetgen_raster_to_network(PG_FUNCTION_ARGS) {
   // Phase 1.
   pg::require_argument_count(fcinfo, kArgs, "_streetgen_raster_to_network");
   static const char* const names[] = {"rast",           "threshold",           "erode",
                                       "dilate",         "min_block_area",      "min_dead_end_length",
-                                      "smooth_iterations", "simplify_tolerance"};
+                                      "smooth_iterations", "simplify_tolerance", "max_gap",
+                                      "gap_angle"};
   for (int a = 0; a < kArgs; ++a) {
     if (PG_ARGISNULL(a)) pg::raise_null_argument(names[a]);
   }
@@ -54,6 +56,8 @@ Datum _streetgen_raster_to_network(PG_FUNCTION_ARGS) {
   params.min_dead_end_length = PG_GETARG_FLOAT8(5);
   params.smooth_iterations = PG_GETARG_INT32(6);
   params.simplify_tolerance = PG_GETARG_FLOAT8(7);
+  params.max_gap = PG_GETARG_FLOAT8(8);
+  params.gap_angle = PG_GETARG_FLOAT8(9);
   InitMaterializedSRF(fcinfo, 0);
   auto rows = pg::OwnedResult<std::vector<OutRow>>::create();
 

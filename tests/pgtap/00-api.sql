@@ -91,7 +91,7 @@ SELECT set_eq(
     ('streetgen._patch_arrays(text,text)', 'record', 'v', false),
     ('streetgen.grow_patches(text,geometry,geometry,geometry,jsonb,geometry,raster,geometry,raster)', 'SETOF record', 'v', false),
     ('streetgen.rasterise_network(text,double precision,integer,geometry)', 'raster', 'v', false),
-    ('streetgen._streetgen_raster_to_network(bytea,double precision,integer,integer,double precision,double precision,integer,double precision)', 'SETOF record', 'i', false),
+    ('streetgen._streetgen_raster_to_network(bytea,double precision,integer,integer,double precision,double precision,integer,double precision,double precision,double precision)', 'SETOF record', 'i', false),
     ('streetgen.raster_to_network(raster,jsonb)', 'SETOF record', 'i', false),
     ('streetgen._streetgen_gan_sample(bytea,integer,integer,bigint,boolean,double precision,double precision,integer)', 'bytea', 'i', false),
     ('streetgen._streetgen_gan_generator_info(bytea)', 'record', 'i', false),

@@ -114,6 +114,21 @@ SELECT results_eq($$SELECT id, from_node, to_node, ST_AsEWKB(geom) FROM float_ra
 SELECT is((SELECT count(*) FROM float_raster, streetgen.raster_to_network(ST_MapAlgebra(rast, 1, '32BF', '[rast] - 3'))),
           0::bigint, 'an all-background raster gives no edges');
 
+-- ---- Gap closing: a broken T (2 m pixels, 5 px roads; the side road's paint stops 33 m short) ----
+CREATE TEMP TABLE broken_t AS
+SELECT streetgen.rasterise_network($$SELECT 'LINESTRING(0 160, 202 160)'::geometry AS geom
+                                   UNION ALL SELECT 'LINESTRING(101 0, 101 117)'$$, 2, 5,
+                                   ST_MakeEnvelope(0, 0, 202, 202, 0)) AS rast;
+SELECT is((SELECT count(*) FROM broken_t, streetgen.raster_to_network(rast, '{"erode": 0, "dilate": 0}')), 3::bigint,
+          'a dead end is joined to the road ahead of it: a T of three edges');
+SELECT is((SELECT count(*) FROM (SELECT n FROM broken_t, streetgen.raster_to_network(rast, '{"erode": 0, "dilate": 0}') t,
+                                        LATERAL (VALUES (t.from_node), (t.to_node)) v(n) GROUP BY n HAVING count(*) = 3) j),
+          1::bigint, 'one junction where the gap was');
+SELECT is((SELECT count(*) FROM broken_t, streetgen.raster_to_network(rast, '{"erode": 0, "dilate": 0, "max_gap": 0}')),
+          2::bigint, 'max_gap 0: no gap closing, the road and a dead end');
+SELECT is((SELECT count(*) FROM broken_t, streetgen.raster_to_network(rast, '{"erode": 0, "dilate": 0, "max_gap": 30}')),
+          2::bigint, 'a gap longer than max_gap stays open');
+
 -- ---- Bad input, by SQLSTATE ----
 CREATE TEMP TABLE tiny AS
 SELECT ST_AddBand(ST_MakeEmptyRaster(8, 8, 0, 8, 1, -1, 0, 0, 0), '8BUI'::text, 0, NULL) AS rast;
@@ -132,6 +147,12 @@ SELECT throws_ok($$SELECT * FROM tiny, streetgen.raster_to_network(rast, '{"tole
                  'unknown params key: tolerance', 'unknown params key');
 SELECT throws_ok($$SELECT * FROM tiny, streetgen.raster_to_network(rast, '{"simplify_tolerance": -1}')$$, '22023',
                  'simplify_tolerance must be a finite number >= 0', 'negative tolerance');
+SELECT throws_ok($$SELECT * FROM tiny, streetgen.raster_to_network(rast, '{"max_gap": -1}')$$, '22023',
+                 'max_gap must be a finite number >= 0', 'negative max_gap');
+SELECT throws_ok($$SELECT * FROM tiny, streetgen.raster_to_network(rast, '{"gap_angle": 120}')$$, '22023',
+                 'gap_angle must be between 0 and 90 (degrees)', 'gap_angle over 90');
+SELECT throws_ok($$SELECT * FROM tiny, streetgen.raster_to_network(rast, '{"gap_angle": "wide"}')$$, '22023',
+                 'params.gap_angle must be a number', 'a string for gap_angle');
 SELECT throws_ok($$SELECT * FROM tiny, streetgen.raster_to_network(rast, '{"min_block_area": "big"}')$$, '22023',
                  'params.min_block_area must be a number', 'a string for a number');
 SELECT throws_ok($$SELECT * FROM tiny, streetgen.raster_to_network(rast, '{"erode": 1.5}')$$, '22023',
@@ -170,7 +191,7 @@ SELECT ST_AsBinary(ST_SetValue(ST_AddBand(ST_MakeEmptyRaster(2000, 2000, 0, 2000
 CREATE TEMP TABLE outcome (state text, seconds double precision);
 SET LOCAL statement_timeout = '300ms';
 INSERT INTO outcome SELECT * FROM test_helpers.sqlstate_and_seconds(
-  $$SELECT count(*) FROM big, streetgen._streetgen_raster_to_network(wkb, 0.5, 0, 100, 100, 25, 5, 3)$$);
+  $$SELECT count(*) FROM big, streetgen._streetgen_raster_to_network(wkb, 0.5, 0, 100, 100, 25, 5, 3, 60, 30)$$);
 RESET statement_timeout;
 SELECT is((SELECT state FROM outcome), '57014', 'statement_timeout cancels raster_to_network with 57014');
 SELECT cmp_ok((SELECT seconds FROM outcome), '<', 2.0::double precision, 'within the computation, not after it');

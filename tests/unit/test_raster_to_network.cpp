@@ -64,6 +64,26 @@ int count_degree(const RasterNetwork& net, int degree) {
   return n;
 }
 
+// True when two edges cross (a proper crossing of two of their segments; touching at a shared
+// node does not count).
+bool edges_cross(const RasterNetwork& net) {
+  auto side = [](Point a, Point b, Point p) { return cross(b - a, p - a); };
+  for (std::size_t i = 0; i < net.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < net.edges.size(); ++j) {
+      const Polyline& l1 = net.edges[i].line;
+      const Polyline& l2 = net.edges[j].line;
+      for (std::size_t a = 1; a < l1.size(); ++a) {
+        for (std::size_t b = 1; b < l2.size(); ++b) {
+          double s1 = side(l1[a - 1], l1[a], l2[b - 1]), s2 = side(l1[a - 1], l1[a], l2[b]);
+          double s3 = side(l2[b - 1], l2[b], l1[a - 1]), s4 = side(l2[b - 1], l2[b], l1[a]);
+          if (((s1 > 0 && s2 < 0) || (s1 < 0 && s2 > 0)) && ((s3 > 0 && s4 < 0) || (s3 < 0 && s4 > 0))) return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
 double total_length(const RasterNetwork& net) {
   double sum = 0;
   for (const RasterEdge& e : net.edges) sum += length(e.line);
@@ -194,6 +214,96 @@ TEST(RasterToNetwork, ShortDeadEndSpurIsPrunedLongOneKept) {
   EXPECT_EQ(count_degree(t, 3), 1);
 }
 
+// Gap closing: 2 m pixels, roads 5 px = 10 m, no morphology (it would close small gaps itself),
+// so that the gaps are exactly as drawn.
+RasterNetworkParams no_morphology() {
+  RasterNetworkParams p;
+  p.erode = p.dilate = 0;
+  return p;
+}
+
+TEST(RasterToNetwork, GapAheadOfADeadEndIsClosed) {
+  // A side road that stops 14.5 px (29 m) of background short of the road it points at: a
+  // generator's broken T. Its skeleton ends about 20 px = 40 m from the other road's axis.
+  Canvas c = canvas(101, 2.0);
+  road(c, {0, 20.5}, {101, 20.5}, 5);
+  road(c, {50.5, 101}, {50.5, 40}, 5);
+  RasterNetwork net = run(c, no_morphology());
+  EXPECT_EQ(net.stats.gaps_closed, 1u);
+  EXPECT_EQ(net.edges.size(), 3u) << "a T: the side road joined to the road ahead, which is split there";
+  EXPECT_EQ(net.node_count, 4u);
+  EXPECT_EQ(count_degree(net, 3), 1);
+  EXPECT_EQ(count_degree(net, 1), 3) << "only the three ends at the raster's border";
+  for (const RasterEdge& e : net.edges) {  // the junction on the road's axis, straight ahead
+    Point j = degrees(net)[e.from_node] == 3 ? e.line.front() : e.line.back();
+    EXPECT_NEAR(j.x, 1000 + 50.5 * 2, 2.0);
+    EXPECT_NEAR(j.y, 2000 + (101 - 20.5) * 2, 2.0);
+  }
+
+  RasterNetworkParams off = no_morphology();
+  off.max_gap = 0;
+  RasterNetwork open = run(c, off);
+  EXPECT_EQ(open.stats.gaps_closed, 0u);
+  EXPECT_EQ(open.edges.size(), 2u) << "max_gap 0: the old behaviour, a road and a long dead end";
+  EXPECT_EQ(count_degree(open, 1), 4);
+
+  RasterNetworkParams near = no_morphology();
+  near.max_gap = 30;  // shorter than the 40 m join
+  EXPECT_EQ(run(c, near).edges.size(), 2u);
+}
+
+TEST(RasterToNetwork, RoadBrokenInTheMiddleIsWholeAgain) {
+  // A straight road across the raster with 10 px = 20 m of background in its middle: two dead
+  // ends facing each other. The first join reaches the other dead end itself (its end node), so
+  // the road is one edge again, not a T with a stub.
+  Canvas c = canvas(101, 2.0);
+  road(c, {0, 50.5}, {45, 50.5}, 5);
+  road(c, {56, 50.5}, {101, 50.5}, 5);
+  RasterNetwork net = run(c, no_morphology());
+  EXPECT_EQ(net.stats.gaps_closed, 1u);
+  ASSERT_EQ(net.edges.size(), 1u);
+  EXPECT_EQ(net.node_count, 2u);
+  EXPECT_NEAR(length(net.edges[0].line), 101 * 2.0, 2 * 2.0) << "border to border";
+
+  RasterNetworkParams off = no_morphology();
+  off.max_gap = 0;
+  EXPECT_EQ(run(c, off).edges.size(), 2u);
+}
+
+TEST(RasterToNetwork, GapClosingFollowsTheDeadEndsDirection) {
+  // A side road turns to run 20 px = 40 m beside a road and ends there: the road is within
+  // max_gap, but at 90 degrees from the dead end's direction (30 degrees ahead, it is 80 m away).
+  Canvas c = canvas(101, 2.0);
+  road(c, {0, 20.5}, {101, 20.5}, 5);
+  road(c, {30.5, 101}, {30.5, 40.5}, 5);
+  road(c, {30.5, 40.5}, {60, 40.5}, 5);
+  RasterNetwork net = run(c, no_morphology());
+  EXPECT_EQ(net.stats.gaps_closed, 0u);
+  EXPECT_EQ(net.edges.size(), 2u);
+
+  RasterNetworkParams wide = no_morphology();
+  wide.gap_angle = 90;  // the whole half-plane ahead, the road beside it included
+  RasterNetwork joined = run(c, wide);
+  EXPECT_EQ(joined.stats.gaps_closed, 1u);
+  EXPECT_EQ(joined.edges.size(), 3u);
+  EXPECT_EQ(count_degree(joined, 3), 1);
+}
+
+TEST(RasterToNetwork, GapClosingNeverCrossesAnEdge) {
+  // Two broken roads rise towards a road at 45 degrees, converging; the nearest point of the road
+  // inside each one's 30-degree sector lies past the other's, so their two joins would cross.
+  // The first (shortest) is made; the second would cross it, an edge by then, and is not.
+  Canvas c = canvas(101, 2.0);
+  road(c, {0, 20.5}, {101, 20.5}, 5);
+  road(c, {0, 86}, {46, 40}, 5);
+  road(c, {101, 86}, {55, 40}, 5);
+  RasterNetwork net = run(c, no_morphology());
+  EXPECT_EQ(net.stats.gaps_closed, 1u);
+  EXPECT_FALSE(edges_cross(net)) << "no two edges cross";
+  EXPECT_EQ(count_degree(net, 3), 1);
+  EXPECT_EQ(net.edges.size(), 4u) << "the road in two, one broken road joined to it, the other still a dead end";
+}
+
 TEST(RasterToNetwork, TinyArtefactLoopIsRemoved) {
   // A 7 px road with a one-pixel hole: thinning goes around the hole, a loop of about 3 x 3 m.
   Canvas c = canvas(61, 1.0);
@@ -262,7 +372,11 @@ TEST(RasterToNetwork, BadParams) {
   for (auto set : {+[](RasterNetworkParams& p) { p.simplify_tolerance = -1; },
                    +[](RasterNetworkParams& p) { p.min_block_area = NAN; },
                    +[](RasterNetworkParams& p) { p.min_dead_end_length = -0.5; },
-                   +[](RasterNetworkParams& p) { p.erode = -1; }, +[](RasterNetworkParams& p) { p.dilate = 101; }}) {
+                   +[](RasterNetworkParams& p) { p.erode = -1; }, +[](RasterNetworkParams& p) { p.dilate = 101; },
+                   +[](RasterNetworkParams& p) { p.max_gap = -1; },
+                   +[](RasterNetworkParams& p) { p.max_gap = INFINITY; },
+                   +[](RasterNetworkParams& p) { p.gap_angle = 90.5; },
+                   +[](RasterNetworkParams& p) { p.gap_angle = NAN; }}) {
     RasterNetworkParams p;
     set(p);
     try {

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <new>
 #include <string>
 #include <utility>
 
@@ -361,6 +365,238 @@ void extend_dead_ends(Graph& g, const BinaryImage& mask, const GeoTransform& t) 
   }
 }
 
+// ---- Gap closing -------------------------------------------------------------------------------
+
+struct TreeDeleter {
+  GEOSContextHandle_t handle;
+  void operator()(GEOSSTRtree* tree) const noexcept { GEOSSTRtree_destroy_r(handle, tree); }
+};
+
+// What a tree query collects; GEOS calls this from C, so it must not throw.
+struct Found {
+  std::vector<int> chains;
+  bool out_of_memory = false;
+};
+void collect_chain(void* item, void* userdata) noexcept {
+  auto* found = static_cast<Found*>(userdata);
+  try {
+    found->chains.push_back(static_cast<int>(reinterpret_cast<std::uintptr_t>(item)) - 1);
+  } catch (...) {
+    found->out_of_memory = true;
+  }
+}
+
+GeomPtr make_line(GeosContext& geos, const Polyline& line) {
+  GEOSContextHandle_t h = geos.handle();
+  GEOSCoordSequence* seq = GEOSCoordSeq_create_r(h, static_cast<unsigned>(line.size()), 2);
+  if (seq == nullptr) geos.fail("GEOSCoordSeq_create");
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    GEOSCoordSeq_setXY_r(h, seq, static_cast<unsigned>(i), line[i].x, line[i].y);
+  }
+  return own(geos, GEOSGeom_createLineString_r(h, seq), "GEOSGeom_createLineString");
+}
+
+// The circular sector a dead end looks into: apex at the tip, radius `reach`, half-angle `half`
+// (radians, <= pi/2, so the sector is convex and holds every straight join it allows); a
+// segment when the half-angle is 0.
+GeomPtr make_sector(GeosContext& geos, Point tip, Point dir, double reach, double half) {
+  GEOSContextHandle_t h = geos.handle();
+  if (half <= 0.0) return make_line(geos, {tip, tip + reach * dir});
+  const int steps = std::max(2, static_cast<int>(std::ceil(half / (std::acos(-1.0) / 36))));  // 5 degrees
+  const double base = std::atan2(dir.y, dir.x);
+  Polyline ring{tip};
+  for (int k = 0; k <= steps; ++k) {
+    double a = base - half + 2.0 * half * k / steps;
+    ring.push_back(tip + reach * Point{std::cos(a), std::sin(a)});
+  }
+  ring.push_back(tip);
+  GEOSCoordSequence* seq = GEOSCoordSeq_create_r(h, static_cast<unsigned>(ring.size()), 2);
+  if (seq == nullptr) geos.fail("GEOSCoordSeq_create");
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    GEOSCoordSeq_setXY_r(h, seq, static_cast<unsigned>(i), ring[i].x, ring[i].y);
+  }
+  GEOSGeometry* shell = GEOSGeom_createLinearRing_r(h, seq);
+  if (shell == nullptr) geos.fail("GEOSGeom_createLinearRing");
+  return own(geos, GEOSGeom_createPolygon_r(h, shell, nullptr, 0), "GEOSGeom_createPolygon");
+}
+
+// A join proposed from a dead end to the road ahead of it.
+struct Join {
+  int from = 0;          // the dead-end node
+  int node = -1;         // the target node, or -1: a point inside chain `chain`
+  int chain = -1;        // the target chain
+  double abscissa = 0;   // of the target point along the target chain
+  Point at;              // the target point
+  double length = 0;
+};
+
+// A generator's roads break off: its skeleton has dead ends facing the road they should meet a
+// few metres on. Each dead end is joined by a straight segment to the nearest point of another
+// chain inside the sector ahead of it (radius max_gap, half-angle gap_angle; a point within two
+// pixels of a chain's end node is that node), shortest joins first, unless the join would cross
+// a chain or a join already made. Runs before pruning, so what is still dangling and short is
+// pruned after. Dead ends shorter than the painted half width at their other end are not joined:
+// those are thinning spurs at wide corners, pointing anywhere.
+std::size_t close_gaps(GeosContext& geos, Graph& g, const BinaryImage& mask, const GeoTransform& t, double max_gap,
+                       double gap_angle_deg) {
+  if (max_gap <= 0.0) return 0;
+  GEOSContextHandle_t h = geos.handle();
+  const double pixel = g.pixel_size;
+  const double half = gap_angle_deg * std::acos(-1.0) / 180.0;
+  const double snap = 2.0 * pixel;
+  auto inc = incidence(g);
+
+  // Every live chain as a GEOS line, in an STRtree by chain index (items are index + 1: GEOS
+  // may treat a null item as none).
+  std::vector<GeomPtr> lines(g.chains.size());
+  std::unique_ptr<GEOSSTRtree, TreeDeleter> tree(GEOSSTRtree_create_r(h, 10), TreeDeleter{h});
+  if (!tree) geos.fail("GEOSSTRtree_create");
+  for (std::size_t i = 0; i < g.chains.size(); ++i) {
+    if (!g.chains[i].alive) continue;
+    lines[i] = make_line(geos, g.chains[i].line);
+    GEOSSTRtree_insert_r(h, tree.get(), lines[i].get(), reinterpret_cast<void*>(static_cast<std::uintptr_t>(i + 1)));
+  }
+  Found found;
+  auto query = [&](const GEOSGeometry* geom) -> const std::vector<int>& {
+    found.chains.clear();
+    GEOSSTRtree_query_r(h, tree.get(), geom, &collect_chain, &found);
+    if (found.out_of_memory) throw std::bad_alloc();
+    std::sort(found.chains.begin(), found.chains.end());
+    return found.chains;
+  };
+
+  std::vector<Join> proposals;
+  for (std::size_t v = 0; v < g.nodes.size(); ++v) {
+    if (inc[v].size() != 1) continue;
+    poll_interrupts();
+    const int c = inc[v][0].first;
+    const Chain& chain = g.chains[c];
+    const Polyline back = inc[v][0].second == 1 ? Polyline(chain.line.rbegin(), chain.line.rend()) : chain.line;
+    const double len = length(back);
+    const int other = inc[v][0].second == 1 ? chain.a : chain.b;
+    if (len < clearance(mask, t, g.nodes[other])) continue;
+    const Point tip = back.front();
+    const Point dir = unit(tip - probe(back, std::min(len, std::max(3.0 * pixel, 2.0 * clearance(mask, t, tip)))));
+    if (norm(dir) == 0.0) continue;
+    GeomPtr sector = make_sector(geos, tip, dir, max_gap, half);
+    GeomPtr tip_point = own(geos, GEOSGeom_createPointFromXY_r(h, tip.x, tip.y), "GEOSGeom_createPointFromXY");
+    Join best;
+    best.length = std::numeric_limits<double>::infinity();
+    for (int k : query(sector.get())) {
+      if (k == c) continue;
+      GeomPtr seen = own(geos, GEOSIntersection_r(h, sector.get(), lines[k].get()), "GEOSIntersection");
+      if (GEOSisEmpty_r(h, seen.get())) continue;
+      double d = 0.0;
+      if (!GEOSDistance_r(h, seen.get(), tip_point.get(), &d)) geos.fail("GEOSDistance");
+      if (!(d < best.length) || d <= 0.0) continue;
+      GEOSCoordSequence* nearest = GEOSNearestPoints_r(h, seen.get(), tip_point.get());
+      if (nearest == nullptr) geos.fail("GEOSNearestPoints");
+      Point p;
+      GEOSCoordSeq_getXY_r(h, nearest, 0, &p.x, &p.y);
+      GEOSCoordSeq_destroy_r(h, nearest);
+      best.from = static_cast<int>(v);
+      best.chain = k;
+      best.at = p;
+      best.length = d;
+    }
+    if (best.chain < 0 || best.length > max_gap) continue;
+    const Chain& target = g.chains[best.chain];
+    const double s = project(target.line, best.at).abscissa;
+    const double target_len = length(target.line);
+    if (s <= snap || target_len - s <= snap) {
+      best.node = s <= snap ? target.a : target.b;
+      best.at = g.nodes[best.node];
+      best.length = distance(tip, best.at);
+    } else {
+      best.abscissa = s;
+      best.at = point_at(target.line, s);
+    }
+    proposals.push_back(best);
+  }
+  std::sort(proposals.begin(), proposals.end(), [](const Join& x, const Join& y) {
+    return x.length < y.length || (x.length == y.length && x.from < y.from);
+  });
+
+  // Shortest first; a dead end that an earlier join reached is no longer one.
+  std::vector<int> degree(g.nodes.size());
+  for (std::size_t v = 0; v < g.nodes.size(); ++v) degree[v] = static_cast<int>(inc[v].size());
+  std::vector<Join> accepted;
+  std::vector<GeomPtr> made;  // the accepted joins, shortened like the candidates
+  for (const Join& j : proposals) {
+    if (degree[j.from] != 1 || (j.node >= 0 && j.node == j.from)) continue;
+    const Point tip = g.nodes[j.from];
+    const Point u = unit(j.at - tip);
+    const double eps = std::min(0.01 * pixel, 0.25 * j.length);  // the join may touch chains at its two ends
+    GeomPtr segment = make_line(geos, {tip + eps * u, j.at - eps * u});
+    bool crosses = false;
+    for (int k : query(segment.get())) {
+      char hit = GEOSIntersects_r(h, segment.get(), lines[k].get());
+      if (hit == 2) geos.fail("GEOSIntersects");
+      if (hit) {
+        crosses = true;
+        break;
+      }
+    }
+    for (std::size_t m = 0; m < made.size() && !crosses; ++m) {
+      char hit = GEOSIntersects_r(h, segment.get(), made[m].get());
+      if (hit == 2) geos.fail("GEOSIntersects");
+      crosses = hit != 0;
+    }
+    if (crosses) continue;
+    ++degree[j.from];
+    if (j.node >= 0) ++degree[j.node];
+    accepted.push_back(j);
+    made.push_back(std::move(segment));
+  }
+
+  // Targets inside a chain split it there (several joins may split one chain).
+  std::vector<std::vector<std::size_t>> splits(g.chains.size());
+  for (std::size_t i = 0; i < accepted.size(); ++i) {
+    if (accepted[i].node < 0) splits[accepted[i].chain].push_back(i);
+  }
+  for (std::size_t k = 0; k < splits.size(); ++k) {
+    if (splits[k].empty()) continue;
+    std::vector<std::size_t>& list = splits[k];
+    std::sort(list.begin(), list.end(), [&](std::size_t x, std::size_t y) {
+      return accepted[x].abscissa < accepted[y].abscissa || (accepted[x].abscissa == accepted[y].abscissa && x < y);
+    });
+    const Polyline line = g.chains[k].line;
+    const int end_node = g.chains[k].b;
+    int from_node = g.chains[k].a;
+    double from_s = 0.0;
+    bool first = true;
+    for (std::size_t i : list) {
+      Join& j = accepted[i];
+      if (!first && j.abscissa == from_s) {  // the same point as the previous split
+        j.node = from_node;
+        continue;
+      }
+      const int node = static_cast<int>(g.nodes.size());
+      g.nodes.push_back(j.at);
+      Polyline piece = substring(line, from_s, j.abscissa);
+      piece.front() = g.nodes[from_node];
+      piece.back() = j.at;
+      if (first) {
+        g.chains[k].b = node;
+        g.chains[k].line = std::move(piece);
+      } else {
+        g.chains.push_back({from_node, node, std::move(piece)});
+      }
+      j.node = node;
+      from_node = node;
+      from_s = j.abscissa;
+      first = false;
+    }
+    Polyline rest = substring(line, from_s, length(line));
+    rest.front() = g.nodes[from_node];
+    rest.back() = g.nodes[end_node];
+    g.chains.push_back({from_node, end_node, std::move(rest)});
+  }
+  for (const Join& j : accepted) g.chains.push_back({j.from, j.node, {g.nodes[j.from], g.nodes[j.node]}});
+  merge_degree2(g);
+  return accepted.size();
+}
+
 void require_non_negative(double v, const char* name) {
   if (!(v >= 0.0) || !std::isfinite(v)) {
     throw_invalid_argument(std::string(name) + " must be a finite number >= 0", "It is " + std::to_string(v) + ".");
@@ -500,6 +736,7 @@ RasterNetwork skeleton_to_network(GeosContext& geos, const BinaryImage& skeleton
 
   merge_degree2(g);
   result.stats.small_faces = remove_small_faces(g, params.min_block_area);
+  result.stats.gaps_closed = close_gaps(geos, g, cleaned, transform, params.max_gap, params.gap_angle);
   result.stats.dead_ends_pruned = prune_dead_ends(g, params.min_dead_end_length);
   result.stats.junctions_merged = contract_junction_links(g, cleaned, transform);
   // Pruning and contraction can leave a small face that a spur used to split; one more pass.
@@ -530,6 +767,11 @@ RasterNetwork raster_to_network(GeosContext& geos, const RoadRaster& raster, con
   require_non_negative(params.min_block_area, "min_block_area");
   require_non_negative(params.min_dead_end_length, "min_dead_end_length");
   require_non_negative(params.simplify_tolerance, "simplify_tolerance");
+  require_non_negative(params.max_gap, "max_gap");
+  if (!(params.gap_angle >= 0.0 && params.gap_angle <= 90.0)) {
+    throw_invalid_argument("gap_angle must be between 0 and 90 (degrees)",
+                           "It is " + std::to_string(params.gap_angle) + ".");
+  }
   const BinaryImage& mask = raster.mask;
   std::size_t road = mask.count();
   if (road == mask.pixels.size()) {
