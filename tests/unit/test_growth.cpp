@@ -775,3 +775,36 @@ TEST(GrowExample, JoinsKeepTheExampleJunctionMix) {
   EXPECT_LT(static_cast<double>(crossings) / static_cast<double>(tees + crossings), 0.28)
       << crossings << " crossings, " << tees << " T junctions";
 }
+
+TEST(GrowExample, StreetsMeetingNearAJunctionJoinIt) {
+  // An existing street along y = 500 with a shape point every 10 m and a side street going north
+  // from (500, 500). The 80 m grid grown from (525, 210), rotation off, crosses y = 500 at
+  // x = 525 (from y = 450 to 530), 25 m from that junction: within the snap (44 m), it joins the
+  // junction (a crossing) instead of the shape point 5 m away (a second T junction 20 m from the
+  // first, which the example does not have).
+  Fixture f;
+  GrowInput in = f.input();
+  Polyline street;
+  for (int i = 0; i <= 100; ++i) street.push_back({i * 10.0, 500.0});
+  in.existing = {street, {{500.0, 500.0}, {500.0, 1000.0}}};
+  in.seeds = {{525.0, 210.0}};
+  std::size_t offset = 0, at_junction = 0;
+  for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u}) {
+    GrowParams p;
+    p.seed = seed;
+    p.rotation = false;
+    p.max_edges = 400;
+    GrowResult r = grow_example(f.geos, in, p);
+    ASSERT_GT(r.edges.size(), 50u) << "seed " << seed;
+    for (const GrownEdge& e : r.edges) {
+      for (Point q : {e.a, e.b}) {
+        if (std::abs(q.y - 500.0) > 1e-6) continue;
+        const double dx = std::abs(q.x - 500.0);
+        offset += dx > 1e-6 && dx < r.stats.snap;
+        at_junction += dx <= 1e-6;
+      }
+    }
+  }
+  EXPECT_EQ(offset, 0u);
+  EXPECT_GT(at_junction, 0u);
+}
