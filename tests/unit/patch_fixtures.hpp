@@ -1,7 +1,10 @@
 #pragma once
+#include <cmath>
 #include <cstdint>
+#include <map>
 #include <vector>
 
+#include "core/growth/grow_example.hpp"
 #include "core/growth/patches.hpp"
 
 namespace streetgen::test {
@@ -20,6 +23,25 @@ inline std::vector<core::PatchInputEdge> avenue_grid() {
     }
   }
   return out;
+}
+
+// Dead ends farther than 200 m inside the edge of a region whose x and y lie within +-1500 m
+// (the tests' grown squares): nodes of degree 1 with |x|, |y| < 1300.
+inline int interior_dead_ends(const core::GrowResult& r) {
+  std::map<std::int64_t, int> degree;
+  std::map<std::int64_t, core::Point> at;
+  for (const core::GrownEdge& e : r.edges) {
+    ++degree[e.from_node];
+    ++degree[e.to_node];
+    at[e.from_node] = e.a;
+    at[e.to_node] = e.b;
+  }
+  int n = 0;
+  for (const auto& [node, d] : degree) {
+    const core::Point q = at[node];
+    n += d == 1 && std::abs(q.x) < 1300 && std::abs(q.y) < 1300;
+  }
+  return n;
 }
 
 }  // namespace streetgen::test

@@ -13,6 +13,7 @@
 
 using namespace streetgen::core;
 using streetgen::test::avenue_grid;
+using streetgen::test::interior_dead_ends;
 using streetgen::test::wkt;
 
 namespace {
@@ -53,23 +54,6 @@ std::vector<PatchInputEdge> uneven_grid() {
   return out;
 }
 
-// Dead ends farther than 200 m inside the region's edge (x, y within +-1300 m).
-int interior_dead_ends(const GrowResult& r) {
-  std::map<std::int64_t, int> degree;
-  std::map<std::int64_t, Point> at;
-  for (const GrownEdge& e : r.edges) {
-    ++degree[e.from_node];
-    ++degree[e.to_node];
-    at[e.from_node] = e.a;
-    at[e.to_node] = e.b;
-  }
-  int n = 0;
-  for (const auto& [node, d] : degree) {
-    const Point q = at[node];
-    n += d == 1 && std::abs(q.x) < 1300 && std::abs(q.y) < 1300;
-  }
-  return n;
-}
 
 bool crosses_without_node(const GrownEdge& a, const GrownEdge& b) {
   if (a.from_node == b.from_node || a.from_node == b.to_node || a.to_node == b.from_node || a.to_node == b.to_node) {

@@ -13,6 +13,7 @@
 
 using namespace streetgen::core;
 using streetgen::test::avenue_grid;
+using streetgen::test::interior_dead_ends;
 using streetgen::test::wkt;
 
 namespace {
@@ -186,22 +187,6 @@ TEST(PatchOperations, PruneDanglingLeavesNoDeadEndTheExampleDoesNotHave) {
   p.use_patches = true;
   p.seed = 4;
   p.max_edges = 800;  // stops with open fronts inside the region
-  auto interior_dead_ends = [](const GrowResult& r) {
-    std::map<std::int64_t, int> degree;
-    std::map<std::int64_t, Point> at;
-    for (const GrownEdge& e : r.edges) {
-      ++degree[e.from_node];
-      ++degree[e.to_node];
-      at[e.from_node] = e.a;
-      at[e.to_node] = e.b;
-    }
-    int n = 0;
-    for (const auto& [node, d] : degree) {
-      const Point q = at[node];
-      n += d == 1 && std::abs(q.x) < 1300 && std::abs(q.y) < 1300;
-    }
-    return n;
-  };
   GrowResult kept = grow_example(f.geos, in, p);
   p.patch.prune_dangling = true;
   GrowResult pruned = grow_example(f.geos, in, p);

@@ -2156,14 +2156,16 @@ class Grower {
   int join_level(int level) const { return hierarchy_ && level_is_main(level) ? phase_level_[1] : level; }
   double connect_reach() const { return std::max(snap_, kConnectReach * street_stats_.length_mean); }
   // The distance from dead end v to the nearest node or street ahead of it (in the cone), or inf.
-  double gap_ahead(std::uint32_t v) {
+  // The nodes ahead of dead end v (within connect_reach and the angle window of its heading), as
+  // (distance, node) pairs; `dir` gets the dead end's heading.
+  std::vector<std::pair<double, std::uint32_t>> nodes_ahead(std::uint32_t v, Point& dir) {
     const std::uint32_t e = nodes_[v].edges[0];
     const std::uint32_t back = edges_[e].a == v ? edges_[e].b : edges_[e].a;
     const Point p = nodes_[v].p;
-    const Point dir = unit(p - nodes_[back].p);
+    dir = unit(p - nodes_[back].p);
     const double heading = std::atan2(dir.y, dir.x), reach = connect_reach();
     const double cone = params_.patch.angle_window * kPi / 180.0;
-    double best = std::numeric_limits<double>::infinity();
+    std::vector<std::pair<double, std::uint32_t>> near;
     point_hits_.clear();
     node_tree_.query(bgi::intersects(box_around(p, reach)), std::back_inserter(point_hits_));
     for (const PointValue& pv : point_hits_) {
@@ -2172,8 +2174,16 @@ class Grower {
       const Point q = nodes_[w].p;
       const double d = distance(p, q);
       if (d > reach || d <= kContact || std::abs(wrap(std::atan2(q.y - p.y, q.x - p.x) - heading)) > cone) continue;
-      best = std::min(best, d);
+      near.emplace_back(d, w);
     }
+    return near;
+  }
+  double gap_ahead(std::uint32_t v) {
+    Point dir;
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& [d, w] : nodes_ahead(v, dir)) best = std::min(best, d);
+    const Point p = nodes_[v].p;
+    const double reach = connect_reach();
     const Contact c = first_contact(p, p + reach * dir, v);
     if (c.found) best = std::min(best, c.t * reach);
     return best;
@@ -2181,25 +2191,12 @@ class Grower {
   // Joins dead end v to a node or street ahead; returns the node it reached (UINT32_MAX: none).
   std::uint32_t connect_end(std::uint32_t v) {
     const double reach = connect_reach();
-    const double cone = params_.patch.angle_window * kPi / 180.0;
-    std::vector<std::pair<double, std::uint32_t>> near;
     {
-      const std::uint32_t e = nodes_[v].edges[0];
-      const OEdge edge = edges_[e];
+      const OEdge edge = edges_[nodes_[v].edges[0]];
       const std::uint32_t back = edge.a == v ? edge.b : edge.a;
       const Point p = nodes_[v].p;
-      const Point dir = unit(p - nodes_[back].p);
-      const double heading = std::atan2(dir.y, dir.x);
-      point_hits_.clear();
-      node_tree_.query(bgi::intersects(box_around(p, reach)), std::back_inserter(point_hits_));
-      for (const PointValue& pv : point_hits_) {
-        const std::uint32_t w = pv.second;
-        if (w == v || w == back || nodes_[w].edges.empty()) continue;
-        const Point q = nodes_[w].p;
-        const double d = distance(p, q);
-        if (d > reach || d <= kContact || std::abs(wrap(std::atan2(q.y - p.y, q.x - p.x) - heading)) > cone) continue;
-        near.emplace_back(d, w);
-      }
+      Point dir;
+      std::vector<std::pair<double, std::uint32_t>> near = nodes_ahead(v, dir);
       std::sort(near.begin(), near.end());
       for (const auto& [d, w] : near) {
         if (try_connect(v, w, join_level(edge.level))) return w;
