@@ -145,7 +145,7 @@ double parking_width(const LaneInput& in, const std::string& side, const LaneRul
   double share = 0.0;  // of the parking's width that lies in the roadway
   const std::string* orientation = nullptr;
   if (const std::string* v = first({"parking:" + side, "parking:both"})) {
-    static const std::set<std::string> outside = {"no", "separate", "street_side", "on_kerb", "shoulder", "yes", "none"};
+    static const std::set<std::string> outside = {"no", "street_side", "on_kerb", "shoulder", "yes", "none"};
     if (*v == "lane") share = 1.0;
     else if (*v == "half_on_kerb") share = 0.5;
     else if (*v == "separate") {
