@@ -6,6 +6,8 @@
 #   OUT=/tmp/pics bash bench/growth/run.sh    where the PNGs go (default: build/bench-growth)
 #   PARAMS='{"rotation": false}' SEEDS='1 2 3 4 5' bash bench/growth/run.sh   params and seeds of part 1
 #   SPEED=0 bash bench/growth/run.sh          part 1 only
+#   PLOTS=0 SEEDS="$(seq 1 30)" bash bench/growth/run.sh   no PNGs: judge a change on many seeds quickly
+#                                             (30 seeds, five examples: under a minute of growth)
 #
 # 1. Realism: for tokyo, canberra_south_large, barcelona_east, new-york and strasbourg, grow the
 #    example's convex hull from one seed point at its centre (default params; seeds 1, 2, 3), then
@@ -56,7 +58,7 @@ BEGIN
 END
 \$\$;
 SQL
-  /usr/bin/python3 "$repo/bench/growth/plot.py" "host=$PGHOST port=$PGPORT user=postgres dbname=bench" \
+  [ "${PLOTS:-1}" = 0 ] || /usr/bin/python3 "$repo/bench/growth/plot.py" "host=$PGHOST port=$PGPORT user=postgres dbname=bench" \
     "SELECT geom, road_class FROM patch WHERE name = '$name'" \
     "SELECT geom, road_class FROM grown WHERE name = '$name' AND seed = $seed" \
     "$name: example (left) and grow_example output (right), params $params, seed $seed" "$out/$name-seed$seed.png"
