@@ -1217,8 +1217,9 @@ class SurfaceBuilder {
         // hole through a vertex of the claim, and the whole claim came back: pgTAP 62.)
         for (std::size_t k = 0; k < meeting.size() && rest; ++k) {
           rest = k + 1 < meeting.size()
-                     ? own(ctx_, GEOSDifference_r(ctx_.handle(), rest.get(), meeting[k]), "difference")
+                     ? difference_by_part(std::move(rest), meeting[k])
                      : own(ctx_, GEOSDifferencePrec_r(ctx_.handle(), rest.get(), meeting[k], kSidewalkGrid), "difference");
+          if (!rest) break;
           // (a floating difference can leave a collapsed edge as a line beside the polygons, and
           // the next overlay would refuse input of mixed dimension)
           int type = GEOSGeomTypeId_r(ctx_.handle(), rest.get());
@@ -1248,6 +1249,47 @@ class SurfaceBuilder {
         }
       }
     }
+  }
+
+  // `rest` minus `blocker`, in floating point, part by part: once a junction's own roadway and
+  // its streets' roadways are taken from its claim, the claim is a handful of corner pieces and
+  // each later blocker (a street's side claim) meets one or two of them. Parts whose box misses
+  // the blocker's are kept as they are and only the others go through the overlay, instead of
+  // noding every part again for each blocker (Paris: 243,000 differences for 21,675 junction
+  // claims; the engine 49.8 s -> 46.1 s of CPU). Null when nothing is left.
+  GeomPtr difference_by_part(GeomPtr rest, const GEOSGeometry* blocker) {
+    GEOSContextHandle_t h = ctx_.handle();
+    if (GEOSGeomTypeId_r(h, rest.get()) != GEOS_MULTIPOLYGON || GEOSGetNumGeometries_r(h, rest.get()) < 2) {
+      return own(ctx_, GEOSDifference_r(h, rest.get(), blocker), "difference");
+    }
+    Box reach;
+    envelope_box(ctx_, blocker, reach);
+    std::vector<GeomPtr> parts;
+    int n = GEOSGetNumGeometries_r(h, rest.get());
+    for (int i = 0; i < n; ++i) {
+      const GEOSGeometry* part = GEOSGetGeometryN_r(h, rest.get(), i);
+      Box box;
+      envelope_box(ctx_, part, box);
+      if (box.xmax < reach.xmin || box.xmin > reach.xmax || box.ymax < reach.ymin || box.ymin > reach.ymax) {
+        parts.push_back(own(ctx_, GEOSGeom_clone_r(h, part), "clone"));
+        continue;
+      }
+      GeomPtr left = own(ctx_, GEOSDifference_r(h, part, blocker), "difference");
+      GeomPtr polygons = polygons_of(ctx_, left.get(), 0.0);
+      if (!polygons) continue;
+      if (GEOSGeomTypeId_r(h, polygons.get()) == GEOS_POLYGON) {
+        parts.push_back(std::move(polygons));
+        continue;
+      }
+      int m = GEOSGetNumGeometries_r(h, polygons.get());
+      for (int j = 0; j < m; ++j) parts.push_back(own(ctx_, GEOSGeom_clone_r(h, GEOSGetGeometryN_r(h, polygons.get(), j)), "clone"));
+    }
+    if (parts.empty()) return nullptr;
+    if (parts.size() == 1) return std::move(parts.front());
+    // (the parts are disjoint pieces of one valid MultiPolygon, each cut on its own: still one)
+    std::vector<GEOSGeometry*> raw;
+    for (GeomPtr& p : parts) raw.push_back(p.release());
+    return own(ctx_, GEOSGeom_createCollection_r(h, GEOS_MULTIPOLYGON, raw.data(), static_cast<unsigned>(raw.size())), "parts");
   }
 
   // How far from its axis an axis' roadway reaches, on its wider side.
