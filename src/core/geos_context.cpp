@@ -40,4 +40,29 @@ GeomPtr own(GeosContext& ctx, GEOSGeometry* geom, const char* operation) {
   return GeomPtr(geom, GeomDeleter{ctx.handle()});
 }
 
+GeomPtr make_collection(GeosContext& ctx, int type, std::vector<GeomPtr>& parts) {
+  std::vector<GEOSGeometry*> raw;
+  raw.reserve(parts.size());
+  for (GeomPtr& p : parts) raw.push_back(p.get());
+  GEOSGeometry* c = GEOSGeom_createCollection_r(ctx.handle(), type, raw.data(), static_cast<unsigned>(raw.size()));
+  if (c == nullptr) {
+    parts.clear();  // GEOS did not take them: the pointers still own them
+    ctx.fail("collection");
+  }
+  for (GeomPtr& p : parts) p.release();  // owned by the collection now
+  parts.clear();
+  return GeomPtr(c, GeomDeleter{ctx.handle()});
+}
+
+void append_polygons(GeosContext& ctx, const GEOSGeometry* geom, std::vector<GeomPtr>& out) {
+  GEOSContextHandle_t h = ctx.handle();
+  int type = GEOSGeomTypeId_r(h, geom);
+  if (type == GEOS_POLYGON) {
+    if (GEOSisEmpty_r(h, geom) == 0) out.push_back(own(ctx, GEOSGeom_clone_r(h, geom), "clone"));
+  } else if (type == GEOS_MULTIPOLYGON || type == GEOS_GEOMETRYCOLLECTION) {
+    int n = GEOSGetNumGeometries_r(h, geom);
+    for (int i = 0; i < n; ++i) append_polygons(ctx, GEOSGetGeometryN_r(h, geom, i), out);
+  }
+}
+
 }  // namespace streetgen::core

@@ -9,6 +9,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace streetgen::core {
 
@@ -45,5 +46,13 @@ using GeomPtr = std::unique_ptr<GEOSGeometry, GeomDeleter>;
 
 // Takes ownership of a GEOS result; a null result means GEOS failed and throws via ctx.fail().
 GeomPtr own(GeosContext& ctx, GEOSGeometry* geom, const char* operation);
+
+// A new collection of `type` (GEOS_MULTIPOLYGON, GEOS_GEOMETRYCOLLECTION, ...) that takes the
+// geometries of `parts` and leaves `parts` empty; on failure the parts are freed and it throws.
+GeomPtr make_collection(GeosContext& ctx, int type, std::vector<GeomPtr>& parts);
+
+// Appends clones of the non-empty polygons of `geom`, recursively through collections: what
+// ST_CollectionExtract(geom, 3) keeps, one polygon per entry.
+void append_polygons(GeosContext& ctx, const GEOSGeometry* geom, std::vector<GeomPtr>& out);
 
 }  // namespace streetgen::core

@@ -49,32 +49,6 @@ void forget_or_rethrow(GeosContext& ctx, const char* operation) {
   ctx.clear_error();
 }
 
-// The polygons of `geom` (recursively through collections), cloned, empty ones left out: what
-// ST_CollectionExtract(geom, 3) keeps.
-void append_polygons(GeosContext& ctx, const GEOSGeometry* geom, std::vector<GeomPtr>& out) {
-  GEOSContextHandle_t h = ctx.handle();
-  int type = GEOSGeomTypeId_r(h, geom);
-  if (type == GEOS_POLYGON) {
-    if (GEOSisEmpty_r(h, geom) == 0) out.push_back(own(ctx, GEOSGeom_clone_r(h, geom), "clone"));
-  } else if (type == GEOS_MULTIPOLYGON || type == GEOS_GEOMETRYCOLLECTION) {
-    int n = GEOSGetNumGeometries_r(h, geom);
-    for (int i = 0; i < n; ++i) append_polygons(ctx, GEOSGetGeometryN_r(h, geom, i), out);
-  }
-}
-
-// Takes the geometries (on success or failure) into a new collection of `type`.
-GEOSGeometry* make_collection(GeosContext& ctx, int type, std::vector<GeomPtr>& parts) {
-  std::vector<GEOSGeometry*> raw;
-  raw.reserve(parts.size());
-  for (auto& p : parts) raw.push_back(p.get());
-  GEOSGeometry* c = GEOSGeom_createCollection_r(ctx.handle(), type, raw.data(), static_cast<unsigned int>(raw.size()));
-  if (c != nullptr) {
-    for (auto& p : parts) p.release();  // owned by the collection now
-  }
-  parts.clear();
-  return c;
-}
-
 // What is left of a face as its block: the polygons of `rest` of at least kMinBlockPartArea, as a
 // MultiPolygon, or nullptr. Smaller parts are the gaps, nanometres wide, that two surfaces leave
 // between edges that meet up to rounding (sidewalks lie on the micrometre grid, roadways not):
@@ -91,7 +65,7 @@ void keep_block(GeosContext& ctx, const GEOSGeometry* rest, GeomPtr& result) {
   if (polygons.empty()) {
     result.reset();
   } else {
-    result = own(ctx, make_collection(ctx, GEOS_MULTIPOLYGON, polygons), "multipolygon");
+    result = make_collection(ctx, GEOS_MULTIPOLYGON, polygons);
   }
 }
 
@@ -136,7 +110,7 @@ bool cut_face(GeosContext& ctx, const GEOSGeometry* face, const GEOSPreparedGeom
     keep_block(ctx, face, result);
     return true;
   }
-  GeomPtr collection = own(ctx, make_collection(ctx, GEOS_GEOMETRYCOLLECTION, parts), "collection");
+  GeomPtr collection = make_collection(ctx, GEOS_GEOMETRYCOLLECTION, parts);
   auto start = std::chrono::steady_clock::now();
   GEOSGeometry* u = grid ? GEOSUnaryUnionPrec_r(h, collection.get(), grid_size) : GEOSUnaryUnion_r(h, collection.get());
   stats.union_seconds += seconds_since(start);

@@ -474,14 +474,6 @@ GeomPtr line_of(GeosContext& ctx, const Polyline& pts) {
   return own(ctx, GEOSGeom_createLineString_r(ctx.handle(), seq), "line construction");
 }
 
-GeomPtr collection(GeosContext& ctx, int type, std::vector<GeomPtr>& parts) {
-  std::vector<GEOSGeometry*> raw;
-  raw.reserve(parts.size());
-  for (GeomPtr& p : parts) raw.push_back(p.release());
-  parts.clear();
-  return own(ctx, GEOSGeom_createCollection_r(ctx.handle(), type, raw.data(), static_cast<unsigned>(raw.size())), "collection");
-}
-
 bool is_empty(GeosContext& ctx, const GEOSGeometry* g) { return GEOSisEmpty_r(ctx.handle(), g) != 0; }
 
 GeomPtr offset_curve(GeosContext& ctx, const GEOSGeometry* line, double offset) {
@@ -512,7 +504,7 @@ GeomPtr clipped(GeosContext& ctx, GeomPtr line, const GEOSGeometry* surface) {
   }
   if (lines.empty()) return nullptr;
   if (lines.size() == 1) return std::move(lines[0]);
-  return collection(ctx, GEOS_MULTILINESTRING, lines);
+  return make_collection(ctx, GEOS_MULTILINESTRING, lines);
 }
 
 }  // namespace
@@ -548,7 +540,7 @@ void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, co
     std::vector<GeomPtr> work;
     work.push_back(own(ctx, GEOSBoundary_r(ctx.handle(), surface), "boundary"));
     for (std::size_t k = 1; k < specs.size(); ++k) work.push_back(offset_curve(ctx, axis_line.get(), edges[k]));
-    GeomPtr all = collection(ctx, GEOS_GEOMETRYCOLLECTION, work);
+    GeomPtr all = make_collection(ctx, GEOS_GEOMETRYCOLLECTION, work);
     GeomPtr noded = own(ctx, GEOSUnaryUnion_r(ctx.handle(), all.get()), "noding");
     const GEOSGeometry* noded_ptr = noded.get();
     GeomPtr faces = own(ctx, GEOSPolygonize_r(ctx.handle(), &noded_ptr, 1), "polygonize");
@@ -594,7 +586,7 @@ void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, co
       for (std::vector<GeomPtr>& lane_faces : faces_of) {
         for (GeomPtr& f : lane_faces) kept.push_back(own(ctx, GEOSGeom_clone_r(ctx.handle(), f.get()), "clone"));
       }
-      GeomPtr kept_all = collection(ctx, GEOS_GEOMETRYCOLLECTION, kept);
+      GeomPtr kept_all = make_collection(ctx, GEOS_GEOMETRYCOLLECTION, kept);
       GeomPtr kept_union = own(ctx, GEOSUnaryUnion_r(ctx.handle(), kept_all.get()), "union");
       GeomPtr missing = own(ctx, GEOSDifference_r(ctx.handle(), surface, kept_union.get()), "difference");
       int m = GEOSGetNumGeometries_r(ctx.handle(), missing.get());
@@ -617,7 +609,7 @@ void section_lanes(GeosContext& ctx, std::int64_t axis_id, std::int64_t part, co
     if (faces_of[k].size() == 1) {
       lane.surface = std::move(faces_of[k][0]);
     } else {
-      GeomPtr c = collection(ctx, GEOS_GEOMETRYCOLLECTION, faces_of[k]);
+      GeomPtr c = make_collection(ctx, GEOS_GEOMETRYCOLLECTION, faces_of[k]);
       lane.surface = own(ctx, GEOSUnaryUnion_r(ctx.handle(), c.get()), "lane union");
     }
     lanes.push_back(std::move(lane));

@@ -1271,25 +1271,16 @@ class SurfaceBuilder {
       Box box;
       envelope_box(ctx_, part, box);
       if (box.xmax < reach.xmin || box.xmin > reach.xmax || box.ymax < reach.ymin || box.ymin > reach.ymax) {
-        parts.push_back(own(ctx_, GEOSGeom_clone_r(h, part), "clone"));
+        append_polygons(ctx_, part, parts);
         continue;
       }
       GeomPtr left = own(ctx_, GEOSDifference_r(h, part, blocker), "difference");
-      GeomPtr polygons = polygons_of(ctx_, left.get(), 0.0);
-      if (!polygons) continue;
-      if (GEOSGeomTypeId_r(h, polygons.get()) == GEOS_POLYGON) {
-        parts.push_back(std::move(polygons));
-        continue;
-      }
-      int m = GEOSGetNumGeometries_r(h, polygons.get());
-      for (int j = 0; j < m; ++j) parts.push_back(own(ctx_, GEOSGeom_clone_r(h, GEOSGetGeometryN_r(h, polygons.get(), j)), "clone"));
+      append_polygons(ctx_, left.get(), parts);
     }
     if (parts.empty()) return nullptr;
     if (parts.size() == 1) return std::move(parts.front());
     // (the parts are disjoint pieces of one valid MultiPolygon, each cut on its own: still one)
-    std::vector<GEOSGeometry*> raw;
-    for (GeomPtr& p : parts) raw.push_back(p.release());
-    return own(ctx_, GEOSGeom_createCollection_r(h, GEOS_MULTIPOLYGON, raw.data(), static_cast<unsigned>(raw.size())), "parts");
+    return make_collection(ctx_, GEOS_MULTIPOLYGON, parts);
   }
 
   // How far from its axis an axis' roadway reaches, on its wider side.
