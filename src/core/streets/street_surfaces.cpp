@@ -19,6 +19,7 @@ constexpr double kSamePoint = 1e-6;   // m
 constexpr double kStopBehindCrossing = 1.0;  // m between a crossing and the stop line behind it
 constexpr double kGivenAway = 1e-6;          // m²: less overlap than this between roadways is left alone
 constexpr double kSidewalkGrid = 1e-6;       // m: sidewalks are snapped to it (slivers collapse)
+constexpr double kOnCutLine = 1e-8;         // m: a vertex this close to a line counts as on it
 constexpr double kMinSidewalkArea = 0.01;    // m²: smaller pieces of a sidewalk are overlay slivers
 
 double angle_of(Point v) { return std::atan2(v.y, v.x); }
@@ -1089,6 +1090,12 @@ class SurfaceBuilder {
       int layer = 0;
       bool roadway = false;
       SidewalkResult meta;  // claims
+      // A street side's claim ends on the normals at its section's border points: the lines
+      // through cut_point[k] across cut_direction[k] (pointing into the claim), when the whole
+      // claim lies on their inner side (cuts[k]; a tight bend can break that).
+      bool cuts[2] = {false, false};
+      Point cut_point[2];
+      Point cut_direction[2];
     };
     std::vector<Item> items;
     std::map<std::int64_t, std::size_t> node_index;
@@ -1120,7 +1127,8 @@ class SurfaceBuilder {
         double w = side == 0 ? axis.sidewalk_left : axis.sidewalk_right;
         if (!(w > 0.0)) continue;
         try {
-          GeomPtr line = make_line(ctx_, substring(sec.centre_line, sec.start_border, sec.end_border));
+          Polyline between = substring(sec.centre_line, sec.start_border, sec.end_border);
+          GeomPtr line = make_line(ctx_, between);
           // The roadway's side extent (street parking shifts it off the axis), then the sidewalk.
           double shift = plans_[topo_.edges[e].axis_index].centre_offset;
           double d = axis.roadway_width / 2 + (side == 0 ? shift : -shift) + w;
@@ -1135,6 +1143,13 @@ class SurfaceBuilder {
           }
           it.geom = it.owned.get();
           it.layer = axis.layer;
+          it.cut_point[0] = between.front();
+          it.cut_direction[0] = unit(between[1] - between[0]);
+          it.cut_point[1] = between.back();
+          it.cut_direction[1] = unit(between[between.size() - 2] - between.back());
+          for (int k = 0; k < 2; ++k) {  // (a zero direction, from repeated points, would pass any test)
+            it.cuts[k] = norm(it.cut_direction[k]) > 0.5 && beyond_line(it.geom, it.cut_point[k], it.cut_direction[k]);
+          }
           it.meta.axis_id = sec.axis_id;
           it.meta.part = sec.part;
           it.meta.side = side == 0 ? "left" : "right";
@@ -1199,6 +1214,14 @@ class SurfaceBuilder {
           const GEOSPreparedGeometry* prepared = GEOSPrepare_r(ctx_.handle(), it.geom);
           if (prepared == nullptr) ctx_.fail("prepare");
           for (std::size_t b : blockers[i]) {
+            // (a junction's roadway touches a street side's claim along the border line, and
+            // a difference with it took nothing away: 89,000 of the street sides' 170,000
+            // floating differences on Paris. A line with the claim on one side and the blocker
+            // on the other shows that without an overlay.)
+            if ((it.cuts[0] && beyond_line(items[b].geom, it.cut_point[0], -1.0 * it.cut_direction[0])) ||
+                (it.cuts[1] && beyond_line(items[b].geom, it.cut_point[1], -1.0 * it.cut_direction[1]))) {
+              continue;
+            }
             char meets = GEOSPreparedIntersects_r(ctx_.handle(), prepared, items[b].geom);
             if (meets == 2) ctx_.clear_error();
             if (meets != 0) meeting.push_back(items[b].geom);
@@ -1249,6 +1272,36 @@ class SurfaceBuilder {
         }
       }
     }
+  }
+
+  // Whether every vertex of `g` lies on the side of the line through `p` across `direction`
+  // that `direction` points to, or on the line up to kOnCutLine. Two geometries beyond the same
+  // line from either side can share at most a strip 2 kOnCutLine wide, far below the sidewalk grid.
+  bool beyond_line(const GEOSGeometry* g, Point p, Point direction) {
+    GEOSContextHandle_t h = ctx_.handle();
+    auto ring_beyond = [&](const GEOSGeometry* ring) {
+      const GEOSCoordSequence* seq = GEOSGeom_getCoordSeq_r(h, ring);
+      unsigned int n = 0;
+      if (seq == nullptr || GEOSCoordSeq_getSize_r(h, seq, &n) == 0) ctx_.fail("coordinates");
+      for (unsigned int i = 0; i < n; ++i) {
+        Point q;
+        if (GEOSCoordSeq_getXY_r(h, seq, i, &q.x, &q.y) == 0) ctx_.fail("coordinates");
+        if (dot(q - p, direction) < -kOnCutLine) return false;
+      }
+      return true;
+    };
+    auto polygon_beyond = [&](const GEOSGeometry* polygon) {
+      const GEOSGeometry* shell = GEOSGetExteriorRing_r(h, polygon);
+      return shell != nullptr && ring_beyond(shell);  // (the holes lie inside the shell)
+    };
+    int type = GEOSGeomTypeId_r(h, g);
+    if (type == GEOS_POLYGON) return polygon_beyond(g);
+    if (type != GEOS_MULTIPOLYGON) return false;
+    int n = GEOSGetNumGeometries_r(h, g);
+    for (int i = 0; i < n; ++i) {
+      if (!polygon_beyond(GEOSGetGeometryN_r(h, g, i))) return false;
+    }
+    return true;
   }
 
   // `rest` minus `blocker`, in floating point, part by part: once a junction's own roadway and
