@@ -928,7 +928,8 @@ class Grower {
   }
   // The nearest junction (degree >= 3) within snap of x along the street of `edge`: its ends and,
   // through shape points (degree 2), the nodes beyond them. UINT32_MAX: none.
-  std::uint32_t junction_near(std::uint32_t edge, Point x) const {
+  std::uint32_t junction_near(std::uint32_t edge, Point x) const { return junction_near(edge, x, snap_); }
+  std::uint32_t junction_near(std::uint32_t edge, Point x, double reach) const {
     std::uint32_t best = UINT32_MAX;
     double bd = INFINITY;
     for (int side = 0; side < 2; ++side) {
@@ -936,7 +937,7 @@ class Grower {
       std::uint32_t cur = side ? edges_[edge].b : edges_[edge].a;
       for (int hops = 0; hops < 64; ++hops) {  // a closed ring of shape points ends the walk too
         const double d = distance(nodes_[cur].p, x);
-        if (d > snap_) break;
+        if (d > reach) break;
         const std::vector<std::uint32_t>& es = nodes_[cur].edges;
         if (es.size() >= 3) {
           if (d < bd) {
@@ -952,6 +953,10 @@ class Grower {
       }
     }
     return best;
+  }
+  // A T made at shape point w would lie within two snap distances of a junction along its street.
+  bool crowds_junction(std::uint32_t w) const {
+    return nodes_[w].edges.size() == 2 && junction_near(nodes_[w].edges[0], nodes_[w].p, 2.0 * snap_) != UINT32_MAX;
   }
   bool has_edge(std::uint32_t v, std::uint32_t w) const {
     for (std::uint32_t e : nodes_[v].edges) {
@@ -1472,6 +1477,15 @@ class Grower {
       outside = true;
       ++stats_.clipped;
     }
+    // The copied edge ends on a shape point of the example (its street goes on there): a join that
+    // makes a new T (on another street's shape point, or splitting an edge) within two snap
+    // distances of a junction along the met street is a junction pair the example did not plan.
+    // Strasbourg's ~28 m segments make most of its copies such continuations: 30 of its ~75 extra
+    // junctions per growth (seeds 1-6) were these joins. Such a proposal is refused; joining a
+    // junction or a dead end, or a T farther from junctions, stays allowed.
+    const bool goes_on =
+        step_copy_.first >= 0 &&
+        examples_[static_cast<std::size_t>(step_copy_.first)].nodes[step_copy_.second].halves.size() == 2;
     Contact c = first_contact(p, e, v);
     if (c.found) {
       double at = c.t * length;
@@ -1490,7 +1504,7 @@ class Grower {
         finish_free_end(v, p + l * u, true, level, example_id, source);
         return;
       }
-      connect_at_contact(v, p + at * u, c.edge, level, example_id, source);
+      connect_at_contact(v, p + at * u, c.edge, level, example_id, source, !goes_on);
       return;
     }
     if (dead_end || outside) {
@@ -1513,7 +1527,7 @@ class Grower {
       }
     }
     if (w != UINT32_MAX) {
-      if (try_connect_node(v, w, level, example_id, source)) return;
+      if ((!goes_on || !crowds_junction(w)) && try_connect_node(v, w, level, example_id, source)) return;
       ++stats_.rejected;
       return;
     }
@@ -1538,7 +1552,7 @@ class Grower {
       Point x = a + t * ab;
       if (distance(x, p) >= min_length_ && first_contact(p, x, v, UINT32_MAX, target).found == false &&
           legal(p, x)) {
-        connect_at_contact(v, x, target, level, example_id, source);
+        connect_at_contact(v, x, target, level, example_id, source, !goes_on);
         return;
       }
       ++stats_.rejected;
@@ -1589,7 +1603,13 @@ class Grower {
     for (const PointValue& pv : point_hits_) {
       std::uint32_t w = pv.second;
       if (w == v || distance(nodes_[w].p, p) > reach) continue;
-      if (try_connect_node(v, w, level, join_id, join_source)) return;
+      // A shape point within two snap distances of a junction along its street: the junction is
+      // joined instead (strasbourg made 18 Ts per growth with these joins onto shape points, a
+      // quarter of its extra junctions). Example growth only (patch growth was not measured).
+      if (!params_.use_patches && !params_.parametric && crowds_junction(w)) {
+        w = junction_near(nodes_[w].edges[0], nodes_[w].p, 2.0 * snap_);
+      }
+      if (w != v && try_connect_node(v, w, level, join_id, join_source)) return;
     }
   }
 
@@ -1725,7 +1745,9 @@ class Grower {
   }
 
   // The proposal from v meets edge `edge` at x: end on one of its nodes if near, else split it.
-  void connect_at_contact(std::uint32_t v, Point x, std::uint32_t edge, int level, std::int64_t example_id, int source) {
+  // new_t: whether it may make a new T (join a shape point, or split the edge).
+  void connect_at_contact(std::uint32_t v, Point x, std::uint32_t edge, int level, std::int64_t example_id, int source,
+                          bool new_t = true) {
     const OEdge& e = edges_[edge];
     std::uint32_t near = distance(nodes_[e.a].p, x) <= distance(nodes_[e.b].p, x) ? e.a : e.b;
     // A junction of the met street within snap is joined instead (a crossing), not a shape point
@@ -1737,7 +1759,13 @@ class Grower {
     const std::uint32_t junction = params_.use_patches ? UINT32_MAX : junction_near(edge, x);
     if (junction != UINT32_MAX) near = junction;
     if (distance(nodes_[near].p, x) <= snap_) {
-      if (!try_connect_node(v, near, level, example_id, source)) ++stats_.rejected;
+      if ((!new_t && crowds_junction(near)) || !try_connect_node(v, near, level, example_id, source)) {
+        ++stats_.rejected;
+      }
+      return;
+    }
+    if (!new_t && junction_near(edge, x, 2.0 * snap_) != UINT32_MAX) {
+      ++stats_.rejected;
       return;
     }
     Point p = nodes_[v].p;
