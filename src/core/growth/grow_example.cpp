@@ -954,9 +954,11 @@ class Grower {
     }
     return best;
   }
-  // A T made at shape point w would lie within two snap distances of a junction along its street.
-  bool crowds_junction(std::uint32_t w) const {
-    return nodes_[w].edges.size() == 2 && junction_near(nodes_[w].edges[0], nodes_[w].p, 2.0 * snap_) != UINT32_MAX;
+  // The junction within two snap distances of shape point w along its street, which a T made at
+  // w would crowd; UINT32_MAX when w is not a shape point or no junction is that near.
+  std::uint32_t crowded_junction(std::uint32_t w) const {
+    if (nodes_[w].edges.size() != 2) return UINT32_MAX;
+    return junction_near(nodes_[w].edges[0], nodes_[w].p, 2.0 * snap_);
   }
   bool has_edge(std::uint32_t v, std::uint32_t w) const {
     for (std::uint32_t e : nodes_[v].edges) {
@@ -1527,7 +1529,7 @@ class Grower {
       }
     }
     if (w != UINT32_MAX) {
-      if ((!goes_on || !crowds_junction(w)) && try_connect_node(v, w, level, example_id, source)) return;
+      if ((!goes_on || crowded_junction(w) == UINT32_MAX) && try_connect_node(v, w, level, example_id, source)) return;
       ++stats_.rejected;
       return;
     }
@@ -1606,8 +1608,9 @@ class Grower {
       // A shape point within two snap distances of a junction along its street: the junction is
       // joined instead (strasbourg made 18 Ts per growth with these joins onto shape points, a
       // quarter of its extra junctions). Example growth only (patch growth was not measured).
-      if (!params_.use_patches && !params_.parametric && crowds_junction(w)) {
-        w = junction_near(nodes_[w].edges[0], nodes_[w].p, 2.0 * snap_);
+      if (!params_.use_patches && !params_.parametric) {
+        const std::uint32_t junction = crowded_junction(w);
+        if (junction != UINT32_MAX) w = junction;
       }
       if (w != v && try_connect_node(v, w, level, join_id, join_source)) return;
     }
@@ -1759,7 +1762,7 @@ class Grower {
     const std::uint32_t junction = params_.use_patches ? UINT32_MAX : junction_near(edge, x);
     if (junction != UINT32_MAX) near = junction;
     if (distance(nodes_[near].p, x) <= snap_) {
-      if ((!new_t && crowds_junction(near)) || !try_connect_node(v, near, level, example_id, source)) {
+      if ((!new_t && crowded_junction(near) != UINT32_MAX) || !try_connect_node(v, near, level, example_id, source)) {
         ++stats_.rejected;
       }
       return;
