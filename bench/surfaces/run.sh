@@ -18,7 +18,7 @@ data="${STREETGEN_SHARED_DATA:-$repo/../shared/data}"
 out="${OUT:-$repo/build/bench-surfaces}"
 datasets="${DATASETS:-osm cases paris}"
 peers="${PEERS:-1}"
-port=54330
+port="${PORT:-54330}"   # (PORT=... when another cluster holds 54330)
 mkdir -p "$out"
 report="$out/report.md"
 : >"$report"

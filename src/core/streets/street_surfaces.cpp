@@ -186,23 +186,22 @@ void envelope_box(GeosContext& ctx, const GEOSGeometry* g, Box& box) {
 // The polygons of `geom` of at least `min_area` m² (slivers of an overlay dropped), as one
 // polygon or a multipolygon; null when none is left.
 GeomPtr polygons_of(GeosContext& ctx, const GEOSGeometry* geom, double min_area) {
-  std::vector<GEOSGeometry*> kept;
+  std::vector<GeomPtr> kept;
   std::vector<const GEOSGeometry*> stack{geom};
   while (!stack.empty()) {
     const GEOSGeometry* g = stack.back();
     stack.pop_back();
     int type = GEOSGeomTypeId_r(ctx.handle(), g);
     if (type == GEOS_POLYGON) {
-      if (GEOSisEmpty_r(ctx.handle(), g) == 0 && area_of(ctx, g) >= min_area) kept.push_back(GEOSGeom_clone_r(ctx.handle(), g));
+      if (GEOSisEmpty_r(ctx.handle(), g) == 0 && area_of(ctx, g) >= min_area) kept.push_back(own(ctx, GEOSGeom_clone_r(ctx.handle(), g), "clone"));
     } else if (type == GEOS_MULTIPOLYGON || type == GEOS_GEOMETRYCOLLECTION) {
       int n = GEOSGetNumGeometries_r(ctx.handle(), g);
       for (int i = n - 1; i >= 0; --i) stack.push_back(GEOSGetGeometryN_r(ctx.handle(), g, i));
     }
   }
   if (kept.empty()) return nullptr;
-  if (kept.size() == 1) return GeomPtr(kept[0], GeomDeleter{ctx.handle()});
-  return own(ctx, GEOSGeom_createCollection_r(ctx.handle(), GEOS_MULTIPOLYGON, kept.data(), static_cast<unsigned>(kept.size())),
-             "multipolygon");
+  if (kept.size() == 1) return std::move(kept[0]);
+  return make_collection(ctx, GEOS_MULTIPOLYGON, kept);
 }
 
 // One side of a line buffered: the region between the line and its offset at `distance` (left
@@ -694,12 +693,7 @@ class SurfaceBuilder {
     }
     GeomPtr centre = make_point(ctx_, node.position);
     parts.push_back(own(ctx_, GEOSBuffer_r(ctx_.handle(), centre.get(), std::max(h_max, 0.25), kQuadrantSegments), "node buffer"));
-    std::vector<GEOSGeometry*> raw;
-    for (GeomPtr& p : parts) raw.push_back(p.release());
-    GeomPtr collection = own(ctx_,
-                             GEOSGeom_createCollection_r(ctx_.handle(), GEOS_GEOMETRYCOLLECTION, raw.data(),
-                                                         static_cast<unsigned>(raw.size())),
-                             "collection");
+    GeomPtr collection = make_collection(ctx_, GEOS_GEOMETRYCOLLECTION, parts);
     GeomPtr surface = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), collection.get()), "union");
     // Minus the sections of the axes at this node.
     for (const End& e : ends) {
@@ -780,11 +774,7 @@ class SurfaceBuilder {
     for (auto& [i, pieces] : given_away) {
       SectionResult& sec = result_.sections[i];
       try {
-        std::vector<GEOSGeometry*> raw;
-        for (GeomPtr& piece : pieces) raw.push_back(piece.release());
-        GeomPtr all = own(ctx_, GEOSGeom_createCollection_r(ctx_.handle(), GEOS_GEOMETRYCOLLECTION, raw.data(),
-                                                            static_cast<unsigned>(raw.size())),
-                          "collection");
+        GeomPtr all = make_collection(ctx_, GEOS_GEOMETRYCOLLECTION, pieces);
         GeomPtr lost = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), all.get()), "union");
         Polyline axis = substring(sec.centre_line, sec.start_border, sec.end_border);
         sec.surface = main_part(own(ctx_, GEOSDifference_r(ctx_.handle(), sec.surface.get(), lost.get()), "difference"), axis);
@@ -845,11 +835,9 @@ class SurfaceBuilder {
           return std::make_pair(result_.sections[a].axis_id, result_.sections[a].part) <
                  std::make_pair(result_.sections[b].axis_id, result_.sections[b].part);
         });
-        std::vector<GEOSGeometry*> raw;
-        for (std::size_t i : over) raw.push_back(GEOSGeom_clone_r(ctx_.handle(), result_.sections[i].surface.get()));
-        GeomPtr all = own(ctx_, GEOSGeom_createCollection_r(ctx_.handle(), GEOS_GEOMETRYCOLLECTION, raw.data(),
-                                                            static_cast<unsigned>(raw.size())),
-                          "collection");
+        std::vector<GeomPtr> copies;
+        for (std::size_t i : over) copies.push_back(own(ctx_, GEOSGeom_clone_r(ctx_.handle(), result_.sections[i].surface.get()), "clone"));
+        GeomPtr all = make_collection(ctx_, GEOS_GEOMETRYCOLLECTION, copies);
         GeomPtr under = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), all.get()), "union");
         GeomPtr rest = own(ctx_, GEOSDifference_r(ctx_.handle(), ir.surface.get(), under.get()), "difference");
         if (area_of(ctx_, ir.surface.get()) - area_of(ctx_, rest.get()) > kGivenAway) cut[j] = std::move(rest);
@@ -895,11 +883,7 @@ class SurfaceBuilder {
       try {
         GeomPtr rest = own(ctx_, GEOSGeom_clone_r(ctx_.handle(), current(j)), "clone");
         if (lost != given_away.end()) {
-          std::vector<GEOSGeometry*> raw;
-          for (GeomPtr& piece : lost->second) raw.push_back(piece.release());
-          GeomPtr all = own(ctx_, GEOSGeom_createCollection_r(ctx_.handle(), GEOS_GEOMETRYCOLLECTION, raw.data(),
-                                                              static_cast<unsigned>(raw.size())),
-                            "collection");
+          GeomPtr all = make_collection(ctx_, GEOS_GEOMETRYCOLLECTION, lost->second);
           GeomPtr pieces = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), all.get()), "union");
           rest = own(ctx_, GEOSDifference_r(ctx_.handle(), rest.get(), pieces.get()), "difference");
         }
@@ -946,7 +930,7 @@ class SurfaceBuilder {
     // Sixty samples across the overlap: the split line is then within a few centimetres of the
     // true midline for carriageways a few metres apart, at a fraction of the Delaunay cost.
     double spacing = std::clamp(extent / 60.0, 0.05, 2.0);
-    std::vector<GEOSGeometry*> sites;
+    std::vector<GeomPtr> sites;
     auto sample = [&](const Polyline& line) {
       double len = length(line);
       int n = std::max(2, static_cast<int>(std::ceil(len / spacing)) + 1);
@@ -954,16 +938,14 @@ class SurfaceBuilder {
         Point p = point_at(line, len * k / (n - 1));
         // Only the stretch beside the overlap matters.
         if (p.x < x0 - extent || p.x > x1 + extent || p.y < y0 - extent || p.y > y1 + extent) continue;
-        sites.push_back(GEOSGeom_createPointFromXY_r(ctx_.handle(), p.x, p.y));
+        sites.push_back(own(ctx_, GEOSGeom_createPointFromXY_r(ctx_.handle(), p.x, p.y), "point"));
       }
     };
     sample(a);
     sample(b);
-    GeomPtr points = own(ctx_, GEOSGeom_createCollection_r(ctx_.handle(), GEOS_MULTIPOINT, sites.data(),
-                                                           static_cast<unsigned>(sites.size())),
-                         "sample points");
+    GeomPtr points = make_collection(ctx_, GEOS_MULTIPOINT, sites);
     GeomPtr cells = own(ctx_, GEOSVoronoiDiagram_r(ctx_.handle(), points.get(), region, 0.0, 0), "voronoi diagram");
-    std::vector<GEOSGeometry*> mine;
+    std::vector<GeomPtr> mine;
     int n = GEOSGetNumGeometries_r(ctx_.handle(), cells.get());
     for (int k = 0; k < n; ++k) {
       const GEOSGeometry* cell = GEOSGetGeometryN_r(ctx_.handle(), cells.get(), k);
@@ -980,12 +962,10 @@ class SurfaceBuilder {
       GEOSGeomGetX_r(ctx_.handle(), inside.get(), &x);
       GEOSGeomGetY_r(ctx_.handle(), inside.get(), &y);
       if (project(a, {x, y}).distance <= project(b, {x, y}).distance) {
-        mine.push_back(GEOSGeom_clone_r(ctx_.handle(), cell));
+        mine.push_back(own(ctx_, GEOSGeom_clone_r(ctx_.handle(), cell), "clone"));
       }
     }
-    GeomPtr cells_a = own(ctx_, GEOSGeom_createCollection_r(ctx_.handle(), GEOS_GEOMETRYCOLLECTION, mine.data(),
-                                                            static_cast<unsigned>(mine.size())),
-                          "cells");
+    GeomPtr cells_a = make_collection(ctx_, GEOS_GEOMETRYCOLLECTION, mine);
     GeomPtr union_a = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), cells_a.get()), "union");
     return own(ctx_, GEOSIntersection_r(ctx_.handle(), region, union_a.get()), "intersection");
   }
