@@ -4,6 +4,8 @@
 #   bash bench/surfaces/run.sh            everything (about 5 minutes on 2 cores)
 #   DATASETS="osm paris" bash bench/surfaces/run.sh      a subset: osm, cases, paris
 #   PEERS=0 bash bench/surfaces/run.sh    without the peer comparison
+#   OSM_FILES="liechtenstein.osm.pbf munich.osm.pbf" DATASETS=osm ...   some files of ../shared/data/osm
+#   STREETGEN_BENCH_NO_BUILD=1            the streetgen installed for the pg_config on PATH, as it is
 #
 # Builds and installs streetgen, starts a throwaway cluster, then for every file of
 # ../shared/data/osm, every case of ../shared/data/osm2streets and the Paris example graph:
@@ -65,6 +67,7 @@ run_dataset() {  # name, import command...
 names=()
 if [[ " $datasets " == *" osm "* ]]; then
   for f in "$data"/osm/*; do
+    [ -z "${OSM_FILES:-}" ] || [[ " $OSM_FILES " == *" $(basename "$f") "* ]] || continue
     n="$(basename "$f")"; n="${n%%.*}"; n="${n//-/_}"
     run_dataset "$n" "$repo/scripts/streetgen-import" -m "$n" "$f" && names+=("$n")
   done
