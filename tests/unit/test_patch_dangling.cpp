@@ -250,3 +250,34 @@ TEST(PatchDangling, AnExampleOfTeesKeepsItsTees) {
   EXPECT_GT(r.edges.size(), 200u);
   EXPECT_EQ(r.stats.continued_across, 0u);
 }
+
+// The same uneven grid of avenues (main streets): an arterial T with no T facing it also goes on
+// straight to the street ahead, split there; a grid of local streets keeps such T's.
+TEST(PatchDangling, ArterialTeesContinueToTheStreetAhead) {
+  Fixture f;
+  std::vector<PatchInputEdge> avenues = uneven_grid();
+  for (PatchInputEdge& e : avenues) e.road_class = "avenue";
+  GrowInput streets_in = f.input(uneven_grid());
+  GrowInput avenues_in = f.input(avenues);
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 4;
+  p.max_edges = 20000;
+  GrowResult streets = grow_example(f.geos, streets_in, p);
+  GrowResult on = grow_example(f.geos, avenues_in, p);
+  p.patch.continue_across = false;
+  GrowResult off = grow_example(f.geos, avenues_in, p);
+  const auto [threes_off, fours_off] = junction_counts(off);
+  const auto [threes_on, fours_on] = junction_counts(on);
+  // More joins than the facing T's alone (the local grid's); a split adds a junction.
+  EXPECT_GT(on.stats.continued_across, streets.stats.continued_across);
+  EXPECT_GT(threes_on + fours_on, threes_off + fours_off);
+  EXPECT_GT(fours_on, fours_off);
+  const double share_on = static_cast<double>(fours_on) / static_cast<double>(threes_on + fours_on);
+  EXPECT_LE(share_on, 49.0 / 77.0 + 2.0 / static_cast<double>(threes_on + fours_on));
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < on.edges.size(); ++j) {
+      ASSERT_FALSE(crosses_without_node(on.edges[i], on.edges[j])) << i << " " << j;
+    }
+  }
+}

@@ -85,7 +85,8 @@ struct PatchGrowParams {
   // After the joins (with connect_dangling): a T-junction whose lone street meets a T facing it
   // across the through street, within a mean street straight on, is joined to it, so both become
   // crossings, while the network has fewer 4-way junctions than the example's share (the example's
-  // cross streets run on across; growth leaves them as pairs of T's).
+  // cross streets run on across; growth leaves them as pairs of T's); then an arterial T (three
+  // main streets) with no T facing it goes on straight to the first street ahead (split there).
   bool continue_across = true;
 };
 
