@@ -2348,7 +2348,7 @@ class Grower {
         const std::uint32_t lone = lone_street(v);
         if (lone == UINT32_MAX) continue;
         for (const auto& [d, w] : facing(v, heading_of(v, lone))) {
-          if (!try_connect(v, w, edges_[lone].level)) continue;
+          if (!try_connect(v, w, join_level(edges_[lone].level))) continue;
           crossings += 2;
           ++stats_.continued_across;
           ++made;
@@ -2378,7 +2378,7 @@ class Grower {
         if (new_edges_ + 2 > params_.max_edges) return;  // the join and the split street's piece
         if (!arterial_tee(v)) continue;
         const std::uint32_t lone = lone_street(v);
-        const int level = edges_[lone].level;
+        const int level = join_level(edges_[lone].level);  // with levels a local street, as the joins
         const Point p = nodes_[v].p;
         const Point dir = heading_of(v, lone);
         const Point far = p + reach * dir;
