@@ -166,3 +166,118 @@ TEST(PatchDangling, JoinsStopAtTheExamplesOwnDeadEndShare) {
   EXPECT_GT(a.stats.dangling_connected, 0u);
   EXPECT_EQ(b.stats.dangling_connected, 0u);
 }
+
+namespace {
+
+// Degree-3 and degree-4+ junctions of a grown network (by node id).
+std::pair<long, long> junction_counts(const GrowResult& r) {
+  std::map<std::int64_t, int> degree;
+  for (const GrownEdge& e : r.edges) {
+    ++degree[e.from_node];
+    ++degree[e.to_node];
+  }
+  long threes = 0, fours = 0;
+  for (const auto& [node, d] : degree) {
+    threes += d == 3;
+    fours += d >= 4;
+  }
+  return {threes, fours};
+}
+
+}  // namespace
+
+// A grid grown from patches leaves some of its crossings as two T's facing each other across a
+// street (each patch met the through street, none continued it). continue_across joins such
+// pairs: more 4-way junctions, no more than the example's share of them, planar, deterministic.
+TEST(PatchDangling, FacingTeesContinueAcross) {
+  Fixture f;
+  GrowInput in = f.input(uneven_grid());
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 4;
+  p.max_edges = 20000;
+  p.patch.continue_across = false;
+  GrowResult off = grow_example(f.geos, in, p);
+  p.patch.continue_across = true;
+  GrowResult on = grow_example(f.geos, in, p);
+  EXPECT_EQ(off.stats.continued_across, 0u);
+  ASSERT_GT(on.stats.continued_across, 0u);
+  const auto [threes_off, fours_off] = junction_counts(off);
+  const auto [threes_on, fours_on] = junction_counts(on);
+  // Each join turns two T's into crossings and adds no junction.
+  EXPECT_EQ(fours_on - fours_off, 2 * static_cast<long>(on.stats.continued_across));
+  EXPECT_EQ(threes_off - threes_on, 2 * static_cast<long>(on.stats.continued_across));
+  EXPECT_EQ(on.edges.size(), off.edges.size() + on.stats.continued_across);
+  // The example: 49 crossings among 77 junctions (its border nodes are T's).
+  const double example_share = 49.0 / 77.0;
+  const double share_on = static_cast<double>(fours_on) / static_cast<double>(threes_on + fours_on);
+  EXPECT_LE(share_on, example_share + 2.0 / static_cast<double>(threes_on + fours_on));
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < on.edges.size(); ++j) {
+      ASSERT_FALSE(crosses_without_node(on.edges[i], on.edges[j])) << i << " " << j;
+    }
+  }
+  GrowResult again = grow_example(f.geos, in, p);
+  ASSERT_EQ(again.edges.size(), on.edges.size());
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    EXPECT_EQ(again.edges[i].from_node, on.edges[i].from_node);
+    EXPECT_EQ(again.edges[i].to_node, on.edges[i].to_node);
+  }
+}
+
+// An example of T-junctions only (a brick pattern: the cross streets of one row are offset by half
+// a block from the next row's) has no crossing to keep: no T is continued across.
+TEST(PatchDangling, AnExampleOfTeesKeepsItsTees) {
+  Fixture f;
+  std::vector<PatchInputEdge> example;
+  std::int64_t id = 0;
+  for (int i = 0; i <= 6; ++i) {
+    for (int j = 0; j < 24; ++j) {  // in 25 m pieces: every cross street meets a vertex
+      example.push_back({{{j * 25.0, i * 100.0}, {(j + 1) * 25.0, i * 100.0}}, "street", ++id, false});
+    }
+    if (i == 6) break;
+    for (int j = 0; j < 6; ++j) {
+      const double x = j * 100.0 + (i % 2 == 0 ? 0.0 : 50.0) + 25.0;
+      example.push_back({{{x, i * 100.0}, {x, (i + 1) * 100.0}}, "street", ++id, false});
+    }
+  }
+  GrowInput in = f.input(example);
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 4;
+  p.max_edges = 20000;
+  GrowResult r = grow_example(f.geos, in, p);
+  EXPECT_GT(r.edges.size(), 200u);
+  EXPECT_EQ(r.stats.continued_across, 0u);
+}
+
+// The same uneven grid of avenues (main streets): an arterial T with no T facing it also goes on
+// straight to the street ahead, split there; a grid of local streets keeps such T's.
+TEST(PatchDangling, ArterialTeesContinueToTheStreetAhead) {
+  Fixture f;
+  std::vector<PatchInputEdge> avenues = uneven_grid();
+  for (PatchInputEdge& e : avenues) e.road_class = "avenue";
+  GrowInput streets_in = f.input(uneven_grid());
+  GrowInput avenues_in = f.input(avenues);
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 4;
+  p.max_edges = 20000;
+  GrowResult streets = grow_example(f.geos, streets_in, p);
+  GrowResult on = grow_example(f.geos, avenues_in, p);
+  p.patch.continue_across = false;
+  GrowResult off = grow_example(f.geos, avenues_in, p);
+  const auto [threes_off, fours_off] = junction_counts(off);
+  const auto [threes_on, fours_on] = junction_counts(on);
+  // More joins than the facing T's alone (the local grid's); a split adds a junction.
+  EXPECT_GT(on.stats.continued_across, streets.stats.continued_across);
+  EXPECT_GT(threes_on + fours_on, threes_off + fours_off);
+  EXPECT_GT(fours_on, fours_off);
+  const double share_on = static_cast<double>(fours_on) / static_cast<double>(threes_on + fours_on);
+  EXPECT_LE(share_on, 49.0 / 77.0 + 2.0 / static_cast<double>(threes_on + fours_on));
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < on.edges.size(); ++j) {
+      ASSERT_FALSE(crosses_without_node(on.edges[i], on.edges[j])) << i << " " << j;
+    }
+  }
+}

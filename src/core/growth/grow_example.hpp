@@ -82,6 +82,12 @@ struct PatchGrowParams {
   // straight on to the first street, ahead of it within half a mean street (Nishida et al.'s local
   // constraint, section 4.3.4).
   bool connect_dangling = true;
+  // After the joins (with connect_dangling): a T-junction whose lone street meets a T facing it
+  // across the through street, within a mean street straight on, is joined to it, so both become
+  // crossings, while the network has fewer 4-way junctions than the example's share (the example's
+  // cross streets run on across; growth leaves them as pairs of T's); then an arterial T (three
+  // main streets) with no T facing it goes on straight to the first street ahead (split there).
+  bool continue_across = true;
 };
 
 struct GrowParams {
@@ -184,6 +190,7 @@ struct GrowStats {
   std::size_t dangling_pruned = 0;   // prune_dangling: output segments cut back from dangling streets
   std::size_t dead_ends_kept = 0;    // prune_dangling: dead ends left (the example's, or blocked)
   std::size_t dangling_connected = 0;  // connect_dangling: streets extended to a node or street ahead
+  std::size_t continued_across = 0;    // continue_across: T-junctions joined to the T facing them
   std::size_t arterial_patches_placed = 0;  // levels: patches placed in the arterial phase
   std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
