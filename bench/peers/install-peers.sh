@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Idempotent install of what bench/peers needs.
-#   apt: sumo (netconvert), osmium-tool, time (/usr/bin/time), python3-pyproj, python3-shapely
+#   apt: sumo (netconvert), sumo-tools (netconvert's OSM type map, /usr/share/sumo/data: only
+#        recommended by sumo, so --no-install-recommends skips it and netconvert quits), osmium-tool, time (/usr/bin/time), python3-pyproj, python3-shapely
 #   npm: osm2streets-js pinned to 0.1.2 (package.json + package-lock.json) into bench/peers/node_modules
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
 
-pkgs=(sumo osmium-tool time python3-pyproj python3-shapely nodejs npm)
+pkgs=(sumo sumo-tools osmium-tool time python3-pyproj python3-shapely nodejs npm)
 missing=()
 for p in "${pkgs[@]}"; do
   # nodejs/npm may come from elsewhere (e.g. nodesource); only install if the command is absent

@@ -161,14 +161,16 @@ if [ "$peers" = 1 ] && [[ " $datasets " == *" osm "* ]]; then
     n="${f%%.*}"; n="${n//-/_}"
     [ -n "${import_s[$n]:-}" ] || continue
     lines=$(bash "$repo/bench/peers/run-peers.sh" "$data/osm/$f" "$out/peers/$n" 2>/dev/null || true)
-    nc=$(echo "$lines" | sed -n 's/^peer=netconvert .*wall_s=\([0-9.]*\).*/\1/p')
-    nc_kb=$(echo "$lines" | sed -n 's/^peer=netconvert .*peak_rss_kb=\([0-9]*\).*/\1/p')
-    o2=$(echo "$lines" | sed -n 's/^peer=osm2streets .*wall_s=\([0-9.]*\).*/\1/p')
+    # a peer that failed (status=fail: it quit early, in a fraction of its real time) is shown as
+    # failed and kept out of the ratio
+    nc=$(echo "$lines" | sed -n 's/^peer=netconvert .*wall_s=\([0-9.]*\).*status=ok$/\1/p')
+    nc_kb=$(echo "$lines" | sed -n 's/^peer=netconvert .*peak_rss_kb=\([0-9]*\).*status=ok$/\1/p')
+    o2=$(echo "$lines" | sed -n 's/^peer=osm2streets .*wall_s=\([0-9.]*\).*status=ok$/\1/p')
     # (an import that left the surfaces to a later generate() would not be the whole job)
     [ "${import_sections[$n]:-0}" -gt 0 ] || { echo "$n: the import built no section" >&2; continue; }
     ours=${import_s[$n]}
     ratio=$(awk -v o="$ours" -v a="${nc:-0}" -v b="${o2:-0}" 'BEGIN { m = (a > 0 && (b == 0 || a < b)) ? a : b; if (m > 0) printf "%.2f", o / m; else print "n/a" }')
-    say "| $f | $ours | ${nc:-n/a} | ${o2:-n/a} | $ratio | $(( ${peak_kb[$n]:-0} / 1024 )) | $(( ${nc_kb:-0} / 1024 )) |"
+    say "| $f | $ours | ${nc:-failed} | ${o2:-failed} | $ratio | $(( ${peak_kb[$n]:-0} / 1024 )) | ${nc_kb:+$(( nc_kb / 1024 ))}${nc_kb:-n/a} |"
   done
 fi
 echo "report: $report"
