@@ -5,9 +5,10 @@
 # OUTDIR/osm2streets-roads-full.geojson (osm2streets road polygons with sidewalks)
 # and OUTDIR/work/ (XML input, net.xml, raw osm2streets exports, logs).
 # Prints one line per peer:
-#   peer=<name> file=<base> wall_s=<s> peak_rss_kb=<kb> roads=<n> junctions=<n> convert_s=<s> convert_rss_kb=<kb> prep_s=<s> status=<ok|fail>
-# wall_s/peak_rss_kb: the peer process alone (/usr/bin/time). convert_s: turning its output
-# into the two GeoJSON files (Python). prep_s: osmium conversion of FILE to OSM XML (shared by both).
+#   peer=<name> file=<base> wall_s=<s> peak_rss_kb=<kb> private_peak_kb=<kb> roads=<n> junctions=<n> convert_s=<s> convert_rss_kb=<kb> prep_s=<s> status=<ok|fail>
+# wall_s/peak_rss_kb: the peer process alone (/usr/bin/time). private_peak_kb: its peak without
+# mapped files (libraries), the measure bench/surfaces uses for the backend (private_peak.c).
+# convert_s: turning its output into the two GeoJSON files (Python). prep_s: osmium conversion of FILE to OSM XML (shared by both).
 # Env: PEERS="netconvert osm2streets" to choose; NETCONVERT_EXTRA="..." extra netconvert options.
 set -uo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -41,6 +42,16 @@ case "$in" in
      PREP_S=$T_S ;;
 esac
 
+# the peers' private peak memory: an exit hook preloaded into the peer only, not into time(1)
+# (private_peak_kb=NA without a C compiler)
+PEAK_ENV=(env)
+if cc -shared -fPIC -O2 -o "$w/private_peak.so" "$here/private_peak.c" 2>/dev/null; then
+  PEAK_ENV=(env LD_PRELOAD="$w/private_peak.so")
+fi
+private_kb() {  # the largest value the hook wrote to FILE (a peer's child processes write too), or NA
+  sort -n "$1" 2>/dev/null | tail -n 1 | grep -E '^[0-9]+$' || echo NA
+}
+
 count() { "$PY" -c 'import json,sys; print(len(json.load(open(sys.argv[1]))["features"]))' "$1" 2>/dev/null || echo 0; }
 
 for peer in $PEERS; do
@@ -48,7 +59,8 @@ for peer in $PEERS; do
   netconvert)
     # OSM import as in SUMO's docs: car roads only, simplified geometry, guessed roundabouts/ramps,
     # joined junction clusters, curb arcs of radius 4 m drawn with 5 intermediate points.
-    timed netconvert netconvert --osm-files "$xml" \
+    rm -f "$w/netconvert.private"
+    timed netconvert "${PEAK_ENV[@]}" PRIVATE_PEAK_OUT="$w/netconvert.private" netconvert --osm-files "$xml" \
       --keep-edges.by-vclass passenger \
       --geometry.remove --roundabouts.guess --ramps.guess \
       --junctions.join --junctions.corner-detail 5 --default.junctions.radius 4 \
@@ -62,7 +74,8 @@ for peer in $PEERS; do
     else RC=1; T_S=NA; T_KB=NA; fi
     ;;
   osm2streets)
-    timed osm2streets node --experimental-detect-module --no-warnings --max-old-space-size=8192 \
+    rm -f "$w/osm2streets.private"
+    timed osm2streets "${PEAK_ENV[@]}" PRIVATE_PEAK_OUT="$w/osm2streets.private" node --experimental-detect-module --no-warnings --max-old-space-size=8192 \
       "$here/osm2streets-peer.mjs" "$xml" "$w/osm2streets" >"$w/osm2streets.log" 2>&1
     P_RC=$RC; P_S=$T_S; P_KB=$T_KB
     if [ "$P_RC" -eq 0 ]; then
@@ -79,5 +92,5 @@ for peer in $PEERS; do
     status=fail; r=0; j=0
     echo "run-peers: $peer failed (peer rc=$P_RC), see $w/$peer.log" >&2
   fi
-  echo "peer=$peer file=$base wall_s=$P_S peak_rss_kb=$P_KB roads=$r junctions=$j convert_s=$T_S convert_rss_kb=$T_KB prep_s=$PREP_S status=$status"
+  echo "peer=$peer file=$base wall_s=$P_S peak_rss_kb=$P_KB private_peak_kb=$(private_kb "$w/$peer.private") roads=$r junctions=$j convert_s=$T_S convert_rss_kb=$T_KB prep_s=$PREP_S status=$status"
 done

@@ -155,8 +155,10 @@ if [ "$peers" = 1 ] && [[ " $datasets " == *" osm "* ]]; then
   say "generate s column above times a second, whole-model recompute, not part of the job)."
   say ""
   bash "$repo/bench/peers/install-peers.sh" >/dev/null 2>&1
-  say "| file | streetgen s | netconvert s | osm2streets s | ratio | streetgen peak private MB | netconvert peak RSS MB |"
-  say "|---|---|---|---|---|---|---|"
+  # memory: both without mapped files (the backend: VmHWM - RssFile - RssShmem; netconvert: the
+  # same, read by an exit hook), and netconvert's peak RSS with its libraries (/usr/bin/time)
+  say "| file | streetgen s | netconvert s | osm2streets s | ratio | streetgen peak private MB | netconvert peak private MB | netconvert peak RSS MB |"
+  say "|---|---|---|---|---|---|---|---|"
   for f in liechtenstein.osm.pbf reisterstown.osm.pbf baltimore.osm.pbf munich.osm.pbf campo-grande.osm.gz; do
     n="${f%%.*}"; n="${n//-/_}"
     [ -n "${import_s[$n]:-}" ] || continue
@@ -165,12 +167,13 @@ if [ "$peers" = 1 ] && [[ " $datasets " == *" osm "* ]]; then
     # failed and kept out of the ratio
     nc=$(echo "$lines" | sed -n 's/^peer=netconvert .*wall_s=\([0-9.]*\).*status=ok$/\1/p')
     nc_kb=$(echo "$lines" | sed -n 's/^peer=netconvert .*peak_rss_kb=\([0-9]*\).*status=ok$/\1/p')
+    nc_priv=$(echo "$lines" | sed -n 's/^peer=netconvert .*private_peak_kb=\([0-9]*\) .*status=ok$/\1/p')
     o2=$(echo "$lines" | sed -n 's/^peer=osm2streets .*wall_s=\([0-9.]*\).*status=ok$/\1/p')
     # (an import that left the surfaces to a later generate() would not be the whole job)
     [ "${import_sections[$n]:-0}" -gt 0 ] || { echo "$n: the import built no section" >&2; continue; }
     ours=${import_s[$n]}
     ratio=$(awk -v o="$ours" -v a="${nc:-0}" -v b="${o2:-0}" 'BEGIN { m = (a > 0 && (b == 0 || a < b)) ? a : b; if (m > 0) printf "%.2f", o / m; else print "n/a" }')
-    say "| $f | $ours | ${nc:-failed} | ${o2:-failed} | $ratio | $(( ${peak_kb[$n]:-0} / 1024 )) | ${nc_kb:+$(( nc_kb / 1024 ))}${nc_kb:-n/a} |"
+    say "| $f | $ours | ${nc:-failed} | ${o2:-failed} | $ratio | $(( ${peak_kb[$n]:-0} / 1024 )) | ${nc_priv:+$(( nc_priv / 1024 ))}${nc_priv:-n/a} | ${nc_kb:+$(( nc_kb / 1024 ))}${nc_kb:-n/a} |"
   done
 fi
 echo "report: $report"
