@@ -157,6 +157,7 @@ if [ "$peers" = 1 ] && [[ " $datasets " == *" osm "* ]]; then
   bash "$repo/bench/peers/install-peers.sh" >/dev/null 2>&1
   # memory: both without mapped files (the backend: VmHWM - RssFile - RssShmem; netconvert: the
   # same, read by an exit hook), and netconvert's peak RSS with its libraries (/usr/bin/time)
+  mb() { if [ -n "$1" ]; then echo $(( $1 / 1024 )); else echo n/a; fi; }  # kB (or nothing) -> MB
   say "| file | streetgen s | netconvert s | osm2streets s | ratio | streetgen peak private MB | netconvert peak private MB | netconvert peak RSS MB |"
   say "|---|---|---|---|---|---|---|---|"
   for f in liechtenstein.osm.pbf reisterstown.osm.pbf baltimore.osm.pbf munich.osm.pbf campo-grande.osm.gz; do
@@ -173,7 +174,7 @@ if [ "$peers" = 1 ] && [[ " $datasets " == *" osm "* ]]; then
     [ "${import_sections[$n]:-0}" -gt 0 ] || { echo "$n: the import built no section" >&2; continue; }
     ours=${import_s[$n]}
     ratio=$(awk -v o="$ours" -v a="${nc:-0}" -v b="${o2:-0}" 'BEGIN { m = (a > 0 && (b == 0 || a < b)) ? a : b; if (m > 0) printf "%.2f", o / m; else print "n/a" }')
-    say "| $f | $ours | ${nc:-failed} | ${o2:-failed} | $ratio | $(( ${peak_kb[$n]:-0} / 1024 )) | ${nc_priv:+$(( nc_priv / 1024 ))}${nc_priv:-n/a} | ${nc_kb:+$(( nc_kb / 1024 ))}${nc_kb:-n/a} |"
+    say "| $f | $ours | ${nc:-failed} | ${o2:-failed} | $ratio | $(( ${peak_kb[$n]:-0} / 1024 )) | $(mb "$nc_priv") | $(mb "$nc_kb") |"
   done
 fi
 echo "report: $report"
