@@ -124,7 +124,11 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
     emission.next = 0;
     return true;
   };
-  auto free_geometry = [](core::GeomPtr& g) { g.reset(); };
+  auto geometry_bytes = [&](core::GeomPtr& g) {  // its EWKB; the geometry is freed
+    core::Bytes bytes = core::write_ewkb(geos, g.get(), srid);
+    g.reset();
+    return bytes;
+  };
   for (;;) {
     bool more = true;
     switch (emission.kind) {
@@ -150,8 +154,7 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
           row.status = s.status;
           row.start_border = s.start_border;
           row.end_border = s.end_border;
-          if (s.surface) row.geom = core::write_ewkb(geos, s.surface.get(), srid);
-          free_geometry(s.surface);
+          if (s.surface) row.geom = geometry_bytes(s.surface);
           row.geom2 = core::write_ewkb_polyline(core::WkbType::line_string, s.centre_line, srid);
           core::Polyline().swap(s.centre_line);
           rows.push_back(std::move(row));
@@ -189,8 +192,7 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
           OutRow row{"intersection"};
           row.node_id = i.node_id;
           row.status = i.status;
-          row.geom = core::write_ewkb(geos, i.surface.get(), srid);
-          free_geometry(i.surface);
+          row.geom = geometry_bytes(i.surface);
           rows.push_back(std::move(row));
         });
         break;
@@ -215,8 +217,7 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
           row.direction = l.spec.direction;
           row.width = l.spec.width;
           row.detail = l.spec.turn;
-          row.geom = core::write_ewkb(geos, l.surface.get(), srid);
-          free_geometry(l.surface);
+          row.geom = geometry_bytes(l.surface);
           rows.push_back(std::move(row));
         });
         break;
@@ -231,8 +232,7 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
           }
           row.status = w.side;
           row.width = w.width;
-          row.geom = core::write_ewkb(geos, w.surface.get(), srid);
-          free_geometry(w.surface);
+          row.geom = geometry_bytes(w.surface);
           rows.push_back(std::move(row));
         });
         break;
@@ -244,8 +244,7 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
           row.node_id = c.node_id;
           row.item = c.position;
           row.width = c.width;
-          row.geom = core::write_ewkb(geos, c.surface.get(), srid);
-          free_geometry(c.surface);
+          row.geom = geometry_bytes(c.surface);
           rows.push_back(std::move(row));
         });
         break;
@@ -257,8 +256,7 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
           row.item = m.position;
           row.status = m.kind;
           row.detail = m.style;
-          row.geom = core::write_ewkb(geos, m.line.get(), srid);
-          free_geometry(m.line);
+          row.geom = geometry_bytes(m.line);
           rows.push_back(std::move(row));
         });
         break;
