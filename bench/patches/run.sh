@@ -7,6 +7,7 @@
 #   PARAMS='{"scale": 5}' SEEDS='1 2 3' bash bench/patches/run.sh    grow_patches params, seeds
 #   NAMES='tokyo new-york' SPEED=0 bash bench/patches/run.sh         some examples, no speed part
 #   OUT=/tmp/pics bash bench/patches/run.sh   where the PNGs go (default: build/bench-patches)
+#   BASELINE=0 bash bench/patches/run.sh      grow_patches only (no grow_example baseline: half the time)
 #
 # 1. Realism: for each example, extract its patches, grow its convex hull from one seed at its
 #    centre with grow_patches and with grow_example (default params, max_edges 200000), and
@@ -81,6 +82,7 @@ BEGIN
                                 ST_PointOnSurface(r.geom), NULL, '$params'::jsonb || '{"seed": $seed, "max_edges": 200000}') AS g
    WHERE r.name = '$name';
   INSERT INTO timing VALUES ('patches', '$name', $seed, extract(epoch FROM clock_timestamp() - t0));
+  IF NOT ${BASELINE:-1}::boolean THEN RETURN; END IF;
   t0 := clock_timestamp();
   INSERT INTO grown
   SELECT 'example', r.name, $seed, g.* FROM region r,
@@ -102,7 +104,7 @@ done
 psql -X -q -v ON_ERROR_STOP=1 <<'SQL'
 CREATE TABLE cmp AS
 SELECT m.method, r.name, s.seed, c.*
-  FROM region r CROSS JOIN (SELECT DISTINCT seed FROM timing) s CROSS JOIN (VALUES ('patches'), ('example')) AS m(method),
+  FROM region r CROSS JOIN (SELECT DISTINCT seed FROM timing) s CROSS JOIN (SELECT DISTINCT method FROM timing) AS m,
        LATERAL streetgen.compare_networks(
          streetgen.network_stats(format('SELECT geom FROM example WHERE name = %L', r.name), 0, ST_Buffer(r.geom, -50),
                                  simplify => true),

@@ -208,8 +208,10 @@ SELECT e.connect, e.node FROM ends e, sq WHERE NOT ST_DWithin(e.at, ST_Boundary(
  GROUP BY e.connect, e.node HAVING count(*) = 1;
 SELECT ok((SELECT count(*) FILTER (WHERE connect) < count(*) FILTER (WHERE NOT connect) FROM joined_ends),
           'connect_dangling: fewer dead ends inside the region than without');
-SELECT ok((SELECT count(*) FILTER (WHERE connect AND origin = 'grow_parametric')
-                > count(*) FILTER (WHERE NOT connect AND origin = 'grow_parametric') FROM joined),
+-- (The same switch also refuses corner patches, whose fronts then get no statistical fallback,
+-- so the counts of statistical edges of the two runs are not compared: new ones are looked for.)
+SELECT ok((SELECT count(*) FROM joined a WHERE a.connect AND a.origin = 'grow_parametric'
+             AND NOT EXISTS (SELECT 1 FROM joined b WHERE NOT b.connect AND ST_Equals(a.geom, b.geom))) > 0,
           'connect_dangling: the joins are statistical edges (grow_parametric)');
 SELECT is((SELECT count(*) FROM joined a JOIN joined b ON a.connect AND b.connect AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
             WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),

@@ -116,6 +116,7 @@ TEST(PatchDangling, DanglingStreetsJoinTheNetworkAhead) {
   p.use_patches = true;
   p.seed = 4;
   p.max_edges = 20000;
+  p.patch.avoid_corners = false;  // the joins alone (avoiding corners changes the growth itself)
   p.patch.connect_dangling = false;
   GrowResult open = grow_example(f.geos, in, p);
   p.patch.connect_dangling = true;
@@ -279,5 +280,58 @@ TEST(PatchDangling, ArterialTeesContinueToTheStreetAhead) {
     for (std::size_t j = i + 1; j < on.edges.size(); ++j) {
       ASSERT_FALSE(crosses_without_node(on.edges[i], on.edges[j])) << i << " " << j;
     }
+  }
+}
+
+namespace {
+
+// Nodes of degree 2 whose two streets turn more than 45 degrees from straight on: corners, which
+// the example's streets (noded at junctions, degree-2 chains merged) never have between two streets.
+long corner_count(const GrowResult& r) {
+  std::map<std::int64_t, std::vector<double>> leaving;
+  for (const GrownEdge& e : r.edges) {
+    leaving[e.from_node].push_back(std::atan2(e.b.y - e.a.y, e.b.x - e.a.x));
+    leaving[e.to_node].push_back(std::atan2(e.a.y - e.b.y, e.a.x - e.b.x));
+  }
+  long corners = 0;
+  for (const auto& [node, angles] : leaving) {
+    if (angles.size() != 2) continue;
+    double between = std::abs(std::remainder(angles[0] - angles[1], 2.0 * M_PI));
+    corners += M_PI - between > M_PI / 4.0;
+  }
+  return corners;
+}
+
+}  // namespace
+
+// Patches glued from an uneven grid meet their neighbours off by metres: a patch whose junction
+// lands on a front with its other streets all doubling streets nearby leaves a corner there.
+// avoid_corners refuses such patches (the front is joined ahead or cut back after growth): fewer
+// corners, planar, deterministic.
+TEST(PatchDangling, CornersAreAvoided) {
+  Fixture f;
+  GrowInput in = f.input(uneven_grid());
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 4;
+  p.max_edges = 20000;
+  p.patch.avoid_corners = false;
+  GrowResult off = grow_example(f.geos, in, p);
+  p.patch.avoid_corners = true;
+  GrowResult on = grow_example(f.geos, in, p);
+  EXPECT_EQ(off.stats.corners_avoided, 0u);
+  ASSERT_GT(on.stats.corners_avoided, 0u);
+  EXPECT_LE(on.stats.corners_cut, on.stats.corners_avoided);
+  EXPECT_LT(corner_count(on), corner_count(off));
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < on.edges.size(); ++j) {
+      ASSERT_FALSE(crosses_without_node(on.edges[i], on.edges[j])) << i << " " << j;
+    }
+  }
+  GrowResult again = grow_example(f.geos, in, p);
+  ASSERT_EQ(again.edges.size(), on.edges.size());
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    EXPECT_EQ(again.edges[i].from_node, on.edges[i].from_node);
+    EXPECT_EQ(again.edges[i].to_node, on.edges[i].to_node);
   }
 }

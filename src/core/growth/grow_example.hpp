@@ -88,6 +88,16 @@ struct PatchGrowParams {
   // cross streets run on across; growth leaves them as pairs of T's); then an arterial T (three
   // main streets) with no T facing it goes on straight to the first street ahead (split there).
   bool continue_across = true;
+  // Corners (with connect_dangling): at a dead-end front with a node or street ahead within a mean
+  // street, a patch that would leave the front as a corner (its only new street there turning more
+  // than 45 degrees from the front's street, the others left out as redundant) is illegal, and such
+  // a front gets no statistical fallback: after growth it is joined to a node or street ahead within
+  // a mean street, else its street is cut back to its junction while the network has more dead ends
+  // than the example's share. Not in the arterial phase, nor for a city of cul-de-sacs (own dead
+  // ends over 15 % of the example's street ends). Growth left hundreds of such corners where
+  // patches met their neighbours a few metres off, and a corner between two streets of a grid reads
+  // as one diagonal street (bench/patches: orientation order, README).
+  bool avoid_corners = true;
 };
 
 struct GrowParams {
@@ -191,6 +201,8 @@ struct GrowStats {
   std::size_t dead_ends_kept = 0;    // prune_dangling: dead ends left (the example's, or blocked)
   std::size_t dangling_connected = 0;  // connect_dangling: streets extended to a node or street ahead
   std::size_t continued_across = 0;    // continue_across: T-junctions joined to the T facing them
+  std::size_t corners_avoided = 0;     // avoid_corners: fronts where a patch was refused for leaving a corner
+  std::size_t corners_cut = 0;         // avoid_corners: of those, dead ends cut back after the joins
   std::size_t arterial_patches_placed = 0;  // levels: patches placed in the arterial phase
   std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
