@@ -2,7 +2,10 @@
 """The gan layer's checks after a tiny training (tests/run-gan.sh):
   1. the training folder holds what train.py promises (checkpoints, samples, losses, generator);
   2. export.py of the last checkpoint gives the same bytes as train.py's generator.sgan, and the
-     exported (folded) network equals the checkpoint's eval-mode generator;
+     exported (folded) network equals the checkpoint's eval-mode generator; export.py of several
+     checkpoints averages their weights (then recomputes the batch-norm statistics), refuses
+     checkpoints of another architecture; train.py --ema keeps the average of sgan.WeightAverage
+     (decay 0: the trained generator itself, WORK_FOLDER/again of run-gan.sh);
   3. the generator loads into the database, and gan_sample's raw output (C++ forward pass, noise
      from the seed in C++) equals PyTorch's forward pass of the same weights on the noise of the
      same seed (sgan.py), max abs difference < 1e-4, for several sizes and seeds;
@@ -51,6 +54,85 @@ def raster_from_wkb(wkb):
     return data.reshape(height, width), pixtype, sx, sy
 
 
+def run_export(*args):
+    return subprocess.run([sys.executable, os.path.join(TOOLS, "export.py"), *args], capture_output=True, text=True)
+
+
+def check_averaging(folder, checkpoints, work, weights):
+    first, last = (os.path.join(folder, c) for c in checkpoints[:2])
+    # The average of a checkpoint with itself is that checkpoint, statistics recomputed the way
+    # train.py computed them: the same bytes.
+    same = os.path.join(work, "self-average.sgan")
+    r = run_export(last, last, same)
+    check(r.returncode == 0 and open(same, "rb").read() == weights,
+          f"export.py averaging a checkpoint with itself gives its generator file ({r.stderr.strip()[-200:]})")
+    # Two checkpoints (the last one's second layer tripled, so that they differ much more than after
+    # three iterations; its statistics recomputed): every convolution weight and bias, every batch-norm
+    # gain and shift of the average is their mean.
+    state = torch.load(last)
+    tripled, _ = export.load_checkpoint_generator(last)
+    with torch.no_grad():
+        tripled.net[3].weight.mul_(3.0)
+    sgan.recalibrate_batchnorm(tripled, 5)
+    state["generator"] = tripled.state_dict()
+    last = os.path.join(work, "tripled.pt")
+    torch.save(state, last)
+    avg = os.path.join(work, "average.sgan")
+    r = run_export(first, last, avg)
+    a, b = (torch.load(p)["generator"] for p in (first, last))
+    g, _ = export.average_checkpoints([first, last])
+    learned = [k for k in a if not k.endswith(("running_mean", "running_var", "num_batches_tracked"))]
+    worst = max(float((g.state_dict()[k].double() - (a[k].double() + b[k].double()) / 2).abs().max()) for k in learned)
+    check(r.returncode == 0 and worst < 1e-7 and any(not torch.equal(a[k], b[k]) for k in learned),
+          f"export.py of two checkpoints: every learned tensor is their mean (max diff {worst:.1e})")
+    # ... and its batch-norm statistics are those of the averaged weights (the mean of the batch means
+    # over the recalibration's noise: seed 0, 16 batches of 8, side 2 * 3 - 1), not the mean of the two
+    # checkpoints' statistics. The second batch norm: the first one's input is linear in the weights.
+    bn = g.net[4]
+    rng = torch.Generator().manual_seed(0)
+    g.train()
+    with torch.no_grad():
+        means = [g.net[:4](torch.rand(8, g.noise_channels, 5, 5, generator=rng) * 2.0 - 1.0).mean(dim=(0, 2, 3))
+                 for _ in range(16)]
+    g.eval()
+    batch_mean = torch.stack(means).mean(dim=0)
+    naive = (a["net.4.running_mean"] + b["net.4.running_mean"]) / 2
+    err, naive_err = (float((m - batch_mean).abs().max()) for m in (bn.running_mean, naive))
+    check(err < 1e-5 < naive_err, f"the average's batch-norm statistics are recomputed for its weights (max diff {err:.1e}; "
+                      f"the mean of the checkpoints' statistics is {naive_err:.1e} off)")
+    # Checkpoints of another architecture are refused with a message.
+    state = torch.load(last)
+    state["args"] = dict(state["args"], gen_channels="8,8,8,8")
+    other = os.path.join(work, "other.pt")
+    torch.save(state, other)
+    r = run_export(last, other, os.path.join(work, "refused.sgan"))
+    check(r.returncode != 0 and "gen_channels" in r.stderr and not os.path.exists(os.path.join(work, "refused.sgan")),
+          f"export.py refuses to average checkpoints of another architecture: {r.stderr.strip()}")
+    # --ema: sgan.WeightAverage is the exponential moving average
+    torch.manual_seed(2)
+    net = torch.nn.Linear(3, 2)
+    start = [p.detach().clone() for p in net.parameters()]
+    ema = sgan.WeightAverage(net, 0.75)
+    steps = []
+    for _ in range(3):
+        with torch.no_grad():
+            for p in net.parameters():
+                p.add_(torch.randn_like(p))
+        steps.append([p.detach().clone() for p in net.parameters()])
+        ema.update(net)
+    expect = [0.75 ** 3 * s0 + sum(0.25 * 0.75 ** (2 - i) * st[j] for i, st in enumerate(steps))
+              for j, s0 in enumerate(start)]
+    diff = max(float((p - e).abs().max()) for p, e in zip(ema.model.parameters(), expect))
+    check(diff < 1e-6, f"WeightAverage(decay 0.75) after 3 steps is the moving average (max diff {diff:.1e})")
+    again = os.path.join(work, "again", checkpoints[-1])
+    if os.path.exists(again):
+        state = torch.load(again)
+        ema_state = state.get("generator_ema", {})
+        check(state["args"].get("ema") == 0.0 and ema_state.keys() == state["generator"].keys()
+              and all(torch.equal(ema_state[k], v) for k, v in state["generator"].items()),
+              "train.py --ema 0 checkpoints an average equal to the trained generator")
+
+
 def main():
     db, folder, work = sys.argv[1:4]
     # 1. what the training wrote
@@ -78,6 +160,7 @@ def main():
     b = sgan.sample(folded, 5, 97, 61)
     check(float(np.abs(a - b).max()) < 1e-5, f"folded batch norm: exported network = checkpoint (max diff {np.abs(a - b).max():.2e})")
     check(mpp == 3.0, "the generator carries the raster's 3 m per pixel")
+    check_averaging(folder, checkpoints, work, weights)
 
     # 3. and 4. in the database
     with psycopg.connect(dbname=db, autocommit=True) as conn:

@@ -135,6 +135,46 @@ def recalibrate_batchnorm(generator, noise_side, batches=16, batch=8, seed=0):
     generator.eval()
 
 
+def average_state_dicts(states):
+    """Uniform average of generator state dicts (Yazici et al., "The unusual effectiveness of averaging
+    in GAN training", ICLR 2019): a GAN's generator circles around an equilibrium instead of settling,
+    and the mean of its late iterates lies nearer the centre than any one of them. Floating-point
+    entries are averaged in float64; integer ones (batch norm's num_batches_tracked) are taken from the
+    last state. The batch norms' running statistics of an average are no statistics of the averaged
+    weights: recompute them afterwards (recalibrate_batchnorm), as SWA does (Izmailov et al. 2018)."""
+    if not states:
+        raise ValueError("nothing to average")
+    keys = list(states[0].keys())
+    for s in states[1:]:
+        if list(s.keys()) != keys or any(s[k].shape != states[0][k].shape for k in keys):
+            raise ValueError("the generators to average have different architectures")
+    out = {}
+    for k in keys:
+        if states[0][k].is_floating_point():
+            out[k] = (sum(s[k].double() for s in states) / len(states)).to(states[0][k].dtype)
+        else:
+            out[k] = states[-1][k].clone()
+    return out
+
+
+class WeightAverage:
+    """Exponential moving average of a generator's parameters (--ema of train.py; Yazici et al. 2019),
+    kept in a copy of the generator. The copy's batch-norm statistics are not tracked: recalibrate
+    them before use. decay 0 follows the trained weights exactly."""
+
+    def __init__(self, generator, decay):
+        import copy
+        self.decay = decay
+        self.model = copy.deepcopy(generator)
+        for p in self.model.parameters():
+            p.requires_grad_(False)
+
+    @torch.no_grad()
+    def update(self, generator):
+        for a, p in zip(self.model.parameters(), generator.parameters()):
+            a.mul_(self.decay).add_(p.detach(), alpha=1.0 - self.decay)
+
+
 # ---- noise of a seed: the same numbers as core::gan::noise() in C++ -------------------------------
 _M64 = np.uint64(0xFFFFFFFFFFFFFFFF)
 

@@ -129,6 +129,10 @@ def main():
     ap.add_argument("--threads", type=int, default=1, help="torch.set_num_threads (default 1: shared machine)")
     ap.add_argument("--sample-side", type=int, default=257, help="side of the per-epoch sample PNG")
     ap.add_argument("--resume", default=None, help="checkpoint to continue from")
+    ap.add_argument("--ema", type=float, default=None, metavar="DECAY",
+                    help="also keep an exponential moving average of the generator's weights (e.g. 0.999: about "
+                         "the last 1,000 iterations; Yazici et al. 2019) and write it as the epoch's sample and "
+                         "generator.sgan; checkpoints hold both (export.py exports the average)")
     args = ap.parse_args()
 
     torch.set_num_threads(args.threads)
@@ -181,6 +185,14 @@ def main():
         torch.set_rng_state(state["torch_rng"])
         rng.bit_generator.state = state["numpy_rng"]
         start_epoch = state["epoch"]
+    ema = None
+    if args.ema is not None:
+        if not 0.0 <= args.ema < 1.0:
+            raise SystemExit("--ema: the decay must be in [0, 1)")
+        # resuming a run without --ema: the average starts at the resumed generator
+        ema = sgan.WeightAverage(G, args.ema)
+        if args.resume and "generator_ema" in state:
+            ema.model.load_state_dict(state["generator_ema"])
 
     g_params = sum(p.numel() for p in G.parameters())
     print(f"train: raster {road.shape[1]}x{road.shape[0]} px ({metres_per_pixel:g} m/px, road share "
@@ -227,6 +239,8 @@ def main():
                 g_loss = g_loss + args.share_weight * share_gap * share_gap
             g_loss.backward()
             opt_g.step()
+            if ema is not None:
+                ema.update(G)
             writer.writerow([epoch, iteration, f"{d_loss.item():.5f}", f"{g_loss.item():.5f}",
                              f"{torch.sigmoid(out_real).mean().item():.4f}",
                              f"{torch.sigmoid(out_fake).mean().item():.4f}",
@@ -235,14 +249,19 @@ def main():
         # Statistics of a larger noise than the patches' (9 for 5): at 129 px much of the image is
         # border, where fewer kernel taps add up; samples are mostly interior. Leaves G in eval mode.
         sgan.recalibrate_batchnorm(G, 2 * args.noise_side - 1)
+        state = {"generator": G.state_dict(), "discriminator": D.state_dict(), "opt_g": opt_g.state_dict(),
+                 "opt_d": opt_d.state_dict(), "epoch": epoch, "torch_rng": torch.get_rng_state(),
+                 "numpy_rng": rng.bit_generator.state, "args": vars(args), "metres_per_pixel": metres_per_pixel}
+        shown = G
+        if ema is not None:
+            # the average's own statistics (the trained generator's do not fit its weights)
+            sgan.recalibrate_batchnorm(ema.model, 2 * args.noise_side - 1)
+            state["generator_ema"] = ema.model.state_dict()
+            shown = ema.model
         tag = f"{epoch:03d}"
-        torch.save({"generator": G.state_dict(), "discriminator": D.state_dict(), "opt_g": opt_g.state_dict(),
-                    "opt_d": opt_d.state_dict(), "epoch": epoch, "torch_rng": torch.get_rng_state(),
-                    "numpy_rng": rng.bit_generator.state, "args": vars(args),
-                    "metres_per_pixel": metres_per_pixel},
-                   os.path.join(args.out, f"checkpoint-{tag}.pt"))
-        save_png(os.path.join(args.out, f"sample-{tag}.png"), sgan.sample(G, 1, args.sample_side, args.sample_side))
-        size = sgan.write_generator(G, os.path.join(args.out, "generator.sgan"), metres_per_pixel)
+        torch.save(state, os.path.join(args.out, f"checkpoint-{tag}.pt"))
+        save_png(os.path.join(args.out, f"sample-{tag}.png"), sgan.sample(shown, 1, args.sample_side, args.sample_side))
+        size = sgan.write_generator(shown, os.path.join(args.out, "generator.sgan"), metres_per_pixel)
         print(f"epoch {epoch}: d_loss {d_loss.item():.3f} g_loss {g_loss.item():.3f} "
               f"({time.monotonic() - started:.0f} s, generator {size} bytes)", flush=True)
     log.close()
