@@ -75,6 +75,24 @@ struct Fixture {
     in.seeds = {{0.0, 0.0}};
     return in;
   }
+  // Patch growth of the uneven grid as the tests below grow it (seed 4, up to 20,000 edges).
+  static GrowParams patch_growth() {
+    GrowParams p;
+    p.use_patches = true;
+    p.seed = 4;
+    p.max_edges = 20000;
+    return p;
+  }
+  // The same growth with one switch of `p` off, then on.
+  struct OffOn {
+    GrowResult off, on;
+  };
+  OffOn grow_off_on(const GrowInput& in, bool PatchGrowParams::*flag, GrowParams p = patch_growth()) {
+    p.patch.*flag = false;
+    GrowResult off = grow_example(geos, in, p);
+    p.patch.*flag = true;
+    return {std::move(off), grow_example(geos, in, p)};
+  }
 };
 
 }  // namespace
@@ -112,15 +130,9 @@ TEST(PatchDangling, DeadEndsAtTheExamplesCropAreNotTheExamples) {
 TEST(PatchDangling, DanglingStreetsJoinTheNetworkAhead) {
   Fixture f;
   GrowInput in = f.input(uneven_grid());
-  GrowParams p;
-  p.use_patches = true;
-  p.seed = 4;
-  p.max_edges = 20000;
+  GrowParams p = Fixture::patch_growth();
   p.patch.avoid_corners = false;  // the joins alone (avoiding corners changes the growth itself)
-  p.patch.connect_dangling = false;
-  GrowResult open = grow_example(f.geos, in, p);
-  p.patch.connect_dangling = true;
-  GrowResult joined = grow_example(f.geos, in, p);
+  auto [open, joined] = f.grow_off_on(in, &PatchGrowParams::connect_dangling, p);
   EXPECT_EQ(open.stats.dangling_connected, 0u);
   EXPECT_GT(joined.stats.dangling_connected, 0u);
   EXPECT_LT(interior_dead_ends(joined), interior_dead_ends(open));
@@ -158,10 +170,7 @@ TEST(PatchDangling, JoinsStopAtTheExamplesOwnDeadEndShare) {
   }
   GrowInput grid = f.input(uneven_grid());
   GrowInput culs = f.input(example);
-  GrowParams p;
-  p.use_patches = true;
-  p.seed = 4;
-  p.max_edges = 20000;
+  GrowParams p = Fixture::patch_growth();
   GrowResult a = grow_example(f.geos, grid, p);
   GrowResult b = grow_example(f.geos, culs, p);
   EXPECT_GT(a.stats.dangling_connected, 0u);
@@ -193,14 +202,7 @@ std::pair<long, long> junction_counts(const GrowResult& r) {
 TEST(PatchDangling, FacingTeesContinueAcross) {
   Fixture f;
   GrowInput in = f.input(uneven_grid());
-  GrowParams p;
-  p.use_patches = true;
-  p.seed = 4;
-  p.max_edges = 20000;
-  p.patch.continue_across = false;
-  GrowResult off = grow_example(f.geos, in, p);
-  p.patch.continue_across = true;
-  GrowResult on = grow_example(f.geos, in, p);
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::continue_across);
   EXPECT_EQ(off.stats.continued_across, 0u);
   ASSERT_GT(on.stats.continued_across, 0u);
   const auto [threes_off, fours_off] = junction_counts(off);
@@ -218,7 +220,7 @@ TEST(PatchDangling, FacingTeesContinueAcross) {
       ASSERT_FALSE(crosses_without_node(on.edges[i], on.edges[j])) << i << " " << j;
     }
   }
-  GrowResult again = grow_example(f.geos, in, p);
+  GrowResult again = grow_example(f.geos, in, Fixture::patch_growth());  // (the switch on: its default)
   ASSERT_EQ(again.edges.size(), on.edges.size());
   for (std::size_t i = 0; i < on.edges.size(); ++i) {
     EXPECT_EQ(again.edges[i].from_node, on.edges[i].from_node);
@@ -243,10 +245,7 @@ TEST(PatchDangling, AnExampleOfTeesKeepsItsTees) {
     }
   }
   GrowInput in = f.input(example);
-  GrowParams p;
-  p.use_patches = true;
-  p.seed = 4;
-  p.max_edges = 20000;
+  GrowParams p = Fixture::patch_growth();
   GrowResult r = grow_example(f.geos, in, p);
   EXPECT_GT(r.edges.size(), 200u);
   EXPECT_EQ(r.stats.continued_across, 0u);
@@ -260,10 +259,7 @@ TEST(PatchDangling, ArterialTeesContinueToTheStreetAhead) {
   for (PatchInputEdge& e : avenues) e.road_class = "avenue";
   GrowInput streets_in = f.input(uneven_grid());
   GrowInput avenues_in = f.input(avenues);
-  GrowParams p;
-  p.use_patches = true;
-  p.seed = 4;
-  p.max_edges = 20000;
+  GrowParams p = Fixture::patch_growth();
   GrowResult streets = grow_example(f.geos, streets_in, p);
   GrowResult on = grow_example(f.geos, avenues_in, p);
   p.patch.continue_across = false;
@@ -311,14 +307,7 @@ long corner_count(const GrowResult& r) {
 TEST(PatchDangling, CornersAreAvoided) {
   Fixture f;
   GrowInput in = f.input(uneven_grid());
-  GrowParams p;
-  p.use_patches = true;
-  p.seed = 4;
-  p.max_edges = 20000;
-  p.patch.avoid_corners = false;
-  GrowResult off = grow_example(f.geos, in, p);
-  p.patch.avoid_corners = true;
-  GrowResult on = grow_example(f.geos, in, p);
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::avoid_corners);
   EXPECT_EQ(off.stats.corners_avoided, 0u);
   ASSERT_GT(on.stats.corners_avoided, 0u);
   EXPECT_LE(on.stats.corners_cut, on.stats.corners_avoided);
@@ -328,7 +317,7 @@ TEST(PatchDangling, CornersAreAvoided) {
       ASSERT_FALSE(crosses_without_node(on.edges[i], on.edges[j])) << i << " " << j;
     }
   }
-  GrowResult again = grow_example(f.geos, in, p);
+  GrowResult again = grow_example(f.geos, in, Fixture::patch_growth());  // (the switch on: its default)
   ASSERT_EQ(again.edges.size(), on.edges.size());
   for (std::size_t i = 0; i < on.edges.size(); ++i) {
     EXPECT_EQ(again.edges[i].from_node, on.edges[i].from_node);
