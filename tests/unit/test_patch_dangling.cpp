@@ -132,7 +132,6 @@ TEST(PatchDangling, DeadEndsAtTheExamplesCropAreNotTheExamples) {
   p.seed = 4;
   p.max_edges = 800;
   p.patch.connect_dangling = false;
-  p.patch.prune_dangling = true;
   p.patch.prune_dangling = false;
   GrowResult raw = grow_example(f.geos, in, p);
   EXPECT_GT(interior_dead_ends(raw), 100);  // the stubs, placed inside the region
