@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <map>
 #include <set>
 
@@ -235,6 +236,21 @@ void check_axis(const SurfaceAxis& axis) {
   }
 }
 
+// CPU seconds since the previous lap (or since construction): CPU rather than wall time, so
+// that a profile on a busy machine still adds up.
+class PhaseClock {
+ public:
+  double lap() {
+    std::clock_t now = std::clock();
+    double seconds = static_cast<double>(now - last_) / CLOCKS_PER_SEC;
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::clock_t last_ = std::clock();
+};
+
 class SurfaceBuilder {
  public:
   SurfaceBuilder(GeosContext& ctx, const std::vector<SurfaceAxis>& axes, const std::vector<CornerOverride>& overrides,
@@ -242,6 +258,7 @@ class SurfaceBuilder {
       : ctx_(ctx), axes_(axes), overrides_(overrides), s_(settings) {}
 
   SurfaceResult run() {
+    PhaseClock clock;
     std::vector<TopologyAxis> topo_axes;
     topo_axes.reserve(axes_.size());
     for (const SurfaceAxis& a : axes_) topo_axes.push_back({a.id, a.line, a.layer});
@@ -263,6 +280,7 @@ class SurfaceBuilder {
     }
     border_.assign(topo_.edges.size(), {0.0, 0.0});
     transition_.assign(topo_.nodes.size(), false);
+    result_.stats.topology = clock.lap();
 
     // Corners and border lines first, then sections between the border lines, then the junction
     // surfaces (whose repairs may need the sections around them).
@@ -272,12 +290,15 @@ class SurfaceBuilder {
       poller.tick();
       build_node(n);
     }
+    result_.stats.corners = clock.lap();
     for (std::size_t e = 0; e < topo_.edges.size(); ++e) {
       poller.tick();
       build_section(e);
     }
     separate_overlapping_sections();
+    result_.stats.sections = clock.lap();
     build_lanes(poller);
+    result_.stats.lanes = clock.lap();
     for (SectionResult& sec : result_.sections) {
       if (sec.surface) section_surface_[{sec.axis_id, sec.part}] = sec.surface.get();
     }
@@ -291,7 +312,9 @@ class SurfaceBuilder {
       }
     }
     separate_overlapping_junctions(poller);
+    result_.stats.junctions = clock.lap();
     build_sidewalks(poller);
+    result_.stats.sidewalks = clock.lap();
     for (auto& corners : corners_of_node_) {
       for (CornerResult& c : corners) result_.corners.push_back(std::move(c));
     }
