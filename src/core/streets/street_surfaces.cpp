@@ -1206,26 +1206,26 @@ class SurfaceBuilder {
       blockers[hi].push_back(lo);     // a roadway (lo < first_claim) or an earlier claim
     });
     // A claim's geometry is freed once the last claim it blocks (or itself) is done: the claims
-    // of a whole city held at once were a tenth of the backend's peak memory (Reisterstown).
-    std::vector<std::vector<std::size_t>> free_after(items.size());
-    {
-      std::vector<std::size_t> last_use(items.size());
-      for (std::size_t i = first_claim; i < items.size(); ++i) last_use[i] = i;
-      for (std::size_t i = first_claim; i < items.size(); ++i) {
-        for (std::size_t b : blockers[i]) {
-          if (b >= first_claim) last_use[b] = std::max(last_use[b], i);
-        }
+    // of a whole city held at once were a tenth of the backend's peak memory (Reisterstown). The
+    // claims whose last use is claim j are j itself and some of j's blockers.
+    std::vector<std::size_t> last_use(items.size());
+    for (std::size_t i = first_claim; i < items.size(); ++i) last_use[i] = i;
+    for (std::size_t i = first_claim; i < items.size(); ++i) {
+      for (std::size_t b : blockers[i]) {
+        if (b >= first_claim) last_use[b] = std::max(last_use[b], i);
       }
-      for (std::size_t i = first_claim; i < items.size(); ++i) free_after[last_use[i]].push_back(i);
     }
+    auto free_if_done = [&](std::size_t k, std::size_t done) {
+      if (k >= first_claim && last_use[k] == done) {
+        items[k].owned.reset();
+        items[k].geom = nullptr;
+      }
+    };
     for (std::size_t i = first_claim; i < items.size(); ++i) {
       poller.tick();
       if (i > first_claim) {  // (at the top: every path through the claim before ends in `continue`)
-        for (std::size_t k : free_after[i - 1]) {
-          items[k].owned.reset();
-          items[k].geom = nullptr;
-        }
-        std::vector<std::size_t>().swap(free_after[i - 1]);
+        for (std::size_t k : blockers[i - 1]) free_if_done(k, i - 1);
+        free_if_done(i - 1, i - 1);
         std::vector<std::size_t>().swap(blockers[i - 1]);
       }
       Item& it = items[i];
