@@ -51,6 +51,7 @@ SELECT count(*) FROM streetgen.generate('$model') \g /dev/null
 \! awk '/VmHWM/ { h = \$2 } /RssShmem/ { s = \$2 } /RssFile/ { f = \$2 } END { print h - s - f }' /proc/\$SGPID/status
 SQL
 )
+  grep -h -A2 "ERROR" "$out/generate-$model.log" >&2 || true  # (the DEBUG1 log holds generate's errors too)
   read -r base t0 t1 peak <<<"$(echo $kb)"
   echo "$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f", b - a }') $peak $base"
 }
