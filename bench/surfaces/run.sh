@@ -34,11 +34,13 @@ since() { awk -v s="$1" -v e="$(now)" 'BEGIN { printf "%.2f", e - s }'; }
 # generate MODEL -> prints "seconds peak_kb base_kb": wall time of generate() and the backend's
 # peak private memory (VmHWM - RssShmem - RssFile: without shared buffers and mapped files such
 # as libraries and the PROJ database, which other processes share), and the same
-# before generate() (libraries loaded, model read) - one fresh backend per model.
+# before generate() (libraries loaded, model read) - one fresh backend per model. Its DEBUG1
+# messages (the engine's phase times, the blocks' overlays) go to $out/generate-MODEL.log.
 generate() {
   local model=$1 start
   local kb
-  kb=$(psql -X -q -At <<SQL
+  kb=$(psql -X -q -At 2>"$out/generate-$model.log" <<SQL
+SET client_min_messages = debug1;
 SELECT pg_backend_pid() AS pid \gset
 \setenv SGPID :pid
 SELECT count(ST_AsEWKB(geom)), streetgen.version() FROM $model.axis \g /dev/null
@@ -49,6 +51,7 @@ SELECT count(*) FROM streetgen.generate('$model') \g /dev/null
 \! awk '/VmHWM/ { h = \$2 } /RssShmem/ { s = \$2 } /RssFile/ { f = \$2 } END { print h - s - f }' /proc/\$SGPID/status
 SQL
 )
+  grep -h -A2 "ERROR" "$out/generate-$model.log" >&2 || true  # (the DEBUG1 log holds generate's errors too)
   read -r base t0 t1 peak <<<"$(echo $kb)"
   echo "$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f", b - a }') $peak $base"
 }
@@ -102,6 +105,20 @@ for n in "${names[@]}"; do
            round((100 * q.intersection_overlap_area / greatest(q.surface_area, 1e-9))::numeric, 4)
       FROM streetgen.surface_quality('$n') q")
   say "| $n | $row | ${import_s[$n]} | ${generate_s[$n]} | $(( ${peak_kb[$n]:-0} / 1024 )) ($(( ${base_kb[$n]:-0} / 1024 ))) |"
+done
+say ""
+say "Where generate's time goes: the engine's phases in CPU seconds (topology, corners, sections,"
+say "lanes and markings, junctions, sidewalks and crossings), then the blocks' overlays per face"
+say "(clip, union, difference, and the whole call with its predicates), all CPU seconds, from the DEBUG1"
+say "messages of the generate above:"
+say ""
+say "| dataset | topology | corners | sections | lanes | junctions | sidewalks | blocks: clip | union | difference | all |"
+say "|---|---|---|---|---|---|---|---|---|---|---|"
+for n in "${names[@]}"; do
+  say "| $n | $(awk '
+    /streetgen: surfaces in CPU seconds/ { e = ""; sep = ""; for (i = 1; i <= NF; i++) if ($i ~ /^[0-9.]+,?$/) { v = $i; sub(",", "", v); e = e sep v; sep = " | " } }
+    /streetgen: blocks of/ { b = ""; for (i = 1; i <= NF; i++) if ($i == "clips" || $i == "unions" || $i == "differences" || $i == "all") { v = $(i + 1); sub(",", "", v); b = b " | " v } }
+    END { print (e == "" ? "n/a | | | | |" : e) (b == "" ? " | n/a | | |" : b) }' "$out/generate-$n.log") |"
 done
 say ""
 say "Corners by status, intersections by status, issues by kind:"

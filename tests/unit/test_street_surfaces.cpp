@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 
 #include "core/error.hpp"
 #include "core/streets/arc_centre.hpp"
@@ -305,4 +306,24 @@ TEST(StreetDetails, SidewalksStayOffRoadwaysAndCrossingsFollowTheRule) {
   // A negative sidewalk width is refused.
   axes[0].sidewalk_left = -1;
   EXPECT_THROW(street_surfaces(ctx, axes, {}, SurfaceSettings{}), Error);
+}
+
+// The phase times add up to no more than the CPU time of the whole call (each phase is counted
+// once, none is negative), and the sidewalks, the costliest phase on real cities, are timed.
+TEST(StreetSurfaces, PhaseTimesAddUpToTheCallsCpuTime) {
+  GeosContext ctx;
+  std::vector<SurfaceAxis> axes;
+  for (int i = 0; i < 6; ++i) {  // a 6 x 6 grid of 100 m blocks with sidewalks
+    axes.push_back(axis(1 + i, {{0, 100.0 * i}, {500, 100.0 * i}}, 8, 50));
+    axes.push_back(axis(101 + i, {{100.0 * i, 0}, {100.0 * i, 500}}, 8, 50));
+  }
+  for (SurfaceAxis& a : axes) a.sidewalk_left = a.sidewalk_right = 2;
+  std::clock_t before = std::clock();
+  SurfaceResult r = street_surfaces(ctx, axes, {}, SurfaceSettings{});
+  double call = static_cast<double>(std::clock() - before) / CLOCKS_PER_SEC;
+  const SurfaceRunStats& t = r.stats;
+  for (double phase : {t.topology, t.corners, t.sections, t.lanes, t.junctions, t.sidewalks}) EXPECT_GE(phase, 0.0);
+  EXPECT_LE(t.topology + t.corners + t.sections + t.lanes + t.junctions + t.sidewalks, call + 1e-6);
+  EXPECT_FALSE(r.sidewalks.empty());
+  EXPECT_GT(t.sidewalks, 0.0);
 }

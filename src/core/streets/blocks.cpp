@@ -1,8 +1,8 @@
 #include "core/streets/blocks.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdint>
+#include <ctime>
 #include <memory>
 #include <new>
 #include <string>
@@ -38,9 +38,8 @@ void collect(void* item, void* userdata) {
   }
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+// CPU seconds, not wall: the figures are for profiling, and must add up on a busy machine too.
+double seconds_since(std::clock_t start) { return static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC; }
 
 // A GEOS overlay failed: GEOS's own interrupt is rethrown at once (as canceled); any other error
 // is forgotten, and the caller retries on the grid.
@@ -95,7 +94,7 @@ bool cut_face(GeosContext& ctx, const GEOSGeometry* face, const GEOSPreparedGeom
       if (inside == 2) forget_or_rethrow(ctx, "block predicate");
     }
     ++stats.clipped_pairs;
-    auto start = std::chrono::steady_clock::now();
+    std::clock_t start = std::clock();
     GEOSGeometry* clipped = grid ? GEOSIntersectionPrec_r(h, piece, face, grid_size) : GEOSIntersection_r(h, piece, face);
     stats.clip_seconds += seconds_since(start);
     if (clipped == nullptr) {
@@ -111,7 +110,7 @@ bool cut_face(GeosContext& ctx, const GEOSGeometry* face, const GEOSPreparedGeom
     return true;
   }
   GeomPtr collection = make_collection(ctx, GEOS_GEOMETRYCOLLECTION, parts);
-  auto start = std::chrono::steady_clock::now();
+  std::clock_t start = std::clock();
   GEOSGeometry* u = grid ? GEOSUnaryUnionPrec_r(h, collection.get(), grid_size) : GEOSUnaryUnion_r(h, collection.get());
   stats.union_seconds += seconds_since(start);
   if (u == nullptr) {
@@ -120,7 +119,7 @@ bool cut_face(GeosContext& ctx, const GEOSGeometry* face, const GEOSPreparedGeom
     return false;
   }
   GeomPtr united(u, GeomDeleter{h});
-  start = std::chrono::steady_clock::now();
+  start = std::clock();
   GEOSGeometry* d = grid ? GEOSDifferencePrec_r(h, face, united.get(), grid_size) : GEOSDifference_r(h, face, united.get());
   stats.difference_seconds += seconds_since(start);
   if (d == nullptr) {
@@ -161,6 +160,7 @@ std::vector<GeomPtr> faces_minus_pieces(GeosContext& ctx, const std::vector<cons
   GEOSContextHandle_t h = ctx.handle();
   FaceCutStats local;
   FaceCutStats& s = stats != nullptr ? *stats : local;
+  std::clock_t call_start = std::clock();
   std::vector<GeomPtr> out;
   for (std::size_t f = 0; f < faces.size(); ++f) out.emplace_back(nullptr, GeomDeleter{h});
 
@@ -189,6 +189,7 @@ std::vector<GeomPtr> faces_minus_pieces(GeosContext& ctx, const std::vector<cons
       cut_face(ctx, face, prepared.get(), pieces, candidates[f], grid_size, out[f], s);
     }
   }
+  s.total_seconds += seconds_since(call_start);
   return out;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <map>
 #include <set>
 
@@ -235,6 +236,21 @@ void check_axis(const SurfaceAxis& axis) {
   }
 }
 
+// CPU seconds since the previous lap (or since construction): CPU rather than wall time, so
+// that a profile on a busy machine still adds up.
+class PhaseClock {
+ public:
+  double lap() {
+    std::clock_t now = std::clock();
+    double seconds = static_cast<double>(now - last_) / CLOCKS_PER_SEC;
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::clock_t last_ = std::clock();
+};
+
 class SurfaceBuilder {
  public:
   SurfaceBuilder(GeosContext& ctx, const std::vector<SurfaceAxis>& axes, const std::vector<CornerOverride>& overrides,
@@ -242,6 +258,7 @@ class SurfaceBuilder {
       : ctx_(ctx), axes_(axes), overrides_(overrides), s_(settings) {}
 
   SurfaceResult run() {
+    PhaseClock clock;
     std::vector<TopologyAxis> topo_axes;
     topo_axes.reserve(axes_.size());
     for (const SurfaceAxis& a : axes_) topo_axes.push_back({a.id, a.line, a.layer});
@@ -263,6 +280,7 @@ class SurfaceBuilder {
     }
     border_.assign(topo_.edges.size(), {0.0, 0.0});
     transition_.assign(topo_.nodes.size(), false);
+    result_.stats.topology = clock.lap();
 
     // Corners and border lines first, then sections between the border lines, then the junction
     // surfaces (whose repairs may need the sections around them).
@@ -272,12 +290,15 @@ class SurfaceBuilder {
       poller.tick();
       build_node(n);
     }
+    result_.stats.corners = clock.lap();
     for (std::size_t e = 0; e < topo_.edges.size(); ++e) {
       poller.tick();
       build_section(e);
     }
     separate_overlapping_sections();
+    result_.stats.sections = clock.lap();
     build_lanes(poller);
+    result_.stats.lanes = clock.lap();
     for (SectionResult& sec : result_.sections) {
       if (sec.surface) section_surface_[{sec.axis_id, sec.part}] = sec.surface.get();
     }
@@ -291,7 +312,9 @@ class SurfaceBuilder {
       }
     }
     separate_overlapping_junctions(poller);
+    result_.stats.junctions = clock.lap();
     build_sidewalks(poller);
+    result_.stats.sidewalks = clock.lap();
     for (auto& corners : corners_of_node_) {
       for (CornerResult& c : corners) result_.corners.push_back(std::move(c));
     }
@@ -1183,26 +1206,26 @@ class SurfaceBuilder {
       blockers[hi].push_back(lo);     // a roadway (lo < first_claim) or an earlier claim
     });
     // A claim's geometry is freed once the last claim it blocks (or itself) is done: the claims
-    // of a whole city held at once were a tenth of the backend's peak memory (Reisterstown).
-    std::vector<std::vector<std::size_t>> free_after(items.size());
-    {
-      std::vector<std::size_t> last_use(items.size());
-      for (std::size_t i = first_claim; i < items.size(); ++i) last_use[i] = i;
-      for (std::size_t i = first_claim; i < items.size(); ++i) {
-        for (std::size_t b : blockers[i]) {
-          if (b >= first_claim) last_use[b] = std::max(last_use[b], i);
-        }
+    // of a whole city held at once were a tenth of the backend's peak memory (Reisterstown). The
+    // claims whose last use is claim j are j itself and some of j's blockers.
+    std::vector<std::size_t> last_use(items.size());
+    for (std::size_t i = first_claim; i < items.size(); ++i) last_use[i] = i;
+    for (std::size_t i = first_claim; i < items.size(); ++i) {
+      for (std::size_t b : blockers[i]) {
+        if (b >= first_claim) last_use[b] = std::max(last_use[b], i);
       }
-      for (std::size_t i = first_claim; i < items.size(); ++i) free_after[last_use[i]].push_back(i);
     }
+    auto free_if_done = [&](std::size_t k, std::size_t done) {
+      if (k >= first_claim && last_use[k] == done) {
+        items[k].owned.reset();
+        items[k].geom = nullptr;
+      }
+    };
     for (std::size_t i = first_claim; i < items.size(); ++i) {
       poller.tick();
       if (i > first_claim) {  // (at the top: every path through the claim before ends in `continue`)
-        for (std::size_t k : free_after[i - 1]) {
-          items[k].owned.reset();
-          items[k].geom = nullptr;
-        }
-        std::vector<std::size_t>().swap(free_after[i - 1]);
+        for (std::size_t k : blockers[i - 1]) free_if_done(k, i - 1);
+        free_if_done(i - 1, i - 1);
         std::vector<std::size_t>().swap(blockers[i - 1]);
       }
       Item& it = items[i];

@@ -130,6 +130,17 @@ struct CrossingResult {
   GeomPtr surface;
 };
 
+// CPU seconds spent in each phase of one run (reported at DEBUG1 by the SQL entry and printed by
+// bench/surfaces, for profiling).
+struct SurfaceRunStats {
+  double topology = 0;   // snapping, splitting, lane plans
+  double corners = 0;    // corner arcs and border points per node
+  double sections = 0;   // section surfaces and their separation
+  double lanes = 0;      // lanes and markings
+  double junctions = 0;  // intersection and transition surfaces and their separation
+  double sidewalks = 0;  // sidewalks and crossings
+};
+
 struct SurfaceResult {
   std::vector<NodeResult> nodes;
   std::vector<SectionResult> sections;
@@ -140,6 +151,7 @@ struct SurfaceResult {
   std::vector<MarkingResult> markings;
   std::vector<SidewalkResult> sidewalks;
   std::vector<CrossingResult> crossings;
+  SurfaceRunStats stats;
 };
 
 // Checks the inputs (finite, positive widths and speeds; throws invalid_argument naming the axis)
