@@ -17,6 +17,9 @@
 #    whether roundabouts (patches tagged roundabout) and cul-de-sacs were used. Patches are
 #    extracted with extract_patches' defaults (levels: arterial patches grow first), or with
 #    EXTRACT_PARAMS (e.g. EXTRACT_PARAMS='{"levels": false}' for one level).
+#    Then where the density comes from: the main streets' share of the length (example, grown),
+#    the mean connector length of the library and of the patches used, and the share of junctions
+#    with a statistical street (fallback or join).
 # 2. Speed: km of road per second of one SQL call (one core) for squares grown from tokyo, for
 #    grow_patches and for grow_example in the same run, and their ratio; a 300 km square is the
 #    issue's benchmark (< 3 s).
@@ -148,6 +151,31 @@ SELECT p.name, count(DISTINCT p.patch_id) FILTER (WHERE 'roundabout' = ANY (p.ta
        (SELECT count(DISTINCT (g.seed, g.origin)) FROM grown g JOIN patch q ON g.origin = 'grow_patches:' || q.patch_id
          AND q.name = g.name WHERE g.method = 'patches' AND g.name = p.name AND 'cul-de-sac' = ANY (q.tags)) AS cul_de_sac_uses
   FROM patch p GROUP BY p.name ORDER BY p.name;
+\echo where the density comes from (grow_patches, median over seeds): share of the length on main streets (example, grown), mean connector length of the library and of the patches used (weighted by their uses: edges placed over the patch's segments), junctions (degree >= 3, inside the hull shrunk by 50 m, not simplified) with a statistical street (fallback or join) among their streets
+WITH conn AS (SELECT name, patch_id, avg(ST_Length(geom)) FILTER (WHERE role = 'connector') AS len,
+                     sum(ST_NPoints(geom) - 1) AS segments FROM patch GROUP BY 1, 2),
+     used AS (SELECT name, seed, split_part(origin, ':', 2)::bigint AS patch_id, count(*) AS n FROM grown
+               WHERE method = 'patches' AND origin LIKE 'grow_patches:%' GROUP BY 1, 2, 3),
+     ends AS (SELECT g.name, g.seed, ST_SnapToGrid(e.p, 0.05) AS p, bool_or(g.origin = 'grow_parametric') AS stat
+                FROM grown g, LATERAL (VALUES (ST_StartPoint(g.geom)), (ST_EndPoint(g.geom))) AS e(p)
+               WHERE g.method = 'patches' GROUP BY 1, 2, 3 HAVING count(*) >= 3),
+     per_seed AS (
+       SELECT s.name, s.seed,
+              (SELECT sum(ST_Length(geom)) FILTER (WHERE road_class ~ '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard)$') / sum(ST_Length(geom)) FROM grown g
+                WHERE g.method = 'patches' AND g.name = s.name AND g.seed = s.seed) AS main_share,
+              (SELECT sum(c.len * u.n / c.segments) / sum(u.n::float8 / c.segments) FROM used u JOIN conn c USING (name, patch_id)
+                WHERE u.name = s.name AND u.seed = s.seed AND c.len IS NOT NULL) AS used_len,
+              (SELECT count(*) FILTER (WHERE e.stat)::float8 / count(*) FROM ends e JOIN region r USING (name)
+                WHERE e.name = s.name AND e.seed = s.seed AND ST_Within(e.p, ST_Buffer(r.geom, -50))) AS stat_junctions
+         FROM (SELECT DISTINCT name, seed FROM timing WHERE method = 'patches') s)
+SELECT p.name,
+       round((100 * (SELECT sum(ST_Length(geom)) FILTER (WHERE road_class ~ '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard)$') / sum(ST_Length(geom))
+                       FROM example e WHERE e.name = p.name))::numeric, 1) AS ex_main_pct,
+       round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY p.main_share))::numeric, 1) AS grown_main_pct,
+       round((SELECT avg(len) FROM conn c WHERE c.name = p.name)::numeric, 1) AS library_connector_m,
+       round(percentile_cont(0.5) WITHIN GROUP (ORDER BY p.used_len)::numeric, 1) AS used_connector_m,
+       round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY p.stat_junctions))::numeric, 1) AS junctions_with_stat_pct
+  FROM per_seed p GROUP BY p.name ORDER BY p.name;
 CREATE INDEX ON grown USING gist (geom);
 ANALYZE grown;
 SELECT method, (SELECT count(*) FROM grown g2 WHERE g2.method = m.method) AS edges_checked,
