@@ -209,11 +209,12 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   // Phase 3.
   ereport(DEBUG1, (errmsg("grow: %zu steps, %zu coherent, %zu unmatched, %zu parametric fallback, %zu guided "
                           "(%zu by the direction raster), %zu chosen by the weight raster, %zu proposals, "
-                          "%zu accepted, %zu snapped, %zu clipped, %zu rejected, %zu pruned, %zu reseeds, %zu restarts",
+                          "%zu accepted, %zu snapped, %zu clipped, %zu rejected, %zu pruned, %zu reseeds, %zu restarts; "
+                          "example dead-end share %.3f",
                           stats.steps, stats.coherent, stats.unmatched, stats.fallback, stats.guided, stats.directed,
                           stats.weighted, stats.proposals,
                           stats.accepted, stats.snapped, stats.clipped, stats.rejected, stats.pruned, stats.reseeds,
-                          stats.restarts)));
+                          stats.restarts, stats.dead_end_share)));
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();
   PG_RETURN_NULL();

@@ -808,3 +808,112 @@ TEST(GrowExample, StreetsMeetingNearAJunctionJoinIt) {
   EXPECT_EQ(offset, 0u);
   EXPECT_GT(at_junction, 0u);
 }
+
+namespace {
+
+// Grown edges with an end at q, and of those, the ones whose other end lies off both of q's grid
+// lines (a join that turned a copied edge of the axis-parallel grid onto q).
+std::pair<std::size_t, std::size_t> edges_at(const GrowResult& r, Point q) {
+  std::size_t at = 0, turned = 0;
+  for (const GrownEdge& e : r.edges) {
+    for (auto [end, other] : {std::pair{e.a, e.b}, std::pair{e.b, e.a}}) {
+      if (distance(end, q) > 1e-6) continue;
+      ++at;
+      turned += std::abs(other.x - q.x) > 1.0 && std::abs(other.y - q.y) > 1.0;
+    }
+  }
+  return {at, turned};
+}
+
+// An existing street along x = 855 and a side street from it to a dead end at kSideEnd.
+constexpr Point kSideEnd{822.0, 537.0};
+std::vector<Polyline> side_streets() {
+  return {{{855.0, 200.0}, {855.0, 570.0}}, {{855.0, 570.0}, {855.0, 800.0}}, {kSideEnd, {855.0, 570.0}}};
+}
+
+}  // namespace
+
+TEST(GrowExample, FreeEndsSnapToNodesOnlyNearTheCopiedLine) {
+  // The 80 m grid grown from (500, 500), rotation off, has a node at (820, 500). An existing street
+  // runs along x = 855 (35 m east of it), and a side street leaves it for a dead end at (822, 537):
+  // 37 m from (820, 500), the nearest node within the snap (44 m, set: the next test's example has
+  // shorter segments), but 37 m off the copied lines through it, beyond the band (22 m). Ends
+  // copied towards (820, 500) meet the street at (855, 500) straight on (a T) instead; none turns
+  // onto the dead end. The example's dead-end share is 0 (a grid), so the band applies.
+  Fixture f;
+  GrowInput in = f.input();
+  in.existing = side_streets();
+  std::size_t turned = 0, straight_t = 0;
+  std::vector<GrownEdge> first;
+  for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u}) {
+    GrowParams p;
+    p.seed = seed;
+    p.rotation = false;
+    p.max_edges = 400;
+    p.snap = 44.0;
+    GrowResult r = grow_example(f.geos, in, p);
+    ASSERT_GT(r.edges.size(), 100u) << "seed " << seed;
+    EXPECT_EQ(r.stats.dead_end_share, 0.0);
+    turned += edges_at(r, kSideEnd).second;
+    straight_t += edges_at(r, {855.0, 500.0}).first;
+    for (std::size_t i = 0; i < r.edges.size(); ++i) {
+      for (std::size_t j = i + 1; j < r.edges.size(); ++j) {
+        EXPECT_FALSE(crosses_without_node(r.edges[i], r.edges[j])) << "seed " << seed << ": " << i << ", " << j;
+      }
+    }
+    if (seed == 1u) first = r.edges;
+  }
+  EXPECT_EQ(turned, 0u);
+  EXPECT_GT(straight_t, 0u);
+  // Determinism with the band.
+  GrowParams p;
+  p.seed = 1;
+  p.rotation = false;
+  p.max_edges = 400;
+  p.snap = 44.0;
+  GrowResult again = grow_example(f.geos, in, p);
+  ASSERT_EQ(again.edges.size(), first.size());
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    EXPECT_EQ(again.edges[i].a.x, first[i].a.x);
+    EXPECT_EQ(again.edges[i].a.y, first[i].a.y);
+    EXPECT_EQ(again.edges[i].b.x, first[i].b.x);
+    EXPECT_EQ(again.edges[i].b.y, first[i].b.y);
+  }
+}
+
+TEST(GrowExample, ACityOfCulDeSacsSnapsWithoutTheBand) {
+  // The same set-up (snap 44 m) with a 40 m dead-end tooth at the middle of every block side of the
+  // grid's inner rows: its dead ends are over 15 % of its street ends, so free ends snap to any node
+  // within the snap, and some turn onto the existing street's dead end.
+  Fixture f;
+  GrowInput in = f.input();
+  in.example.clear();
+  std::int64_t id = 0;
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      const double x = j * 80.0, y = i * 80.0;
+      in.example.push_back({{{i * 80.0, x}, {i * 80.0, x + 80.0}}, "street", ++id});
+      if (i == 0 || i == 8) {
+        in.example.push_back({{{x, y}, {x + 80.0, y}}, "street", ++id});
+        continue;
+      }
+      in.example.push_back({{{x, y}, {x + 40.0, y}}, "street", ++id});
+      in.example.push_back({{{x + 40.0, y}, {x + 80.0, y}}, "street", ++id});
+      in.example.push_back({{{x + 40.0, y}, {x + 40.0, y + 40.0}}, "street", ++id});
+    }
+  }
+  in.existing = side_streets();
+  std::size_t turned = 0;
+  for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u}) {
+    GrowParams p;
+    p.seed = seed;
+    p.rotation = false;
+    p.max_edges = 400;
+    p.snap = 44.0;
+    GrowResult r = grow_example(f.geos, in, p);
+    ASSERT_GT(r.edges.size(), 100u) << "seed " << seed;
+    EXPECT_GT(r.stats.dead_end_share, 0.15);
+    turned += edges_at(r, kSideEnd).second;
+  }
+  EXPECT_GT(turned, 0u);
+}

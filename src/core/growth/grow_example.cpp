@@ -117,7 +117,20 @@ struct Example {
   std::vector<double> inside;  // per node: distance to the example's convex hull boundary (the crop's edge)
   double largest_gap = 0.0;    // metres: the widest empty space inside its hull (largest_gap)
   double dead_end_share = 0.0; // of its nodes of degree != 2 farther than crop_margin inside, the dead ends
+  double snap_band = 0.0;      // metres: free ends snap to a node at most this far off the copied line; 0: anywhere
 };
+
+// A city of cul-de-sacs: its own dead ends are over 15 % of its street ends (dead ends and
+// junctions, those the crop cut left out). canberra_south_large 27.5 % (patch library) / 27.1 %
+// (example graph), the other bench examples at most 9.3 % / 7.8 %. Growth rules that remove
+// dangling streets or the joins that make them are off there: grow_patches' corners, grow_example's
+// snap band.
+constexpr double kCulDeSacShare = 0.15;
+bool cul_de_sac_city(double dead_end_share) { return dead_end_share > kCulDeSacShare; }
+
+// Example growth: a free end snaps to a node only if the node lies within this many snap distances
+// of the copied edge's line (laterally), measured on bench/growth (README, growth10).
+constexpr double kSnapBand = 0.5;
 
 // Convex hull (Andrew's monotone chain), counter-clockwise, without repeating the first point.
 std::vector<Point> convex_hull(std::vector<Point> pts) {
@@ -238,7 +251,14 @@ class Grower {
         dead += d == 1;
       }
       ex.dead_end_share = ends > 0.0 ? dead / ends : 0.0;
+      // Nodes far off the copied line are left to the edge snap (a T ahead) or the end stays free:
+      // such snaps turned the copied edge onto another street's node and closed small blocks
+      // (tokyo's, strasbourg's). Not for a city of cul-de-sacs, whose dead ends and large blocks
+      // need those joins (with the band, canberra's per-pair median 5.3 -> 5.5-6.9 %, blocks up to +15 %).
+      const bool no_band = params.parametric || params.use_patches || cul_de_sac_city(ex.dead_end_share);
+      ex.snap_band = no_band ? 0.0 : kSnapBand * snap_;
     }
+    if (!examples_.empty()) stats_.dead_end_share = examples_[0].dead_end_share;
     epsilon_ = params.epsilon * kPi / 180.0;
     min_angle_ = params.min_angle * kPi / 180.0;
     existing_ = &input.existing;
@@ -1524,8 +1544,11 @@ class Grower {
     // Snapping joins other roads: the nodes and edges of the streets that leave v are skipped (a
     // short continuation of a street cut into short segments ends within the snap of the node it
     // came from; joining it is impossible, and refusing it cut the street: strasbourg's curves).
+    const double band =
+        params_.parametric || params_.use_patches || examples_.empty() ? 0.0 : examples_[cur_].snap_band;
     for (const PointValue& pv : point_hits_) {
       double d = distance(nodes_[pv.second].p, e);
+      if (band > 0.0 && std::abs(cross(u, nodes_[pv.second].p - p)) > band) continue;
       if (pv.second != v && d <= snap_ && (d < wd || (d == wd && pv.second < w)) && !own_street(v, pv.second)) {
         w = pv.second;
         wd = d;
@@ -2938,13 +2961,12 @@ class Grower {
     std::uint32_t edge;
   };
   std::vector<BestPair> best_;
-  // Not for a city of cul-de-sacs (its own dead ends over kCornerDeadEnds of its street ends:
+  // Not for a city of cul-de-sacs (cul_de_sac_city: its own dead ends over 15 % of its street ends:
   // canberra 27.5 %, the others at most 9.3 %): there a corner front is where the growth goes on
   // (canberra grew half as many steps with it, street density -56 % instead of -36 %).
   bool avoid_corners() const {
-    return params_.patch.connect_dangling && params_.patch.avoid_corners && example_dead_end_share_ <= kCornerDeadEnds;
+    return params_.patch.connect_dangling && params_.patch.avoid_corners && !cul_de_sac_city(example_dead_end_share_);
   }
-  static constexpr double kCornerDeadEnds = 0.15;
   static constexpr double kCornerTurn = kPi / 4;  // a corner turns more than this from straight on
   bool corner_ahead_ = false;                 // patch_step: corners are refused at this front
   bool corner_refused_ = false;               // patch_step: a candidate was refused for leaving a corner

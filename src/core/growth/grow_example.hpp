@@ -214,6 +214,7 @@ struct GrowStats {
   std::size_t too_steep = 0;       // statistical proposals discarded: no bend under max_slope
   double radius = 0.0;             // the r and snap distance used
   double snap = 0.0;
+  double dead_end_share = 0.0;     // the (first) example's dead ends among its street ends (not near the crop)
 };
 
 struct GrowResult {
