@@ -422,6 +422,27 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           stats.continued_across, stats.corners_avoided, stats.corners_cut, stats.dangling_pruned,
                           stats.dead_ends_kept, total > 0 ? 100.0 * from_patches / total : 0.0,
                           length_total > 0 ? 100.0 * length_patches / length_total : 0.0)));
+  if (stats.arterial_fronts > 0) {
+    // Why the arterial phase stops: each front visit by outcome, then the illegal draws by reason.
+    char reasons[512];
+    std::size_t used = 0;
+    reasons[0] = '\0';
+    for (int r = core::kRefRedundant; r < core::kPatchRefusals && used < sizeof(reasons); ++r) {
+      int n = snprintf(reasons + used, sizeof(reasons) - used, "%s%s %zu", r == core::kRefRedundant ? "" : ", ",
+                       core::kPatchRefusalNames[r], stats.arterial_refusals[r]);
+      if (n < 0) break;
+      used += static_cast<std::size_t>(n);
+    }
+    ereport(DEBUG1, (errmsg("grow_patches: arterial fronts %zu: %zu already finished, %zu without a connector in "
+                            "their direction, %zu with only used-up patches, %zu none within max_distance by reach, "
+                            "%zu none by Hausdorff distance, %zu every draw refused; refused draws: %s; connectors of the "
+                            "arterial patches: %zu new fronts, %zu clipped, %zu merged into a node, %zu dropped; %zu "
+                            "dead-end edges",
+                            stats.arterial_fronts, stats.arterial_front_finished, stats.arterial_front_no_direction,
+                            stats.arterial_front_used_up, stats.arterial_front_reach, stats.arterial_front_hausdorff,
+                            stats.arterial_front_refused, reasons, stats.arterial_conn_front, stats.arterial_conn_clipped,
+                            stats.arterial_conn_merged, stats.arterial_conn_dropped, stats.arterial_dead_ends)));
+  }
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();
   PG_RETURN_NULL();

@@ -358,6 +358,21 @@ TEST(GrowPatches, ArterialsFirstThenLocalStreetsFromTheirSeeds) {
   EXPECT_GT(r.stats.arterial_patches_placed, 3u);
   EXPECT_GT(r.stats.local_seeds, 10u);
   EXPECT_GT(r.stats.local_seeds_used, 0u);
+  // Why arterial fronts stopped (DEBUG1): each visit has one outcome, each front every draw of
+  // which was refused has at least one refused draw with a reason, and the placed patches' connectors
+  // made the fronts.
+  const GrowStats& s = r.stats;
+  const std::size_t stopped = s.arterial_front_finished + s.arterial_front_no_direction + s.arterial_front_used_up +
+                              s.arterial_front_reach + s.arterial_front_hausdorff + s.arterial_front_refused;
+  EXPECT_GT(s.arterial_fronts, 0u);
+  EXPECT_LE(stopped, s.arterial_fronts);
+  EXPECT_GE(s.arterial_fronts - stopped + 1, s.arterial_patches_placed);  // the seed's patch has no front
+  std::size_t refused = 0;
+  for (std::size_t k = 0; k < kPatchRefusals; ++k) refused += s.arterial_refusals[k];
+  EXPECT_EQ(s.arterial_refusals[kRefNone], 0u);
+  EXPECT_GE(refused, s.arterial_front_refused);
+  EXPECT_GT(s.arterial_conn_front, 0u);
+  EXPECT_LE(s.arterial_conn_front, s.arterial_fronts);
   // The output is in growth order: the arterial phase's avenues first, then the streets.
   std::size_t first_street = r.edges.size(), avenues = 0, avenues_before = 0;
   for (std::size_t i = 0; i < r.edges.size(); ++i) {
@@ -380,6 +395,8 @@ TEST(GrowPatches, ArterialsFirstThenLocalStreetsFromTheirSeeds) {
   GrowResult flat = grow_example(geos, in, p);
   EXPECT_EQ(flat.stats.arterial_patches_placed, 0u);
   EXPECT_EQ(flat.stats.local_seeds, 0u);
+  EXPECT_EQ(flat.stats.arterial_fronts, 0u);
+  EXPECT_EQ(flat.stats.arterial_conn_front, 0u);
   std::size_t flat_first_street = flat.edges.size();
   for (std::size_t i = 0; i < flat.edges.size() && flat_first_street == flat.edges.size(); ++i) {
     if (flat.edges[i].road_class == "street") flat_first_street = i;

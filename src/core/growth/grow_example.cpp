@@ -2759,7 +2759,10 @@ class Grower {
         }
       }
     }
+    const bool arterial_front = hierarchy_ && phase_arterial_ && !nodes_[v].edges.empty();
+    stats_.arterial_fronts += arterial_front;
     if (completed_[v]) {
+      stats_.arterial_front_finished += arterial_front;
       done_ = true;
       return;
     }
@@ -2835,6 +2838,7 @@ class Grower {
     const int want = styles_ > 1 ? (uniform01() < t_here ? 1 : 0) : -1;
     int passes = 1;
     if (styles_ > 1 && t_here > 0.0 && t_here < 1.0) passes = uniform01() < (want == 0 ? t_here : 1.0 - t_here) ? 2 : 1;
+    bool any_candidate = false;
     for (int pass = 0; pass < passes; ++pass) {
     const int style = want < 0 ? -1 : (pass == 0 ? want : 1 - want);
     ++stamp_;
@@ -2895,6 +2899,7 @@ class Grower {
       }
     }
     stats_.patch_candidates += touched_.size();
+    any_candidate = any_candidate || !touched_.empty();
     if (pass == 0) corner_refused_ = false;
     // Draw without replacement with weights exp(-d / scale) (Efraimidis & Spirakis keys): trying
     // the draws in order until one is legal samples Nishida's eq. 2 over the legal patches.
@@ -2916,8 +2921,10 @@ class Grower {
         done_ = true;
         return;
       }
+      if (arterial_front) ++stats_.arterial_refusals[refusal_];
     }
     }  // pass
+    if (arterial_front) count_arterial_stop(v, any_candidate);
     // A front that two patches already reached is connected: the fallback only continues streets
     // that would otherwise end where the example did not end them.
     // Levels: an arterial street no arterial patch continues ends there (the local phase fills
@@ -2956,6 +2963,54 @@ class Grower {
     apply_style_shape(t_here);
     parametric_step(v, level, guide_here_);
   }
+  // Why an arterial front got no patch (DEBUG1): candidates all refused, or none drawn — then a
+  // second look at the connectors in its streets' directions, without the reach filter, tells
+  // whether none points that way, all are used up, or none is close enough by reach or Hausdorff.
+  void count_arterial_stop(std::uint32_t v, bool any_candidate) {
+    if (any_candidate) {
+      ++stats_.arterial_front_refused;
+      return;
+    }
+    const double window = params_.patch.angle_window * kPi / 180.0;
+    const double cap = 3.0 * street_stats_.length_mean;
+    const int span = static_cast<int>(std::ceil(window / (2.0 * kPi / kBuckets)));
+    bool direction = false, unused = false, reach = false;
+    for (std::uint32_t e : nodes_[v].edges) {
+      const Polyline street = chain(v, e, cap);
+      const bool whole = edges_[e].source >= 0;
+      const double street_reach = reach_of(street);
+      const Point q = point_at(street, std::min(length(street), probe_));
+      const double angle = std::atan2(q.y - nodes_[v].p.y, q.x - nodes_[v].p.x) - warp_;
+      const int centre = bucket_of(angle);
+      for (int db = -span; db <= span; ++db) {
+        for (std::uint32_t ci : buckets_[(centre + db + kBuckets) % kBuckets]) {
+          const LibConnector& c = connectors_[ci];
+          if (std::abs(wrap(c.angle - angle)) > window) continue;
+          if (params_.match_levels && edges_[e].level >= 0 && c.level != edges_[e].level) continue;
+          const LibPatch& lp = library_[c.patch];
+          if (!in_phase(lp)) continue;
+          direction = true;
+          if (lp.max_uses > 0 && lp.uses >= lp.max_uses) continue;
+          unused = true;
+          if (!whole || std::abs(c.reach - street_reach) <= max_distance_) reach = true;
+        }
+      }
+    }
+    if (!direction) {
+      ++stats_.arterial_front_no_direction;
+    } else if (!unused) {
+      ++stats_.arterial_front_used_up;
+    } else if (!reach) {
+      ++stats_.arterial_front_reach;
+    } else {
+      ++stats_.arterial_front_hausdorff;
+    }
+  }
+  bool refuse(int reason) {
+    refusal_ = reason;
+    return false;
+  }
+  int refusal_ = kRefNone;
   struct BestPair {
     double d;
     std::uint32_t edge;
@@ -3049,7 +3104,7 @@ class Grower {
     // Nishida: the patch's edges that double existing streets are removed (every point of the edge
     // within snap of the network).
     plan.erase(std::remove_if(plan.begin(), plan.end(), [&](const Planned& pl) { return redundant(pl.line); }), plan.end());
-    if (plan.empty()) return false;
+    if (plan.empty()) return refuse(kRefRedundant);
     // A corner: the patch's junction lands on a dead-end front whose other streets all double
     // streets nearby, so only one new street leaves it, at an angle: refused (see avoid_corners).
     if (corner_ahead_ && nodes_[v].edges.size() == 1) {
@@ -3070,7 +3125,7 @@ class Grower {
                                                std::atan2(back.y - at_v.y, back.x - at_v.x))) > kCornerTurn) {
         ++stats_.patch_illegal;
         corner_refused_ = true;
-        return false;
+        return refuse(kRefCorner);
       }
     }
     // Levels: the local phase makes local streets only; a local patch whose arterial streets do
@@ -3079,7 +3134,7 @@ class Grower {
       for (const Planned& pl : plan) {
         if (level_is_main(pl.level)) {
           ++stats_.patch_illegal;
-          return false;
+          return refuse(kRefLevel);
         }
       }
     }
@@ -3095,7 +3150,7 @@ class Grower {
         if (legal(pl.line[k], pl.line[k + 1])) continue;
         if (!pl.open_end) {
           ++stats_.patch_illegal;
-          return false;
+          return refuse(kRefIllegal);
         }
         double lo = 0.0, hi = 1.0;
         Point a = pl.line[k], b = pl.line[k + 1];
@@ -3130,7 +3185,7 @@ class Grower {
       }
     }
     plan.erase(std::remove_if(plan.begin(), plan.end(), [](const Planned& pl) { return pl.line.empty(); }), plan.end());
-    if (plan.empty()) return false;
+    if (plan.empty()) return refuse(kRefClipped);
     // Levels: in the local phase, a local street whose new end falls within snap of an arterial
     // street (and of no node) ends on it, as the example's local streets end on arterials
     // (Nishida's local constraint "connect to a close edge"); the end stays a front.
@@ -3176,7 +3231,7 @@ class Grower {
     }
     std::size_t segments = 0;
     for (const Planned& pl : plan) segments += pl.line.size() - 1;
-    if (new_edges_ + segments > params_.max_edges) return false;
+    if (new_edges_ + segments > params_.max_edges) return refuse(kRefMaxEdges);
     // New streets keep the clearance from the network that the example's streets keep from each
     // other (away from the nodes they share with it).
     for (const Planned& pl : plan) {
@@ -3184,7 +3239,7 @@ class Grower {
         const std::uint32_t on = k + 2 == pl.line.size() ? pl.on_edge : UINT32_MAX;
         if (!clear_of_network(pl.line[k], pl.line[k + 1], clearance_, v, pl.a, pl.b, on)) {
           ++stats_.patch_illegal;
-          return false;
+          return refuse(kRefClearance);
         }
       }
     }
@@ -3206,14 +3261,14 @@ class Grower {
       const std::size_t d0 = nodes_[node].edges.size(), d1 = d0 + angles.size();
       if (d1 > max_degree_) {
         ++stats_.patch_illegal;
-        return false;
+        return refuse(kRefDegree);
       }
       // A junction made busier than 3 by a merge: as often as the example's junctions are (the
       // junction mix follows the example, as in growth I).
       for (std::size_t d = std::max<std::size_t>(d0, 3); node != v && d < d1; ++d) {
         if (!example_allows_one_more(d)) {
           ++stats_.patch_illegal;
-          return false;
+          return refuse(kRefJunctionMix);
         }
       }
       for (std::size_t a = 0; a < angles.size(); ++a) {
@@ -3221,7 +3276,7 @@ class Grower {
         for (std::size_t b = a + 1; b < angles.size() && ok; ++b) ok = std::abs(wrap(angles[a] - angles[b])) >= min_angle_;
         if (!ok) {
           ++stats_.patch_illegal;
-          return false;
+          return refuse(kRefAngle);
         }
       }
     }
@@ -3236,7 +3291,7 @@ class Grower {
                                                          : first_contact(pl.line[k], pl.line[k + 1], s1, s2, on).found;
         if (hit) {
           ++stats_.patch_illegal;
-          return false;
+          return refuse(kRefCrossing);
         }
       }
     }
@@ -3257,7 +3312,7 @@ class Grower {
             if (same(a, c) || same(a, d) || same(b, c) || same(b, d)) continue;
             if (segment_distance(a, b, c, d) <= kContact) {
               ++stats_.patch_illegal;
-              return false;
+              return refuse(kRefSelfCrossing);
             }
           }
         }
@@ -3277,6 +3332,25 @@ class Grower {
       return fresh_id[f];
     };
     const bool seeds_local = hierarchy_ && phase_arterial_;
+    if (seeds_local) {  // where the arterial patch's connectors went (DEBUG1): fronts are what the phase grows from
+      std::size_t kept = 0;
+      for (const Planned& pl : plan) {
+        const PatchEdgeRole role = lp.edges[pl.edge].role;
+        if (role == PatchEdgeRole::dead_end) ++stats_.arterial_dead_ends;
+        if (role != PatchEdgeRole::connector) continue;
+        ++kept;
+        if (pl.open_end) {
+          ++stats_.arterial_conn_front;
+        } else if (pl.clipped) {
+          ++stats_.arterial_conn_clipped;
+        } else {
+          ++stats_.arterial_conn_merged;
+        }
+      }
+      std::size_t all = 0;
+      for (const LibEdge& le : lp.edges) all += le.role == PatchEdgeRole::connector;
+      stats_.arterial_conn_dropped += all - kept - (skip != UINT32_MAX);
+    }
     std::vector<std::uint32_t> hinted;
     for (const Planned& pl : plan) {
       std::uint32_t prev = node_id(pl.a);

@@ -175,6 +175,20 @@ struct GrownEdge {
   bool bridge = false;  // an arterial across water (GrowInput::water)
 };
 
+// Why a drawn patch was not placed (place_patch), counted per draw in the arterial phase.
+enum PatchRefusal : int {
+  kRefNone, kRefRedundant, kRefCorner, kRefLevel, kRefIllegal, kRefClipped, kRefMaxEdges, kRefClearance,
+  kRefDegree, kRefJunctionMix, kRefAngle, kRefCrossing, kRefSelfCrossing, kPatchRefusals
+};
+// Their names at DEBUG1: every edge doubles a street; a corner left at a dead-end front; an arterial
+// street in the local phase; an inner or dead-end edge outside the region, on an obstacle, over water
+// or too steep; every connector clipped away; max_edges; clearance from the network; a junction over
+// max_degree; a busier junction than the example's mix allows; an angle under min_angle; a crossing
+// with the network; a crossing within the patch after merges.
+inline constexpr const char* kPatchRefusalNames[kPatchRefusals] = {
+    "none", "redundant", "corner", "level", "illegal edge", "clipped away", "max_edges", "clearance",
+    "degree", "junction mix", "angle", "crossing", "self-crossing"};
+
 struct GrowStats {
   std::size_t steps = 0;           // unfinished nodes processed
   std::size_t unmatched = 0;       // steps where no example node matched
@@ -204,6 +218,20 @@ struct GrowStats {
   std::size_t corners_avoided = 0;     // avoid_corners: fronts where a patch was refused for leaving a corner
   std::size_t corners_cut = 0;         // avoid_corners: of those, dead ends cut back after the joins
   std::size_t arterial_patches_placed = 0;  // levels: patches placed in the arterial phase
+  // Levels: each front of the arterial phase (a node with streets) once, by what became of it.
+  std::size_t arterial_fronts = 0;
+  std::size_t arterial_front_finished = 0;      // already finished (a patch's junction) when its turn came
+  std::size_t arterial_front_no_direction = 0;  // no arterial connector within angle_window of its streets
+  std::size_t arterial_front_used_up = 0;       // only connectors of patches at their usage limit
+  std::size_t arterial_front_reach = 0;         // none whose reach is within max_distance of the street's
+  std::size_t arterial_front_hausdorff = 0;     // none within max_distance by the Hausdorff distance
+  std::size_t arterial_front_refused = 0;       // candidates, but every draw tried was illegal
+  // Levels: the connectors of the patches placed in the arterial phase (but the one on the front),
+  // by where they went: a new front, clipped (region, obstacle, water, slope), merged into a node,
+  // dropped (doubling a street, or clipped to nothing); and their dead-end edges.
+  std::size_t arterial_conn_front = 0, arterial_conn_clipped = 0, arterial_conn_merged = 0, arterial_conn_dropped = 0;
+  std::size_t arterial_dead_ends = 0;
+  std::size_t arterial_refusals[kPatchRefusals] = {};  // illegal draws of the arterial phase, by reason
   std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
   std::size_t ended_on_arterial = 0;  // levels: local streets whose new end was put on an arterial street
