@@ -831,6 +831,16 @@ std::vector<Polyline> side_streets() {
   return {{{855.0, 200.0}, {855.0, 570.0}}, {{855.0, 570.0}, {855.0, 800.0}}, {kSideEnd, {855.0, 570.0}}};
 }
 
+// The growth both snap-band tests run: the grid without rotation, a 44 m snap.
+GrowParams band_params(std::uint64_t seed) {
+  GrowParams p;
+  p.seed = seed;
+  p.rotation = false;
+  p.max_edges = 400;
+  p.snap = 44.0;
+  return p;
+}
+
 }  // namespace
 
 TEST(GrowExample, FreeEndsSnapToNodesOnlyNearTheCopiedLine) {
@@ -846,12 +856,7 @@ TEST(GrowExample, FreeEndsSnapToNodesOnlyNearTheCopiedLine) {
   std::size_t turned = 0, straight_t = 0;
   std::vector<GrownEdge> first;
   for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u}) {
-    GrowParams p;
-    p.seed = seed;
-    p.rotation = false;
-    p.max_edges = 400;
-    p.snap = 44.0;
-    GrowResult r = grow_example(f.geos, in, p);
+    GrowResult r = grow_example(f.geos, in, band_params(seed));
     ASSERT_GT(r.edges.size(), 100u) << "seed " << seed;
     EXPECT_EQ(r.stats.dead_end_share, 0.0);
     turned += edges_at(r, kSideEnd).second;
@@ -866,12 +871,7 @@ TEST(GrowExample, FreeEndsSnapToNodesOnlyNearTheCopiedLine) {
   EXPECT_EQ(turned, 0u);
   EXPECT_GT(straight_t, 0u);
   // Determinism with the band.
-  GrowParams p;
-  p.seed = 1;
-  p.rotation = false;
-  p.max_edges = 400;
-  p.snap = 44.0;
-  GrowResult again = grow_example(f.geos, in, p);
+  GrowResult again = grow_example(f.geos, in, band_params(1));
   ASSERT_EQ(again.edges.size(), first.size());
   for (std::size_t i = 0; i < first.size(); ++i) {
     EXPECT_EQ(again.edges[i].a.x, first[i].a.x);
@@ -905,12 +905,7 @@ TEST(GrowExample, ACityOfCulDeSacsSnapsWithoutTheBand) {
   in.existing = side_streets();
   std::size_t turned = 0;
   for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u}) {
-    GrowParams p;
-    p.seed = seed;
-    p.rotation = false;
-    p.max_edges = 400;
-    p.snap = 44.0;
-    GrowResult r = grow_example(f.geos, in, p);
+    GrowResult r = grow_example(f.geos, in, band_params(seed));
     ASSERT_GT(r.edges.size(), 100u) << "seed " << seed;
     EXPECT_GT(r.stats.dead_end_share, 0.15);
     turned += edges_at(r, kSideEnd).second;
