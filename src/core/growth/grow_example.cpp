@@ -1544,8 +1544,7 @@ class Grower {
     // Snapping joins other roads: the nodes and edges of the streets that leave v are skipped (a
     // short continuation of a street cut into short segments ends within the snap of the node it
     // came from; joining it is impossible, and refusing it cut the street: strasbourg's curves).
-    const double band =
-        params_.parametric || params_.use_patches || examples_.empty() ? 0.0 : examples_[cur_].snap_band;
+    const double band = examples_.empty() ? 0.0 : examples_[cur_].snap_band;  // (0 unless example growth)
     for (const PointValue& pv : point_hits_) {
       double d = distance(nodes_[pv.second].p, e);
       if (band > 0.0 && std::abs(cross(u, nodes_[pv.second].p - p)) > band) continue;
