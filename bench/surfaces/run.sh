@@ -109,7 +109,7 @@ done
 say ""
 say "Where generate's time goes: the engine's phases in CPU seconds (topology, corners, sections,"
 say "lanes and markings, junctions, sidewalks and crossings), then the blocks' overlays per face"
-say "(clip, union, difference, and the whole call with its predicates), all CPU seconds, from the DEBUG1"
+say "(clip with its predicates, union, difference, and the whole call), all CPU seconds, from the DEBUG1"
 say "messages of the generate above:"
 say ""
 say "| dataset | topology | corners | sections | lanes | junctions | sidewalks | blocks: clip | union | difference | all |"

@@ -19,7 +19,7 @@ struct FaceCutStats {
   std::size_t clipped_pairs = 0;    // pairs that needed an overlay (the piece crosses the face's boundary)
   std::size_t grid_faces = 0;       // faces that fell back to the micrometre grid
   // CPU seconds
-  double clip_seconds = 0;          // in the pieces' intersections with the faces
+  double clip_seconds = 0;          // in the pieces' intersections with the faces, with the predicates that pick them
   double union_seconds = 0;
   double difference_seconds = 0;
   double total_seconds = 0;         // the whole call (the index, the predicates, the retries too)
