@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/streets/bisector.hpp"
+#include "core/streets/polygon_contact.hpp"
 
 using namespace streetgen::core;
 
@@ -70,4 +71,37 @@ TEST(Bisector, NoSplitWithoutTwoSetsInTheBox) {
   EXPECT_EQ(bisector_segments({{nan, 0}, {0, 0}}, {{10, 0}}, {-5, -5, 15, 5}).size(), 1u);
   // A point in both sets is the first set's: no split between it and itself.
   EXPECT_TRUE(bisector_segments({{1, 1}}, {{1, 1}}, {-5, -5, 5, 5}).empty());
+}
+
+// The exact "interiors meet" test that spares a junction its overlay with sections that only
+// touch it.
+TEST(PolygonContact, TouchingAlongAnEdgeIsApart) {
+  Polyline junction{{0, 0}, {4, 0}, {4, 4}, {0, 4}, {0, 0}};
+  Polyline section{{4, 0}, {10, 0}, {10, 4}, {4, 4}, {4, 0}};
+  EXPECT_FALSE(interiors_may_meet(junction, section));
+  // Touching along part of an edge, with a vertex of one in the middle of the other's edge.
+  Polyline stub{{4, 1}, {9, 1}, {9, 3}, {4, 3}};
+  EXPECT_FALSE(interiors_may_meet(junction, stub));
+  // Apart, and touching at a corner only.
+  EXPECT_FALSE(interiors_may_meet(junction, {{5, 5}, {6, 5}, {6, 6}}));
+  EXPECT_FALSE(interiors_may_meet(junction, {{4, 4}, {6, 4}, {6, 6}}));
+}
+
+TEST(PolygonContact, OverlapsAreFound) {
+  Polyline junction{{0, 0}, {4, 0}, {4, 4}, {0, 4}};
+  // Edges crossing properly.
+  EXPECT_TRUE(interiors_may_meet(junction, {{3, 1}, {8, 1}, {8, 3}, {3, 3}}));
+  // Inside, touching nothing; containing.
+  EXPECT_TRUE(interiors_may_meet(junction, {{1, 1}, {2, 1}, {2, 2}}));
+  EXPECT_TRUE(interiors_may_meet({{1, 1}, {2, 1}, {2, 2}}, junction));
+  // The same polygon, and one with an extra vertex on an edge.
+  EXPECT_TRUE(interiors_may_meet(junction, junction));
+  EXPECT_TRUE(interiors_may_meet(junction, {{0, 0}, {2, 0}, {4, 0}, {4, 4}, {0, 4}}));
+  // Inscribed: every vertex of the triangle on the square's boundary, its edges through the inside.
+  EXPECT_TRUE(interiors_may_meet(junction, {{0, 0}, {4, 2}, {2, 4}}));
+  // A strip sharing two edges' lines with the square and overlapping it, every vertex of each on
+  // the other's boundary or outside: only the middle of a cut edge is inside.
+  EXPECT_TRUE(interiors_may_meet(junction, {{2, 0}, {6, 0}, {6, 4}, {2, 4}}));
+  // Overlapping along a shared edge line where the overlap's edge runs between a vertex of each.
+  EXPECT_TRUE(interiors_may_meet({{0, 0}, {4, 0}, {2, 2}}, {{2, 0}, {6, 0}, {4, 2}}));
 }

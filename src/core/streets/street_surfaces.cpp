@@ -10,6 +10,7 @@
 #include "core/interrupts.hpp"
 #include "core/streets/arc_centre.hpp"
 #include "core/streets/bisector.hpp"
+#include "core/streets/polygon_contact.hpp"
 #include "core/streets/box_pairs.hpp"
 
 namespace streetgen::core {
@@ -847,11 +848,24 @@ class SurfaceBuilder {
       if (axis_layer_.at(result_.sections[i].axis_id) != layer) return;
       covering[x].push_back(i);
     });
-    // The junctions less the sections over them.
+    // The junctions less the sections over them. Most sections whose box meets a junction's only
+    // touch it along a border line: an exact test on their rings drops those before the overlay.
     std::vector<GeomPtr> cut(junctions);
+    std::map<std::size_t, Polyline> section_rings;  // result_ index -> exterior ring of a simple polygon
     for (auto& [j, over] : covering) {
       poller.tick();
       IntersectionResult& ir = result_.intersections[j];
+      Polyline junction_ring = simple_ring(ir.surface.get());
+      if (!junction_ring.empty()) {
+        over.erase(std::remove_if(over.begin(), over.end(),
+                                  [&](std::size_t i) {
+                                    auto it = section_rings.find(i);
+                                    if (it == section_rings.end()) it = section_rings.emplace(i, simple_ring(result_.sections[i].surface.get())).first;
+                                    return !it->second.empty() && !interiors_may_meet(junction_ring, it->second);
+                                  }),
+                   over.end());
+        if (over.empty()) continue;
+      }
       try {
         // (in key order, as one union: the same result whichever order the boxes were paired in)
         std::sort(over.begin(), over.end(), [&](std::size_t a, std::size_t b) {
@@ -924,6 +938,18 @@ class SurfaceBuilder {
                                   "its overlaps could not be removed: " + e.detail(), std::nullopt, ir.node_id});
       }
     }
+  }
+
+  // The exterior ring of a polygon without holes; empty for anything else.
+  Polyline simple_ring(const GEOSGeometry* g) {
+    if (GEOSGeomTypeId_r(ctx_.handle(), g) != GEOS_POLYGON || GEOSGetNumInteriorRings_r(ctx_.handle(), g) != 0) return {};
+    const GEOSGeometry* ring = GEOSGetExteriorRing_r(ctx_.handle(), g);
+    const GEOSCoordSequence* seq = ring ? GEOSGeom_getCoordSeq_r(ctx_.handle(), ring) : nullptr;
+    unsigned int n = 0;
+    if (!seq || GEOSCoordSeq_getSize_r(ctx_.handle(), seq, &n) == 0) return {};
+    Polyline out(n);
+    for (unsigned int i = 0; i < n; ++i) GEOSCoordSeq_getXY_r(ctx_.handle(), seq, i, &out[i].x, &out[i].y);
+    return out;
   }
 
   // A junction's skeleton as one polyline: from the node out along each axis to its border line
