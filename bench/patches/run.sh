@@ -20,6 +20,8 @@
 #    Then where the density comes from: the main streets' share of the length (example, grown),
 #    the mean connector length of the library and of the patches used, and the share of junctions
 #    with a statistical street (fallback or join).
+#    And the orientation order of the main and the local streets apart (example, grown): which level
+#    loses the example's order.
 # 2. Speed: km of road per second of one SQL call (one core) for squares grown from tokyo, for
 #    grow_patches and for grow_example in the same run, and their ratio; a 300 km square is the
 #    issue's benchmark (< 3 s).
@@ -176,6 +178,21 @@ SELECT p.name,
        round(percentile_cont(0.5) WITHIN GROUP (ORDER BY p.used_len)::numeric, 1) AS used_connector_m,
        round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY p.stat_junctions))::numeric, 1) AS junctions_with_stat_pct
   FROM per_seed p GROUP BY p.name ORDER BY p.name;
+\echo orientation order by level (grow_patches, median over seeds; degree-2 chains merged, inside the hull shrunk by 50 m): main and local streets apart, example and grown
+WITH k AS (SELECT '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard)$' AS re),
+     lv AS (SELECT r.name, s.seed, r.geom,
+                   (streetgen.network_stats(format('SELECT geom FROM example WHERE name = %L AND road_class ~ %L', r.name, k.re),
+                                            0, ST_Buffer(r.geom, -50), simplify => true)).orientation_order AS ex_main,
+                   (streetgen.network_stats(format('SELECT geom FROM example WHERE name = %L AND NOT coalesce(road_class ~ %L, false)', r.name, k.re),
+                                            0, ST_Buffer(r.geom, -50), simplify => true)).orientation_order AS ex_local,
+                   (streetgen.network_stats(format('SELECT geom FROM grown WHERE method = ''patches'' AND name = %L AND seed = %s AND road_class ~ %L',
+                                                   r.name, s.seed, k.re), 0, ST_Buffer(r.geom, -50), simplify => true)).orientation_order AS gr_main,
+                   (streetgen.network_stats(format('SELECT geom FROM grown WHERE method = ''patches'' AND name = %L AND seed = %s AND NOT coalesce(road_class ~ %L, false)',
+                                                   r.name, s.seed, k.re), 0, ST_Buffer(r.geom, -50), simplify => true)).orientation_order AS gr_local
+              FROM region r CROSS JOIN k CROSS JOIN (SELECT DISTINCT seed FROM timing WHERE method = 'patches') s)
+SELECT name, round(min(ex_main)::numeric, 3) AS ex_main, round(percentile_cont(0.5) WITHIN GROUP (ORDER BY gr_main)::numeric, 3) AS grown_main,
+       round(min(ex_local)::numeric, 3) AS ex_local, round(percentile_cont(0.5) WITHIN GROUP (ORDER BY gr_local)::numeric, 3) AS grown_local
+  FROM lv GROUP BY name ORDER BY name;
 CREATE INDEX ON grown USING gist (geom);
 ANALYZE grown;
 SELECT method, (SELECT count(*) FROM grown g2 WHERE g2.method = m.method) AS edges_checked,
