@@ -10,8 +10,8 @@
 #include "core/interrupts.hpp"
 #include "core/streets/arc_centre.hpp"
 #include "core/streets/bisector.hpp"
-#include "core/streets/polygon_contact.hpp"
 #include "core/streets/box_pairs.hpp"
+#include "core/streets/polygon_contact.hpp"
 
 namespace streetgen::core {
 namespace {
@@ -1012,7 +1012,9 @@ class SurfaceBuilder {
       const GEOSGeometry* face = GEOSGetGeometryN_r(ctx_.handle(), faces.get(), k);
       GeomPtr probe = own(ctx_, GEOSPointOnSurface_r(ctx_.handle(), face), "point on surface");
       // (faces outside the region: its holes, and loops of the split line outside it)
-      if (GEOSIntersects_r(ctx_.handle(), region, probe.get()) != 1) continue;
+      char inside = GEOSIntersects_r(ctx_.handle(), region, probe.get());
+      if (inside == 2) ctx_.fail("point in overlap");  // (the caller keeps the overlap, reported)
+      if (inside == 0) continue;
       double x, y;
       GEOSGeomGetX_r(ctx_.handle(), probe.get(), &x);
       GEOSGeomGetY_r(ctx_.handle(), probe.get(), &y);
