@@ -210,11 +210,13 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   ereport(DEBUG1, (errmsg("grow: %zu steps, %zu coherent, %zu unmatched, %zu parametric fallback, %zu guided "
                           "(%zu by the direction raster), %zu chosen by the weight raster, %zu proposals, "
                           "%zu accepted, %zu snapped, %zu clipped, %zu rejected, %zu pruned, %zu reseeds, %zu restarts; "
-                          "example dead-end share %.3f",
+                          "example dead-end share %.3f, small block %.1f m (%zu joins refused), "
+                          "%zu sibling joins refused",
                           stats.steps, stats.coherent, stats.unmatched, stats.fallback, stats.guided, stats.directed,
                           stats.weighted, stats.proposals,
                           stats.accepted, stats.snapped, stats.clipped, stats.rejected, stats.pruned, stats.reseeds,
-                          stats.restarts, stats.dead_end_share)));
+                          stats.restarts, stats.dead_end_share, stats.small_block, stats.small_cycles_refused,
+                          stats.sibling_joins_refused)));
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();
   PG_RETURN_NULL();

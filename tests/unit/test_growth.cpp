@@ -908,7 +908,202 @@ TEST(GrowExample, ACityOfCulDeSacsSnapsWithoutTheBand) {
     GrowResult r = grow_example(f.geos, in, band_params(seed));
     ASSERT_GT(r.edges.size(), 100u) << "seed " << seed;
     EXPECT_GT(r.stats.dead_end_share, 0.15);
+    EXPECT_EQ(r.stats.small_block, 0.0);  // nor the small-cycle rule
     turned += edges_at(r, kSideEnd).second;
   }
   EXPECT_GT(turned, 0u);
+}
+
+namespace {
+
+// The shortest cycle through any grown edge of r, in the graph of the grown edges and the existing
+// streets (split at the grown ends that lie on them): for each grown edge, the shortest path
+// between its ends without it, plus its length.
+double shortest_cycle(const GrowResult& r, const std::vector<Polyline>& existing) {
+  std::map<std::pair<long long, long long>, std::size_t> ids;
+  auto id = [&](Point p) {
+    const auto key = std::make_pair(std::llround(p.x * 1000.0), std::llround(p.y * 1000.0));
+    return ids.emplace(key, ids.size()).first->second;
+  };
+  struct Link {
+    std::size_t a, b;
+    double length;
+  };
+  std::vector<Link> links;
+  for (const GrownEdge& e : r.edges) links.push_back({id(e.a), id(e.b), distance(e.a, e.b)});
+  const std::size_t grown = links.size();
+  for (const Polyline& line : existing) {
+    for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+      const Point a = line[k], b = line[k + 1];
+      std::vector<std::pair<double, Point>> cuts{{0.0, a}, {distance(a, b), b}};
+      for (const GrownEdge& e : r.edges) {
+        for (Point q : {e.a, e.b}) {
+          if (point_segment_distance_for_test(q, a, b) < 1e-6) cuts.push_back({distance(a, q), q});
+        }
+      }
+      std::sort(cuts.begin(), cuts.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+        const std::size_t u = id(cuts[c].second), w = id(cuts[c + 1].second);
+        if (u != w) links.push_back({u, w, cuts[c + 1].first - cuts[c].first});
+      }
+    }
+  }
+  std::vector<std::vector<std::size_t>> at(ids.size());
+  for (std::size_t k = 0; k < links.size(); ++k) {
+    at[links[k].a].push_back(k);
+    at[links[k].b].push_back(k);
+  }
+  double best = INFINITY;
+  for (std::size_t skip = 0; skip < grown; ++skip) {
+    std::vector<double> dist(ids.size(), INFINITY);
+    std::set<std::pair<double, std::size_t>> queue{{0.0, links[skip].a}};
+    dist[links[skip].a] = 0.0;
+    while (!queue.empty()) {
+      const auto [d, u] = *queue.begin();
+      queue.erase(queue.begin());
+      if (u == links[skip].b || d + links[skip].length >= best) break;
+      for (std::size_t k : at[u]) {
+        if (k == skip) continue;
+        const std::size_t t = links[k].a == u ? links[k].b : links[k].a;
+        if (d + links[k].length < dist[t]) {
+          queue.erase({dist[t], t});
+          dist[t] = d + links[k].length;
+          queue.insert({dist[t], t});
+        }
+      }
+    }
+    best = std::min(best, dist[links[skip].b] + links[skip].length);
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST(GrowExample, NoJoinClosesACycleShorterThanTheExamplesBlocks) {
+  // The 80 m grid from (500, 500), rotation off: its blocks are 320 m around, the rule's limit. An
+  // existing street runs diagonally across the grid (x + y = 1530), so ends copied towards it
+  // join it by cutting the grid's cells: corner triangles and short trapezoids of 150-300 m
+  // around unless refused. With the rule, no cycle through a grown edge is shorter than 320 m, and
+  // the growth still joins the street.
+  Fixture f;
+  GrowInput in = f.input();
+  in.existing = {{{530.0, 1000.0}, {1000.0, 530.0}}};
+  std::size_t refused = 0, on_street = 0;
+  std::vector<GrownEdge> first;
+  auto params = [](std::uint64_t seed) {
+    GrowParams p;
+    p.seed = seed;
+    p.rotation = false;
+    p.max_edges = 400;
+    return p;
+  };
+  for (std::uint64_t seed : {1u, 2u, 3u, 4u}) {
+    GrowResult r = grow_example(f.geos, in, params(seed));
+    ASSERT_GT(r.edges.size(), 100u) << "seed " << seed;
+    EXPECT_EQ(r.stats.small_block, 320.0);
+    refused += r.stats.small_cycles_refused;
+    EXPECT_GE(shortest_cycle(r, in.existing), 320.0 - 1e-6) << "seed " << seed;
+    for (const GrownEdge& e : r.edges) {
+      for (Point q : {e.a, e.b}) on_street += std::abs(q.x + q.y - 1530.0) < 1e-6;
+    }
+    for (std::size_t i = 0; i < r.edges.size(); ++i) {
+      for (std::size_t j = i + 1; j < r.edges.size(); ++j) {
+        EXPECT_FALSE(crosses_without_node(r.edges[i], r.edges[j])) << "seed " << seed << ": " << i << ", " << j;
+      }
+    }
+    if (seed == 1u) first = r.edges;
+  }
+  EXPECT_GT(refused, 0u);
+  EXPECT_GT(on_street, 4u);
+  // Determinism with the rule.
+  GrowResult again = grow_example(f.geos, in, params(1));
+  ASSERT_EQ(again.edges.size(), first.size());
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    EXPECT_EQ(again.edges[i].a.x, first[i].a.x);
+    EXPECT_EQ(again.edges[i].a.y, first[i].a.y);
+    EXPECT_EQ(again.edges[i].b.x, first[i].b.x);
+    EXPECT_EQ(again.edges[i].b.y, first[i].b.y);
+  }
+}
+
+namespace {
+
+// A triangular lattice of 80 m edges (every block a triangle of 240 m around): a step at a node
+// copies its six arms at once, and a later step at an arm's end copies an edge that ends on the
+// next arm's end.
+std::vector<ExampleEdge> triangular_lattice(int n, double size) {
+  std::vector<ExampleEdge> out;
+  std::int64_t id = 0;
+  const double h = size * std::sqrt(3.0) / 2.0;
+  auto at = [&](int i, int j) { return Point{j * size + (i % 2) * size / 2.0, i * h}; };
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; j <= n; ++j) {
+      if (j < n) out.push_back({{at(i, j), at(i, j + 1)}, "street", ++id});
+      if (i == n) continue;
+      const int k = i % 2 == 0 ? j - 1 : j;  // the row above is shifted by half an edge
+      if (k >= 0) out.push_back({{at(i, j), at(i + 1, k)}, "street", ++id});
+      if (k + 1 <= n) out.push_back({{at(i, j), at(i + 1, k + 1)}, "street", ++id});
+    }
+  }
+  return out;
+}
+
+// Triangles (3-cycles) of the grown graph.
+std::size_t triangles(const GrowResult& r) {
+  std::map<std::int64_t, std::set<std::int64_t>> adj;
+  for (const GrownEdge& e : r.edges) {
+    adj[e.from_node].insert(e.to_node);
+    adj[e.to_node].insert(e.from_node);
+  }
+  std::size_t n = 0;
+  for (const GrownEdge& e : r.edges) {
+    for (std::int64_t c : adj[e.from_node]) n += c != e.to_node && adj[e.to_node].count(c);
+  }
+  return n / 3;
+}
+
+}  // namespace
+
+TEST(GrowExample, NoJoinClosesATriangleWithTwoSiblingEdges) {
+  // Two edges one step made at one node are siblings; a later join between their far ends would
+  // close a triangle the copied junction does not have. The lattice's own blocks are such
+  // triangles, so growth from it is refused those joins (the small-cycle rule's limit, 240 m, is
+  // not under them).
+  Fixture f;
+  GrowInput in = f.input();
+  in.example = triangular_lattice(10, 80.0);
+  std::size_t refused = 0;
+  std::vector<GrownEdge> first;
+  auto params = [](std::uint64_t seed) {
+    GrowParams p;
+    p.seed = seed;
+    p.rotation = false;
+    p.max_edges = 400;
+    return p;
+  };
+  for (std::uint64_t seed : {1u, 2u, 3u, 4u}) {
+    GrowResult r = grow_example(f.geos, in, params(seed));
+    ASSERT_GT(r.edges.size(), 100u) << "seed " << seed;
+    EXPECT_NEAR(r.stats.small_block, 240.0, 1e-6);
+    refused += r.stats.sibling_joins_refused;
+    // Without the rule, half the lattice's triangles close: 187-208 in 400 edges (seeds 1-4); with
+    // it 2-9 remain (joins of edges made in different steps).
+    EXPECT_LT(triangles(r), r.edges.size() / 10) << "seed " << seed;
+    for (std::size_t i = 0; i < r.edges.size(); ++i) {
+      for (std::size_t j = i + 1; j < r.edges.size(); ++j) {
+        EXPECT_FALSE(crosses_without_node(r.edges[i], r.edges[j])) << "seed " << seed << ": " << i << ", " << j;
+      }
+    }
+    if (seed == 1u) first = r.edges;
+  }
+  EXPECT_GT(refused, 0u);
+  // Determinism with the rule.
+  GrowResult again = grow_example(f.geos, in, params(1));
+  ASSERT_EQ(again.edges.size(), first.size());
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    EXPECT_EQ(again.edges[i].a.x, first[i].a.x);
+    EXPECT_EQ(again.edges[i].a.y, first[i].a.y);
+    EXPECT_EQ(again.edges[i].b.x, first[i].b.x);
+    EXPECT_EQ(again.edges[i].b.y, first[i].b.y);
+  }
 }

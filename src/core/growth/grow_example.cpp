@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <queue>
 #include <set>
 #include <random>
 #include <unordered_map>
@@ -118,6 +119,8 @@ struct Example {
   double largest_gap = 0.0;    // metres: the widest empty space inside its hull (largest_gap)
   double dead_end_share = 0.0; // of its nodes of degree != 2 farther than crop_margin inside, the dead ends
   double snap_band = 0.0;      // metres: free ends snap to a node at most this far off the copied line; 0: anywhere
+  double small_block = 0.0;    // metres: no join closes a cycle shorter than this (small_block_perimeter); 0: off
+  bool sliver_rules = false;   // no join closes a cycle under small_block, nor a triangle of two sibling edges
 };
 
 // A city of cul-de-sacs: its own dead ends are over 15 % of its street ends (dead ends and
@@ -131,6 +134,73 @@ bool cul_de_sac_city(double dead_end_share) { return dead_end_share > kCulDeSacS
 // Example growth: a free end snaps to a node only if the node lies within this many snap distances
 // of the copied edge's line (laterally), measured on bench/growth (README, growth10).
 constexpr double kSnapBand = 0.5;
+
+// The perimeter of the example's small blocks: the 2nd percentile of the perimeters of its graph's
+// bounded faces once its dangling streets are pruned (0 without blocks). Each face is walked once,
+// turning at every node to the next half clockwise from the way back, so a face lies on the left
+// of its halves; faces of non-positive area are outer ones. A percentile, not the minimum: one
+// sliver the example has (a slip road's triangle) should not switch the rule off.
+double small_block_perimeter(const std::vector<ExNode>& nodes) {
+  const std::size_t n = nodes.size();
+  std::vector<std::size_t> degree(n);
+  for (std::size_t i = 0; i < n; ++i) degree[i] = nodes[i].halves.size();
+  std::vector<char> gone(n, 0);
+  std::vector<std::uint32_t> stack;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (degree[i] <= 1) stack.push_back(i);
+  }
+  while (!stack.empty()) {
+    const std::uint32_t i = stack.back();
+    stack.pop_back();
+    if (gone[i]) continue;
+    gone[i] = 1;
+    for (const ExHalf& h : nodes[i].halves) {
+      if (!gone[h.to] && --degree[h.to] <= 1) stack.push_back(h.to);
+    }
+  }
+  // Per node, its remaining halves in counter-clockwise order: slots offset[i] .. offset[i + 1].
+  std::vector<std::size_t> offset(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) offset[i + 1] = offset[i] + (gone[i] ? 0 : degree[i]);
+  std::vector<std::uint32_t> slot_node(offset[n]), slot_half(offset[n]);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (gone[i]) continue;
+    std::size_t o = offset[i];
+    for (std::uint32_t k = 0; k < nodes[i].halves.size(); ++k) {
+      if (!gone[nodes[i].halves[k].to]) {
+        slot_node[o] = i;
+        slot_half[o++] = k;
+      }
+    }
+    std::sort(slot_half.begin() + static_cast<std::ptrdiff_t>(offset[i]), slot_half.begin() + static_cast<std::ptrdiff_t>(o),
+              [&](std::uint32_t a, std::uint32_t b) { return nodes[i].halves[a].angle < nodes[i].halves[b].angle; });
+  }
+  auto slot_towards = [&](std::uint32_t node, std::uint32_t to) {
+    for (std::size_t o = offset[node]; o < offset[node + 1]; ++o) {
+      if (nodes[node].halves[slot_half[o]].to == to) return o;
+    }
+    return SIZE_MAX;
+  };
+  std::vector<char> walked(offset[n], 0);
+  std::vector<double> perimeters;
+  for (std::size_t start = 0; start < offset[n]; ++start) {
+    double perimeter = 0.0, area2 = 0.0;
+    for (std::size_t o = start; !walked[o];) {
+      walked[o] = 1;
+      const std::uint32_t i = slot_node[o];
+      const ExHalf& h = nodes[i].halves[slot_half[o]];
+      perimeter += h.length;
+      area2 += cross(nodes[i].p, nodes[h.to].p);
+      const std::size_t back = slot_towards(h.to, i);
+      if (back == SIZE_MAX) break;
+      o = back == offset[h.to] ? offset[h.to + 1] - 1 : back - 1;
+    }
+    if (area2 > 0.0) perimeters.push_back(perimeter);
+  }
+  if (perimeters.empty()) return 0.0;
+  const auto at = static_cast<std::ptrdiff_t>(0.02 * static_cast<double>(perimeters.size() - 1));
+  std::nth_element(perimeters.begin(), perimeters.begin() + at, perimeters.end());
+  return perimeters[static_cast<std::size_t>(at)];
+}
 
 // Convex hull (Andrew's monotone chain), counter-clockwise, without repeating the first point.
 std::vector<Point> convex_hull(std::vector<Point> pts) {
@@ -170,6 +240,7 @@ struct OEdge {
   std::int64_t example_id;
   int source;  // the example it was copied from; -1: grown parametrically
   bool bridge = false;  // across water
+  std::size_t step = 0;  // the growth step that made it: edges of one step at one node are siblings
 };
 
 class GeosLine {  // a reusable two-point GEOS LineString for the region/obstacle predicates
@@ -257,8 +328,19 @@ class Grower {
       // need those joins (with the band, canberra's per-pair median 5.3 -> 5.5-6.9 %, blocks up to +15 %).
       const bool no_band = params.parametric || params.use_patches || cul_de_sac_city(ex.dead_end_share);
       ex.snap_band = no_band ? 0.0 : kSnapBand * snap_;
+      // No join closes a cycle shorter than the example's small blocks, nor a triangle with two
+      // sibling edges: such joins closed sliver triangles (strasbourg: 10 % of its blocks under 31 m
+      // of perimeter, its example's smallest 54 m). Both rules together, measured on bench/growth
+      // (README, growth12): strasbourg's blocks -43 -> -31 %, junctions +26 -> +11 %. Not for a city
+      // of cul-de-sacs either: without its slivers canberra's blocks were too large (growth7:
+      // per-pair median 5.3 -> 7.0 %, blocks +8 -> +18 %).
+      ex.sliver_rules = !no_band;
+      ex.small_block = no_band ? 0.0 : small_block_perimeter(ex.nodes);
     }
-    if (!examples_.empty()) stats_.dead_end_share = examples_[0].dead_end_share;
+    if (!examples_.empty()) {
+      stats_.dead_end_share = examples_[0].dead_end_share;
+      stats_.small_block = examples_[0].small_block;
+    }
     epsilon_ = params.epsilon * kPi / 180.0;
     min_angle_ = params.min_angle * kPi / 180.0;
     existing_ = &input.existing;
@@ -910,7 +992,7 @@ class Grower {
   void add_edge(std::uint32_t a, std::uint32_t b, int level, std::int64_t example_id, int source, bool bridge = false) {
     auto id = static_cast<std::uint32_t>(edges_.size());
     if (level >= 0) ++new_edges_;
-    edges_.push_back({a, b, level, example_id, source, bridge});
+    edges_.push_back({a, b, level, example_id, source, bridge, step_id_});
     nodes_[a].edges.push_back(id);
     nodes_[b].edges.push_back(id);
     edge_tree_.insert(BoxValue(box_of(nodes_[a].p, nodes_[b].p), id));
@@ -926,6 +1008,7 @@ class Grower {
     nodes_[m].edges.push_back(e);
     edge_tree_.insert(BoxValue(box_of(nodes_[old.a].p, x), e));
     add_edge(m, old.b, old.level, old.example_id, old.source, old.bridge);
+    edges_.back().step = old.step;
     return m;
   }
   Point other_end(std::uint32_t e, std::uint32_t v) const {
@@ -1076,6 +1159,7 @@ class Grower {
   // ---- one step at an unfinished node -------------------------------------------------------
   void step(std::uint32_t v) {
     ++stats_.steps;
+    ++step_id_;
     if (params_.use_patches) {
       patch_step(v);
       return;
@@ -1592,6 +1676,7 @@ class Grower {
   // 1.5 mean segment lengths, rather than stopping in a dead end the example did not ask for.
   void close_front(std::uint32_t v) {
     if (nodes_[v].edges.size() != 1 || new_edges_ + 2 > params_.max_edges) return;  // a join may split an edge
+    ++step_id_;
     const std::uint32_t e = nodes_[v].edges[0];
     const int level = std::max(0, edges_[e].level);
     // Growth I counts the join as the front's example; patch growth counts it as statistical
@@ -1610,7 +1695,7 @@ class Grower {
         std::uint32_t near = distance(nodes_[hit.a].p, x) <= distance(nodes_[hit.b].p, x) ? hit.a : hit.b;
         if (distance(nodes_[near].p, x) <= snap_) {
           if (try_connect_node(v, near, level, join_id, join_source)) return;
-        } else {
+        } else if (!closes_small_block(v, x, hit.a, hit.b) && !sibling_join(v, UINT32_MAX, c.edge)) {
           std::uint32_t m = split_edge(c.edge, x);
           add_edge(v, m, level, join_id, join_source);
           ++stats_.accepted;
@@ -1759,12 +1844,75 @@ class Grower {
     if (!finished) unfinished_.push_back(n);
   }
 
+  // Joining v to x (node a == b, or a point of edge a-b) closes a cycle shorter than the example's
+  // small blocks (Example::small_block): a path from v to a or b through the network, plus the new
+  // edge and the piece of a-b to x. A Dijkstra search bounded by that length, so it stays local.
+  bool closes_small_block(std::uint32_t v, Point x, std::uint32_t a, std::uint32_t b) {
+    if (params_.use_patches || params_.parametric || examples_.empty()) return false;
+    const double limit = ex().small_block - distance(nodes_[v].p, x);
+    if (!(limit > 0.0)) return false;
+    const double to_a = distance(nodes_[a].p, x), to_b = distance(nodes_[b].p, x);
+    using Item = std::pair<double, std::uint32_t>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+    cycle_dist_.clear();
+    heap.push({0.0, v});
+    cycle_dist_[v] = 0.0;
+    while (!heap.empty()) {
+      const auto [d, u] = heap.top();
+      heap.pop();
+      if (d > cycle_dist_[u]) continue;
+      if ((u == a && d + to_a < limit) || (u == b && d + to_b < limit)) {
+        ++stats_.small_cycles_refused;
+        return true;
+      }
+      for (std::uint32_t e : nodes_[u].edges) {
+        const std::uint32_t t = edges_[e].a == u ? edges_[e].b : edges_[e].a;
+        const double nd = d + distance(nodes_[u].p, nodes_[t].p);
+        if (nd >= limit) continue;
+        auto it = cycle_dist_.find(t);
+        if (it != cycle_dist_.end() && it->second <= nd) continue;
+        cycle_dist_[t] = nd;
+        heap.push({nd, t});
+      }
+    }
+    return false;
+  }
+
+  // Joining v to node w (or, with `edge`, to a point splitting it) closes a triangle with two
+  // sibling edges: edges one step made at one junction j (j-v and j-w, or j-v and the split edge
+  // at j). Such joins closed strasbourg's sliver blocks (three edges of 5-12 m): the example's
+  // junction that was copied has no street between its own arms. Existing streets (step 0) are
+  // nobody's siblings.
+  bool sibling_join(std::uint32_t v, std::uint32_t w, std::uint32_t edge = UINT32_MAX) {
+    if (params_.use_patches || params_.parametric || examples_.empty() || !ex().sliver_rules) return false;
+    for (std::uint32_t e1 : nodes_[v].edges) {
+      if (edges_[e1].step == 0) continue;
+      const std::uint32_t j = edges_[e1].a == v ? edges_[e1].b : edges_[e1].a;
+      if (edge != UINT32_MAX) {
+        if ((edges_[edge].a == j || edges_[edge].b == j) && edges_[edge].step == edges_[e1].step) {
+          ++stats_.sibling_joins_refused;
+          return true;
+        }
+        continue;
+      }
+      for (std::uint32_t e2 : nodes_[w].edges) {
+        const std::uint32_t k = edges_[e2].a == w ? edges_[e2].b : edges_[e2].a;
+        if (k == j && edges_[e2].step == edges_[e1].step) {
+          ++stats_.sibling_joins_refused;
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
   bool try_connect_node(std::uint32_t v, std::uint32_t w, int level, std::int64_t example_id, int source) {
     Point p = nodes_[v].p, q = nodes_[w].p;
     if (has_edge(v, w) || distance(p, q) < min_length_ || nodes_[w].edges.size() >= max_degree_) return false;
     if (nodes_[w].edges.size() >= 2 && !node_allows_one_more(w)) return false;
     double angle = std::atan2(q.y - p.y, q.x - p.x);
     if (!angle_free(v, angle) || !angle_free(w, wrap(angle + kPi))) return false;
+    if (closes_small_block(v, q, w, w) || sibling_join(v, w)) return false;
     if (first_contact(p, q, v, w).found || !legal(p, q)) return false;
     add_edge(v, w, level, example_id, source);
     ++stats_.accepted;
@@ -1806,7 +1954,8 @@ class Grower {
     double along = std::atan2(a.y - x.y, a.x - x.x);
     double back = wrap(angle + kPi);
     if (std::abs(wrap(back - along)) < min_angle_ || std::abs(wrap(back - along - kPi)) < min_angle_ ||
-        new_edges_ + 1 + (e.level >= 0) > params_.max_edges || !example_allows_one_more(2)) {
+        new_edges_ + 1 + (e.level >= 0) > params_.max_edges || closes_small_block(v, x, e.a, e.b) || sibling_join(v, UINT32_MAX, edge) ||
+        !example_allows_one_more(2)) {
       ++stats_.rejected;
       return;
     }
@@ -3700,6 +3849,8 @@ class Grower {
   std::vector<Point> seed_points_;
   const std::vector<Polyline>* existing_ = nullptr;
   std::size_t new_edges_ = 0;
+  std::size_t step_id_ = 0;  // counts steps and front closings: OEdge::step
+  std::unordered_map<std::uint32_t, double> cycle_dist_;  // closes_small_block's distances from the front
   std::vector<std::uint32_t> unfinished_;
   std::vector<std::uint8_t> attempts_;
   static constexpr std::uint8_t kAttempts = 4;

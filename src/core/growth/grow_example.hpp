@@ -243,6 +243,9 @@ struct GrowStats {
   double radius = 0.0;             // the r and snap distance used
   double snap = 0.0;
   double dead_end_share = 0.0;     // the (first) example's dead ends among its street ends (not near the crop)
+  double small_block = 0.0;        // the (first) example's small-block perimeter (m; 0: the rule is off)
+  std::size_t small_cycles_refused = 0;  // joins refused for closing a cycle shorter than that
+  std::size_t sibling_joins_refused = 0; // joins refused for closing a triangle with two sibling edges
 };
 
 struct GrowResult {
