@@ -443,6 +443,28 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                             stats.arterial_front_refused, reasons, stats.arterial_conn_front, stats.arterial_conn_clipped,
                             stats.arterial_conn_merged, stats.arterial_conn_dropped, stats.arterial_dead_ends)));
   }
+  {
+    // Patch size at fronts: legality against size (terciles of the local patches' connector length).
+    char buf[1024];
+    std::size_t used = 0;
+    buf[0] = '\0';
+    for (int c = 0; c < 3 && used < sizeof(buf); ++c) {
+      std::size_t refused = 0;
+      for (int r = 0; r < core::kPatchRefusals; ++r) refused += stats.size_refusals[c][r];
+      int n = snprintf(buf + used, sizeof(buf) - used, "%sclass %d: first %zu, tried %zu, refused %zu, placed %zu (",
+                       c == 0 ? "" : "; ", c, stats.size_first[c], stats.size_tried[c], refused, stats.size_placed[c]);
+      if (n < 0) break;
+      used += static_cast<std::size_t>(n);
+      for (int r = 0; r < core::kPatchRefusals && used < sizeof(buf); ++r) {
+        n = snprintf(buf + used, sizeof(buf) - used, "%s%zu", r == 0 ? "" : " ", stats.size_refusals[c][r]);
+        if (n < 0) break;
+        used += static_cast<std::size_t>(n);
+      }
+      if (used < sizeof(buf)) used += static_cast<std::size_t>(snprintf(buf + used, sizeof(buf) - used, ")"));
+    }
+    ereport(DEBUG1, (errmsg("grow_patches: patch size at fronts (local terciles %.0f, %.0f m): %s", stats.size_cut[0],
+                            stats.size_cut[1], buf)));
+  }
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();
   PG_RETURN_NULL();

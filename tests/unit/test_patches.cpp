@@ -217,6 +217,22 @@ TEST(GrowPatches, PlanarInsideTheRegionMostlyFromPatches) {
   }
   EXPECT_GE(from_patches, r.stats.patch_edges);  // a split patch edge counts twice in the output
   EXPECT_GT(r.stats.patches_placed, 20u);
+  // Patch size at fronts (DEBUG1): every draw is placed or refused for a reason, at most one
+  // placement per front with a first draw (the fixture's equal streets may leave a tercile empty).
+  std::size_t first = 0, placed = 0;
+  for (int c = 0; c < 3; ++c) {
+    std::size_t refused = 0;
+    for (std::size_t n : r.stats.size_refusals[c]) refused += n;
+    EXPECT_EQ(r.stats.size_tried[c], r.stats.size_placed[c] + refused) << c;
+    EXPECT_EQ(r.stats.size_refusals[c][kRefNone], 0u) << c;
+    first += r.stats.size_first[c];
+    placed += r.stats.size_placed[c];
+  }
+  EXPECT_LE(placed, first);
+  EXPECT_LE(placed, r.stats.patches_placed);
+  EXPECT_GT(placed, 0u);
+  EXPECT_LE(r.stats.size_cut[0], r.stats.size_cut[1]);
+  EXPECT_GT(r.stats.size_cut[0], 0.0);
   EXPECT_GT(static_cast<double>(from_patches) / r.edges.size(), 0.5);
   std::size_t bad = 0;
   for (std::size_t i = 0; i < r.edges.size(); ++i) {

@@ -1987,6 +1987,7 @@ class Grower {
     int max_uses;
     int uses = 0;
     bool arterial = false;  // levels: grown in the first phase
+    int size_class = 0;     // tercile of the mean connector length among the patches of its phase
     int style = 0;          // interpolation: 0 the first library, 1 the second (GrowInput::patches_b)
   };
   struct LibConnector {
@@ -2170,6 +2171,33 @@ class Grower {
     }
     prepare_levels();
     prepare_styles();
+    prepare_size_classes();
+  }
+  static double mean_connector_length(const LibPatch& lp) {
+    double sum = 0.0;
+    for (std::uint32_t c : lp.connectors) sum += length(lp.edges[c].line);
+    return lp.connectors.empty() ? 0.0 : sum / static_cast<double>(lp.connectors.size());
+  }
+  // Size classes: terciles of the mean connector length, arterial and local patches apart.
+  void prepare_size_classes() {
+    for (int art = 0; art < 2; ++art) {
+      std::vector<double> len;
+      for (const LibPatch& lp : library_) {
+        if (lp.arterial == (art == 1) && !lp.connectors.empty()) len.push_back(mean_connector_length(lp));
+      }
+      if (len.empty()) continue;
+      std::sort(len.begin(), len.end());
+      const double c1 = len[len.size() / 3], c2 = len[2 * len.size() / 3];
+      if (art == 0) {
+        stats_.size_cut[0] = c1;
+        stats_.size_cut[1] = c2;
+      }
+      for (LibPatch& lp : library_) {
+        if (lp.arterial != (art == 1)) continue;
+        const double m = mean_connector_length(lp);
+        lp.size_class = m < c1 ? 0 : m < c2 ? 1 : 2;
+      }
+    }
   }
 
   // ---- operations: interpolation, blending and warping (Nishida et al. 2016, section 5) ------
@@ -3061,14 +3089,21 @@ class Grower {
     std::sort(keyed_.begin(), keyed_.end(), [](const auto& a, const auto& b) {
       return a.first > b.first || (a.first == b.first && a.second < b.second);
     });
+    // Patch size against legality (DEBUG1): the first draw's size class is eq. 2's choice were
+    // every patch legal; the placed ones' classes show what legality shifts.
+    if (!keyed_.empty()) ++stats_.size_first[library_[keyed_[0].second].size_class];
     int tries = 0;
     for (const auto& [key, j] : keyed_) {
       if (tries++ >= params_.patch.tries) break;
       const LibPatch& lp = library_[j];
+      ++stats_.size_tried[lp.size_class];
+      refusal_ = kRefNone;
       if (place_patch(v, j, lp.edges[best_[j].edge].line[0], best_[j].edge)) {
+        ++stats_.size_placed[lp.size_class];
         done_ = true;
         return;
       }
+      ++stats_.size_refusals[lp.size_class][refusal_];
       if (arterial_front) ++stats_.arterial_refusals[refusal_];
     }
     }  // pass

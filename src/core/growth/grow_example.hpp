@@ -232,6 +232,12 @@ struct GrowStats {
   std::size_t arterial_conn_front = 0, arterial_conn_clipped = 0, arterial_conn_merged = 0, arterial_conn_dropped = 0;
   std::size_t arterial_dead_ends = 0;
   std::size_t arterial_refusals[kPatchRefusals] = {};  // illegal draws of the arterial phase, by reason
+  // Patch size (DEBUG1): at fronts, the drawn patches by size class (terciles of the library's mean
+  // connector length, arterial and local patches apart): the class of the first draw (Nishida's eq. 2
+  // if every patch were legal), draws tried, refused (by reason) and placed.
+  std::size_t size_first[3] = {}, size_tried[3] = {}, size_placed[3] = {};
+  std::size_t size_refusals[3][kPatchRefusals] = {};
+  double size_cut[2] = {0.0, 0.0};  // the local patches' terciles (m)
   std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
   std::size_t ended_on_arterial = 0;  // levels: local streets whose new end was put on an arterial street
