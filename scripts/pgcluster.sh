@@ -3,8 +3,11 @@
 # (initdb refuses root: when run as root, the cluster belongs to the 'postgres' system user).
 #
 #   pgcluster.sh start DIR PORT [--fast]   initdb if DIR is new, then start; --fast: fsync off (tests)
-#   pgcluster.sh stop DIR                  stop (the data stays until DIR is removed)
-#   pgcluster.sh destroy DIR               stop and remove DIR
+#   pgcluster.sh stop DIR [PORT]           stop (the data stays until DIR is removed)
+#   pgcluster.sh destroy DIR [PORT]        stop and remove DIR
+# With PORT, start, stop and destroy refuse a cluster in DIR that was made for another port: a
+# build folder whose cached cluster folder was another build's once destroyed that build's
+# cluster under its running tests.
 #   pgcluster.sh env DIR PORT              print the PG* variables for clients
 #
 # Authentication is 'trust' for local socket and loopback connections: it is a throwaway
@@ -24,12 +27,24 @@ as_owner() {
 
 cmd=${1:-}
 dir=${2:-}
-[ -n "$cmd" ] && [ -n "$dir" ] || { sed -n '2,12p' "$0"; exit 2; }
+[ -n "$cmd" ] && [ -n "$dir" ] || { sed -n '2,15p' "$0"; exit 2; }
+
+# Refuses (exit 1) when DIR holds a cluster configured for a port other than $1 (if given).
+check_port() {
+  local want=${1:-} have
+  [ -n "$want" ] && [ -f "$dir/data/postgresql.conf" ] || return 0
+  have=$(sed -n 's/^port = \([0-9]*\).*/\1/p' "$dir/data/postgresql.conf" | tail -1)
+  if [ -n "$have" ] && [ "$have" != "$want" ]; then
+    echo "pgcluster: $dir holds the cluster of port $have, not $want: left alone" >&2
+    exit 1
+  fi
+}
 
 case "$cmd" in
   start)
     port=${3:?port required}
     fast=${4:-}
+    check_port "$port"
     if [ ! -f "$dir/data/PG_VERSION" ]; then
       mkdir -p "$dir"
       if [ "$(id -u)" -eq 0 ]; then chown postgres: "$dir"; fi
@@ -59,13 +74,14 @@ case "$cmd" in
     fi
     ;;
   stop)
+    check_port "${3:-}"
     if [ -f "$dir/data/PG_VERSION" ] && as_owner "$BIN/pg_ctl" --pgdata="$dir/data" status >/dev/null 2>&1; then
       as_owner "$BIN/pg_ctl" --pgdata="$dir/data" --mode=fast --wait stop >/dev/null
       echo "pgcluster: stopped $dir"
     fi
     ;;
   destroy)
-    "$0" stop "$dir"
+    "$0" stop "$dir" "${3:-}"
     rm -rf "$dir"
     ;;
   env)
@@ -73,5 +89,5 @@ case "$cmd" in
     echo "export PGHOST='$dir' PGPORT='$port' PGUSER=postgres"
     ;;
   *)
-    sed -n '2,12p' "$0"; exit 2 ;;
+    sed -n '2,15p' "$0"; exit 2 ;;
 esac
