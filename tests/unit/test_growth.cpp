@@ -43,6 +43,26 @@ bool crosses_without_node(const GrownEdge& a, const GrownEdge& b) {
          std::max(std::min(a.a.y, a.b.y), std::min(b.a.y, b.b.y)) <= std::min(std::max(a.a.y, a.b.y), std::max(b.a.y, b.b.y));
 }
 
+// No two edges of one growth cross without a shared node.
+void expect_planar(const GrowResult& r, std::uint64_t seed) {
+  for (std::size_t i = 0; i < r.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < r.edges.size(); ++j) {
+      EXPECT_FALSE(crosses_without_node(r.edges[i], r.edges[j])) << "seed " << seed << ": " << i << ", " << j;
+    }
+  }
+}
+
+// The same edges, bit for bit and in the same order (determinism by seed).
+void expect_same_edges(const std::vector<GrownEdge>& again, const std::vector<GrownEdge>& first) {
+  ASSERT_EQ(again.size(), first.size());
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    EXPECT_EQ(again[i].a.x, first[i].a.x);
+    EXPECT_EQ(again[i].a.y, first[i].a.y);
+    EXPECT_EQ(again[i].b.x, first[i].b.x);
+    EXPECT_EQ(again[i].b.y, first[i].b.y);
+  }
+}
+
 double point_segment_distance_for_test(Point p, Point a, Point b) {
   Point d = b - a;
   double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
@@ -861,24 +881,13 @@ TEST(GrowExample, FreeEndsSnapToNodesOnlyNearTheCopiedLine) {
     EXPECT_EQ(r.stats.dead_end_share, 0.0);
     turned += edges_at(r, kSideEnd).second;
     straight_t += edges_at(r, {855.0, 500.0}).first;
-    for (std::size_t i = 0; i < r.edges.size(); ++i) {
-      for (std::size_t j = i + 1; j < r.edges.size(); ++j) {
-        EXPECT_FALSE(crosses_without_node(r.edges[i], r.edges[j])) << "seed " << seed << ": " << i << ", " << j;
-      }
-    }
+    expect_planar(r, seed);
     if (seed == 1u) first = r.edges;
   }
   EXPECT_EQ(turned, 0u);
   EXPECT_GT(straight_t, 0u);
   // Determinism with the band.
-  GrowResult again = grow_example(f.geos, in, band_params(1));
-  ASSERT_EQ(again.edges.size(), first.size());
-  for (std::size_t i = 0; i < first.size(); ++i) {
-    EXPECT_EQ(again.edges[i].a.x, first[i].a.x);
-    EXPECT_EQ(again.edges[i].a.y, first[i].a.y);
-    EXPECT_EQ(again.edges[i].b.x, first[i].b.x);
-    EXPECT_EQ(again.edges[i].b.y, first[i].b.y);
-  }
+  expect_same_edges(grow_example(f.geos, in, band_params(1)).edges, first);
 }
 
 TEST(GrowExample, ACityOfCulDeSacsSnapsWithoutTheBand) {
@@ -1006,24 +1015,13 @@ TEST(GrowExample, NoJoinClosesACycleShorterThanTheExamplesBlocks) {
     for (const GrownEdge& e : r.edges) {
       for (Point q : {e.a, e.b}) on_street += std::abs(q.x + q.y - 1530.0) < 1e-6;
     }
-    for (std::size_t i = 0; i < r.edges.size(); ++i) {
-      for (std::size_t j = i + 1; j < r.edges.size(); ++j) {
-        EXPECT_FALSE(crosses_without_node(r.edges[i], r.edges[j])) << "seed " << seed << ": " << i << ", " << j;
-      }
-    }
+    expect_planar(r, seed);
     if (seed == 1u) first = r.edges;
   }
   EXPECT_GT(refused, 0u);
   EXPECT_GT(on_street, 4u);
   // Determinism with the rule.
-  GrowResult again = grow_example(f.geos, in, params(1));
-  ASSERT_EQ(again.edges.size(), first.size());
-  for (std::size_t i = 0; i < first.size(); ++i) {
-    EXPECT_EQ(again.edges[i].a.x, first[i].a.x);
-    EXPECT_EQ(again.edges[i].a.y, first[i].a.y);
-    EXPECT_EQ(again.edges[i].b.x, first[i].b.x);
-    EXPECT_EQ(again.edges[i].b.y, first[i].b.y);
-  }
+  expect_same_edges(grow_example(f.geos, in, params(1)).edges, first);
 }
 
 namespace {
@@ -1089,21 +1087,10 @@ TEST(GrowExample, NoJoinClosesATriangleWithTwoSiblingEdges) {
     // Without the rule, half the lattice's triangles close: 187-208 in 400 edges (seeds 1-4); with
     // it 2-9 remain (joins of edges made in different steps).
     EXPECT_LT(triangles(r), r.edges.size() / 10) << "seed " << seed;
-    for (std::size_t i = 0; i < r.edges.size(); ++i) {
-      for (std::size_t j = i + 1; j < r.edges.size(); ++j) {
-        EXPECT_FALSE(crosses_without_node(r.edges[i], r.edges[j])) << "seed " << seed << ": " << i << ", " << j;
-      }
-    }
+    expect_planar(r, seed);
     if (seed == 1u) first = r.edges;
   }
   EXPECT_GT(refused, 0u);
   // Determinism with the rule.
-  GrowResult again = grow_example(f.geos, in, params(1));
-  ASSERT_EQ(again.edges.size(), first.size());
-  for (std::size_t i = 0; i < first.size(); ++i) {
-    EXPECT_EQ(again.edges[i].a.x, first[i].a.x);
-    EXPECT_EQ(again.edges[i].a.y, first[i].a.y);
-    EXPECT_EQ(again.edges[i].b.x, first[i].b.x);
-    EXPECT_EQ(again.edges[i].b.y, first[i].b.y);
-  }
+  expect_same_edges(grow_example(f.geos, in, params(1)).edges, first);
 }
