@@ -52,6 +52,15 @@ void expect_planar(const GrowResult& r, std::uint64_t seed) {
   }
 }
 
+// Growth parameters of the sliver-rule tests: the grid's own frame (no rotation), 400 edges.
+GrowParams unrotated_params(std::uint64_t seed) {
+  GrowParams p;
+  p.seed = seed;
+  p.rotation = false;
+  p.max_edges = 400;
+  return p;
+}
+
 // The same edges, bit for bit and in the same order (determinism by seed).
 void expect_same_edges(const std::vector<GrownEdge>& again, const std::vector<GrownEdge>& first) {
   ASSERT_EQ(again.size(), first.size());
@@ -999,15 +1008,8 @@ TEST(GrowExample, NoJoinClosesACycleShorterThanTheExamplesBlocks) {
   in.existing = {{{530.0, 1000.0}, {1000.0, 530.0}}};
   std::size_t refused = 0, on_street = 0;
   std::vector<GrownEdge> first;
-  auto params = [](std::uint64_t seed) {
-    GrowParams p;
-    p.seed = seed;
-    p.rotation = false;
-    p.max_edges = 400;
-    return p;
-  };
   for (std::uint64_t seed : {1u, 2u, 3u, 4u}) {
-    GrowResult r = grow_example(f.geos, in, params(seed));
+    GrowResult r = grow_example(f.geos, in, unrotated_params(seed));
     ASSERT_GT(r.edges.size(), 100u) << "seed " << seed;
     EXPECT_EQ(r.stats.small_block, 320.0);
     refused += r.stats.small_cycles_refused;
@@ -1021,7 +1023,7 @@ TEST(GrowExample, NoJoinClosesACycleShorterThanTheExamplesBlocks) {
   EXPECT_GT(refused, 0u);
   EXPECT_GT(on_street, 4u);
   // Determinism with the rule.
-  expect_same_edges(grow_example(f.geos, in, params(1)).edges, first);
+  expect_same_edges(grow_example(f.geos, in, unrotated_params(1)).edges, first);
 }
 
 namespace {
@@ -1072,15 +1074,8 @@ TEST(GrowExample, NoJoinClosesATriangleWithTwoSiblingEdges) {
   in.example = triangular_lattice(10, 80.0);
   std::size_t refused = 0;
   std::vector<GrownEdge> first;
-  auto params = [](std::uint64_t seed) {
-    GrowParams p;
-    p.seed = seed;
-    p.rotation = false;
-    p.max_edges = 400;
-    return p;
-  };
   for (std::uint64_t seed : {1u, 2u, 3u, 4u}) {
-    GrowResult r = grow_example(f.geos, in, params(seed));
+    GrowResult r = grow_example(f.geos, in, unrotated_params(seed));
     ASSERT_GT(r.edges.size(), 100u) << "seed " << seed;
     EXPECT_NEAR(r.stats.small_block, 240.0, 1e-6);
     refused += r.stats.sibling_joins_refused;
@@ -1092,5 +1087,5 @@ TEST(GrowExample, NoJoinClosesATriangleWithTwoSiblingEdges) {
   }
   EXPECT_GT(refused, 0u);
   // Determinism with the rule.
-  expect_same_edges(grow_example(f.geos, in, params(1)).edges, first);
+  expect_same_edges(grow_example(f.geos, in, unrotated_params(1)).edges, first);
 }
