@@ -217,6 +217,34 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
                           stats.accepted, stats.snapped, stats.clipped, stats.rejected, stats.pruned, stats.reseeds,
                           stats.restarts, stats.dead_end_share, stats.small_block, stats.small_cycles_refused,
                           stats.sibling_joins_refused)));
+  // The junction mix: where dead ends and 4-way junctions are made or lost.
+  ereport(DEBUG1, (errmsg("grow junctions: dead-end copies %zu, made %zu, lost %zu/%zu/%zu/%zu (angle, clipped, "
+                          "short, crowded); node joins by degree 0/1/2/3/4+: snap %zu/%zu/%zu/%zu/%zu, contact "
+                          "%zu/%zu/%zu/%zu/%zu, front %zu/%zu/%zu/%zu/%zu; splits snap %zu, contact %zu, front %zu; "
+                          "mix refused at degree 2/3/4+ %zu/%zu/%zu; fronts failed %zu: ahead node %zu, ahead split "
+                          "%zu, near node %zu, dead end %zu, pruned %zu; copies of a degree-3 node ending at degree "
+                          "1/2/3/4+ %zu/%zu/%zu/%zu, of a degree-4+ node %zu/%zu/%zu/%zu",
+                          stats.dead_end_proposals, stats.dead_end_made, stats.dead_end_lost[0],
+                          stats.dead_end_lost[1], stats.dead_end_lost[2], stats.dead_end_lost[3],
+                          stats.node_joins[0][0], stats.node_joins[0][1], stats.node_joins[0][2],
+                          stats.node_joins[0][3], stats.node_joins[0][4], stats.node_joins[1][0],
+                          stats.node_joins[1][1], stats.node_joins[1][2], stats.node_joins[1][3],
+                          stats.node_joins[1][4], stats.node_joins[2][0], stats.node_joins[2][1],
+                          stats.node_joins[2][2], stats.node_joins[2][3], stats.node_joins[2][4], stats.splits[0],
+                          stats.splits[1], stats.splits[2], stats.mix_refused[2], stats.mix_refused[3],
+                          stats.mix_refused[4], stats.fronts_failed, stats.fronts_ahead_node,
+                          stats.fronts_ahead_split, stats.fronts_near_node, stats.fronts_dead_end,
+                          stats.fronts_pruned, stats.copy_result[3][1], stats.copy_result[3][2],
+                          stats.copy_result[3][3], stats.copy_result[3][4], stats.copy_result[4][1],
+                          stats.copy_result[4][2], stats.copy_result[4][3], stats.copy_result[4][4])));
+  ereport(DEBUG1, (errmsg("grow rejections: angle %zu, clipped %zu, first half %zu, snap node %zu, snap edge %zu, "
+                          "crowded %zu, contact node %zu, no new T %zu, contact short %zu, split %zu; copied dead "
+                          "ends joined by snap %zu, contact %zu, front %zu",
+                          stats.reject_reason[0], stats.reject_reason[1], stats.reject_reason[2],
+                          stats.reject_reason[3], stats.reject_reason[4], stats.reject_reason[5],
+                          stats.reject_reason[6], stats.reject_reason[7], stats.reject_reason[8],
+                          stats.reject_reason[9], stats.dead_ends_joined[0], stats.dead_ends_joined[1],
+                          stats.dead_ends_joined[2])));
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();
   PG_RETURN_NULL();

@@ -1089,3 +1089,71 @@ TEST(GrowExample, NoJoinClosesATriangleWithTwoSiblingEdges) {
   // Determinism with the rule.
   expect_same_edges(grow_example(f.geos, in, unrotated_params(1)).edges, first);
 }
+
+namespace {
+
+// Output nodes by degree (index 4: 4 or more).
+std::vector<std::size_t> degree_counts(const GrowResult& r) {
+  std::map<std::int64_t, int> degree;
+  for (const GrownEdge& e : r.edges) {
+    ++degree[e.from_node];
+    ++degree[e.to_node];
+  }
+  std::vector<std::size_t> out(5, 0);
+  for (const auto& [node, d] : degree) ++out[std::min(d, 4)];
+  return out;
+}
+
+}  // namespace
+
+TEST(GrowExample, JunctionMixCountsAddUp) {
+  // The DEBUG1 counts of where dead ends and junctions are made or lost (growth13) against the
+  // output: the 80 m grid with a 40 m dead-end tooth at the middle of every other inner block side.
+  Fixture f;
+  GrowInput in = f.input();
+  in.example.clear();
+  std::int64_t id = 0;
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      const double x = j * 80.0, y = i * 80.0;
+      in.example.push_back({{{i * 80.0, x}, {i * 80.0, x + 80.0}}, "street", ++id});
+      if (i == 0 || i == 8 || (i + j) % 2 == 0) {
+        in.example.push_back({{{x, y}, {x + 80.0, y}}, "street", ++id});
+        continue;
+      }
+      in.example.push_back({{{x, y}, {x + 40.0, y}}, "street", ++id});
+      in.example.push_back({{{x + 40.0, y}, {x + 80.0, y}}, "street", ++id});
+      in.example.push_back({{{x + 40.0, y}, {x + 40.0, y + 40.0}}, "street", ++id});
+    }
+  }
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    GrowResult r = grow_example(f.geos, in, unrotated_params(seed));
+    const GrowStats& s = r.stats;
+    ASSERT_GT(r.edges.size(), 20u) << "seed " << seed;
+    ASSERT_GT(s.dead_end_proposals, 0u) << "seed " << seed;
+    // Every dead-end copy is made or lost for one of the four reasons.
+    EXPECT_EQ(s.dead_end_made + s.dead_end_lost[0] + s.dead_end_lost[1] + s.dead_end_lost[2] + s.dead_end_lost[3],
+              s.dead_end_proposals)
+        << "seed " << seed;
+    // Every join (a node join or a split) is a snapped proposal or a failed front's join.
+    std::size_t joins = 0;
+    for (const auto& cause : s.node_joins) {
+      for (std::size_t n : cause) joins += n;
+    }
+    for (std::size_t n : s.splits) joins += n;
+    EXPECT_EQ(joins, s.snapped) << "seed " << seed;
+    std::size_t rejected = 0;
+    for (std::size_t n : s.reject_reason) rejected += n;
+    EXPECT_EQ(rejected, s.rejected) << "seed " << seed;
+    EXPECT_EQ(s.fronts_ahead_node + s.fronts_ahead_split + s.fronts_near_node,
+              s.node_joins[2][0] + s.node_joins[2][1] + s.node_joins[2][2] + s.node_joins[2][3] +
+                  s.node_joins[2][4] + s.splits[2])
+        << "seed " << seed;
+    EXPECT_LE(s.fronts_ahead_node + s.fronts_ahead_split + s.fronts_near_node + s.fronts_dead_end + s.fronts_pruned,
+              s.fronts_failed)
+        << "seed " << seed;
+    // A copied dead end not joined since is still a degree-1 node of the output.
+    std::size_t joined = s.dead_ends_joined[0] + s.dead_ends_joined[1] + s.dead_ends_joined[2];
+    EXPECT_GE(degree_counts(r)[1] + joined, s.dead_end_made) << "seed " << seed;
+  }
+}

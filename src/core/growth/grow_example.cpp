@@ -381,6 +381,7 @@ class Grower {
       copied_from_.clear();
       completed_.clear();
       pruned_.clear();
+      dead_end_copy_.clear();
       queue_head_ = 0;
       for (LibPatch& lp : library_) lp.uses = 0;
       new_edges_ = 0;
@@ -401,6 +402,10 @@ class Grower {
 
  private:
   static constexpr std::size_t kMinGrowth = 20;
+  // What made a join (GrowStats::node_joins): a free end's snap, a contact, a failed front.
+  static constexpr int kJoinSnap = 0, kJoinContact = 1, kJoinFront = 2;
+  int join_cause_ = kJoinSnap;
+  bool proposing_dead_end_ = false;
   static constexpr int kRestarts = 5;
   static constexpr int kMaxReseeds = 200;
 
@@ -457,12 +462,17 @@ class Grower {
         if (++attempts_[v] < kAttempts) {
           unfinished_.push_back(v);
         } else {
+          ++stats_.fronts_failed;
           close_front(v);
           // A front that could neither grow nor join stays a dead end as often as the example's
           // street ends are dead ends; otherwise its street is cut back.
-          if (nodes_[v].edges.size() == 1 && !params_.use_patches && !params_.parametric &&
-              !(uniform01() < ex_dead_end_share(v))) {
-            prune_dead_street(v);
+          if (nodes_[v].edges.size() == 1 && !params_.use_patches && !params_.parametric) {
+            if (!(uniform01() < ex_dead_end_share(v))) {
+              prune_dead_street(v);
+              ++stats_.fronts_pruned;
+            } else {
+              ++stats_.fronts_dead_end;
+            }
           }
         }
       }
@@ -1221,6 +1231,8 @@ class Grower {
       propose(v, wrap(half.angle + best.theta), half.length, dead_end, half.level, half.example_id,
               static_cast<int>(cur_));
     }
+    const std::size_t copied = std::min<std::size_t>(s.halves.size(), 4);
+    ++stats_.copy_result[copied][std::min<std::size_t>(nodes_[v].edges.size(), 4)];
   }
 
   // Teng & Bidarra's parametric growth at v: see ParametricParams. A node that already has its
@@ -1543,9 +1555,14 @@ class Grower {
   // snapping of free ends, dead ends kept.
   void propose(std::uint32_t v, double angle, double length, bool dead_end, int level, std::int64_t example_id, int source) {
     ++stats_.proposals;
+    proposing_dead_end_ = dead_end;
+    join_cause_ = kJoinSnap;
+    stats_.dead_end_proposals += dead_end;
     const Point p = nodes_[v].p;
     if (!angle_free(v, angle) || length < min_length_) {
       ++stats_.rejected;
+      ++stats_.reject_reason[0];
+      stats_.dead_end_lost[0] += dead_end;
       return;
     }
     // Steep terrain (Nishida's local constraint): bend towards the contour, else discard.
@@ -1555,6 +1572,7 @@ class Grower {
       if (std::isnan(bent)) {
         ++stats_.too_steep;
         ++stats_.rejected;
+        ++stats_.reject_reason[1];
         return;
       }
       angle = bent;
@@ -1579,6 +1597,8 @@ class Grower {
       double l = lo * length;
       if (l < min_length_) {
         ++stats_.rejected;
+        ++stats_.reject_reason[1];
+        stats_.dead_end_lost[1] += dead_end;
         return;
       }
       e = p + l * u;
@@ -1608,11 +1628,14 @@ class Grower {
         double l = at - snap_;
         if (!dead_end || l < min_length_) {
           ++stats_.rejected;
+          ++stats_.reject_reason[2];
+          stats_.dead_end_lost[2] += dead_end;
           return;
         }
         finish_free_end(v, p + l * u, true, level, example_id, source);
         return;
       }
+      join_cause_ = kJoinContact;
       connect_at_contact(v, p + at * u, c.edge, level, example_id, source, !goes_on);
       return;
     }
@@ -1640,6 +1663,7 @@ class Grower {
     if (w != UINT32_MAX) {
       if ((!goes_on || crowded_junction(w) == UINT32_MAX) && try_connect_node(v, w, level, example_id, source)) return;
       ++stats_.rejected;
+      ++stats_.reject_reason[3];
       return;
     }
     hits_.clear();
@@ -1667,6 +1691,7 @@ class Grower {
         return;
       }
       ++stats_.rejected;
+      ++stats_.reject_reason[4];
       return;
     }
     finish_free_end(v, e, outside || dead_end, level, example_id, source);
@@ -1677,6 +1702,8 @@ class Grower {
   void close_front(std::uint32_t v) {
     if (nodes_[v].edges.size() != 1 || new_edges_ + 2 > params_.max_edges) return;  // a join may split an edge
     ++step_id_;
+    proposing_dead_end_ = false;
+    join_cause_ = kJoinFront;
     const std::uint32_t e = nodes_[v].edges[0];
     const int level = std::max(0, edges_[e].level);
     // Growth I counts the join as the front's example; patch growth counts it as statistical
@@ -1694,12 +1721,17 @@ class Grower {
         Point x = p + (c.t * reach) * u;
         std::uint32_t near = distance(nodes_[hit.a].p, x) <= distance(nodes_[hit.b].p, x) ? hit.a : hit.b;
         if (distance(nodes_[near].p, x) <= snap_) {
-          if (try_connect_node(v, near, level, join_id, join_source)) return;
+          if (try_connect_node(v, near, level, join_id, join_source)) {
+            ++stats_.fronts_ahead_node;
+            return;
+          }
         } else if (!closes_small_block(v, x, hit.a, hit.b) && !sibling_join(v, UINT32_MAX, c.edge)) {
           std::uint32_t m = split_edge(c.edge, x);
           add_edge(v, m, level, join_id, join_source);
           ++stats_.accepted;
           ++stats_.snapped;
+          ++stats_.splits[kJoinFront];
+          ++stats_.fronts_ahead_split;
           return;
         }
       }
@@ -1722,7 +1754,10 @@ class Grower {
         const std::uint32_t junction = crowded_junction(w);
         if (junction != UINT32_MAX) w = junction;
       }
-      if (w != v && try_connect_node(v, w, level, join_id, join_source)) return;
+      if (w != v && try_connect_node(v, w, level, join_id, join_source)) {
+        ++stats_.fronts_near_node;
+        return;
+      }
     }
   }
 
@@ -1829,14 +1864,23 @@ class Grower {
     return examples_[k >= 0 ? static_cast<std::size_t>(k) : cur_].dead_end_share;
   }
   bool is_pruned(std::uint32_t v) const { return v < pruned_.size() && pruned_[v]; }
+  // w is the end of an edge copied from an example dead end.
+  bool is_dead_end_copy(std::uint32_t w) const { return w < dead_end_copy_.size() && dead_end_copy_[w]; }
 
   // A new end node at q; it stays unfinished unless `finished`.
   void finish_free_end(std::uint32_t v, Point q, bool finished, int level, std::int64_t example_id, int source) {
     if (crowded(q, min_length_, v)) {  // a free end must not graze the network
       ++stats_.rejected;
+      ++stats_.reject_reason[5];
+      stats_.dead_end_lost[3] += proposing_dead_end_;
       return;
     }
+    stats_.dead_end_made += proposing_dead_end_;
     std::uint32_t n = add_node(q);
+    if (proposing_dead_end_) {
+      dead_end_copy_.resize(nodes_.size(), 0);
+      dead_end_copy_[n] = 1;
+    }
     frames_[n] = step_frame_;
     copied_from_[n] = step_copy_;
     add_edge(v, n, level, example_id, source);
@@ -1909,11 +1953,16 @@ class Grower {
   bool try_connect_node(std::uint32_t v, std::uint32_t w, int level, std::int64_t example_id, int source) {
     Point p = nodes_[v].p, q = nodes_[w].p;
     if (has_edge(v, w) || distance(p, q) < min_length_ || nodes_[w].edges.size() >= max_degree_) return false;
-    if (nodes_[w].edges.size() >= 2 && !node_allows_one_more(w)) return false;
+    if (nodes_[w].edges.size() >= 2 && !node_allows_one_more(w)) {
+      ++stats_.mix_refused[std::min<std::size_t>(nodes_[w].edges.size(), 4)];
+      return false;
+    }
     double angle = std::atan2(q.y - p.y, q.x - p.x);
     if (!angle_free(v, angle) || !angle_free(w, wrap(angle + kPi))) return false;
     if (closes_small_block(v, q, w, w) || sibling_join(v, w)) return false;
     if (first_contact(p, q, v, w).found || !legal(p, q)) return false;
+    ++stats_.node_joins[join_cause_][std::min<std::size_t>(nodes_[w].edges.size(), 4)];
+    stats_.dead_ends_joined[join_cause_] += is_dead_end_copy(w);
     add_edge(v, w, level, example_id, source);
     ++stats_.accepted;
     ++stats_.snapped;
@@ -1937,16 +1986,19 @@ class Grower {
     if (distance(nodes_[near].p, x) <= snap_) {
       if ((!new_t && crowded_junction(near) != UINT32_MAX) || !try_connect_node(v, near, level, example_id, source)) {
         ++stats_.rejected;
+        ++stats_.reject_reason[6];
       }
       return;
     }
     if (!new_t && junction_near(edge, x, 2.0 * snap_) != UINT32_MAX) {
       ++stats_.rejected;
+      ++stats_.reject_reason[7];
       return;
     }
     Point p = nodes_[v].p;
     if (distance(p, x) < min_length_) {  // a street continued into a crossing just ahead
       ++stats_.rejected;
+      ++stats_.reject_reason[8];
       return;
     }
     double angle = std::atan2(x.y - p.y, x.x - p.x);
@@ -1957,12 +2009,14 @@ class Grower {
         new_edges_ + 1 + (e.level >= 0) > params_.max_edges || closes_small_block(v, x, e.a, e.b) || sibling_join(v, UINT32_MAX, edge) ||
         !example_allows_one_more(2)) {
       ++stats_.rejected;
+      ++stats_.reject_reason[9];
       return;
     }
     std::uint32_t m = split_edge(edge, x);
     add_edge(v, m, level, example_id, source);
     ++stats_.accepted;
     ++stats_.snapped;
+    ++stats_.splits[join_cause_];
     // The split node stays finished, unlike the paper's new nodes: letting streets go on across
     // (4-way junctions) measured denser and further from every example (bench/growth; also when
     // only splits copied towards an example crossing go on: 12.9 % against 7.5 %).
@@ -3892,6 +3946,7 @@ class Grower {
   double fill_gap_ = 0.0;  // metres: fill reseeds farther than this from every edge (r, or the examples' largest gap)
   static constexpr int kRemoved = -2;  // OEdge::level of an edge cut back by prune_dead_street
   std::vector<char> pruned_;           // nodes whose street was cut back (out of node_tree_)
+  std::vector<char> dead_end_copy_;    // ends of edges copied from an example dead end (grow_example)
   std::vector<BoxValue> hits_;
   std::vector<PointValue> point_hits_;
   GrowStats stats_;

@@ -252,6 +252,26 @@ struct GrowStats {
   double small_block = 0.0;        // the (first) example's small-block perimeter (m; 0: the rule is off)
   std::size_t small_cycles_refused = 0;  // joins refused for closing a cycle shorter than that
   std::size_t sibling_joins_refused = 0; // joins refused for closing a triangle with two sibling edges
+  // The junction mix (DEBUG1, growth13): where dead ends and 4-way junctions are made or lost.
+  std::size_t dead_end_proposals = 0;  // proposals copied from an example dead end
+  std::size_t dead_end_made = 0;       // of those, made as a dead-end edge
+  // of those, refused: angle or length, clipped to nothing, stopped short under min length, crowded
+  std::size_t dead_end_lost[4] = {};
+  // Joins onto a node by what made them (a free end's snap, a contact, a failed front's join) and
+  // the node's degree before (0-3, 4+): degree 2 makes a T, 3 a 4-way.
+  std::size_t node_joins[3][5] = {};
+  std::size_t splits[3] = {};          // joins splitting an edge (a new T), by the same cause
+  std::size_t mix_refused[5] = {};     // node joins refused by the example's junction mix, by degree
+  std::size_t fronts_failed = 0;       // fronts whose every draw failed
+  std::size_t fronts_ahead_node = 0, fronts_ahead_split = 0, fronts_near_node = 0;  // closed by close_front
+  std::size_t fronts_dead_end = 0, fronts_pruned = 0;  // left a dead end, or cut back
+  // Steps that copied an example node of degree k (0-3, 4+) by v's degree after the step (0-3, 4+).
+  std::size_t copy_result[5][5] = {};
+  // Rejected proposals by reason: angle or length, clipped or steep, stopped in its first half, snap
+  // to a node refused, snap to an edge refused, crowded free end, contact's node join refused, no new
+  // T near a junction, contact too near, split refused.
+  std::size_t reject_reason[10] = {};
+  std::size_t dead_ends_joined[3] = {};  // joins onto a copied dead end's end, by cause (as node_joins)
 };
 
 struct GrowResult {
