@@ -142,6 +142,22 @@ SELECT name, method, round((100 * min(reference_value) FILTER (WHERE metric = 'd
 SELECT name, seed, round((100 * max(score) FILTER (WHERE method = 'patches'))::numeric, 1) AS patches_pct,
        round((100 * max(score) FILTER (WHERE method = 'example'))::numeric, 1) AS grow_example_pct
   FROM cmp WHERE metric = 'median_abs_relative_difference' GROUP BY name, seed ORDER BY name, seed;
+\echo per pair, each headline metric (grow_patches, relative difference in %; * marks the two that set the per-pair median)
+WITH r AS (
+  SELECT name, seed, metric, 100 * relative_difference AS pct,
+         row_number() OVER (PARTITION BY name, seed ORDER BY abs(relative_difference) DESC NULLS LAST) AS rank,
+         count(relative_difference) OVER (PARTITION BY name, seed) AS n
+    FROM headline WHERE method = 'patches')
+SELECT name, seed,
+       max(round(pct::numeric, 1) || CASE WHEN rank BETWEEN (n + 1) / 2 AND n / 2 + 1 THEN '*' ELSE '' END) FILTER (WHERE metric = 'street_density') AS street_d,
+       max(round(pct::numeric, 1) || CASE WHEN rank BETWEEN (n + 1) / 2 AND n / 2 + 1 THEN '*' ELSE '' END) FILTER (WHERE metric = 'intersection_density') AS inter_d,
+       max(round(pct::numeric, 1) || CASE WHEN rank BETWEEN (n + 1) / 2 AND n / 2 + 1 THEN '*' ELSE '' END) FILTER (WHERE metric = 'mean_degree') AS degree,
+       max(round(pct::numeric, 1) || CASE WHEN rank BETWEEN (n + 1) / 2 AND n / 2 + 1 THEN '*' ELSE '' END) FILTER (WHERE metric = 'dead_end_share') AS dead_end,
+       max(round(pct::numeric, 1) || CASE WHEN rank BETWEEN (n + 1) / 2 AND n / 2 + 1 THEN '*' ELSE '' END) FILTER (WHERE metric = 'degree4_share') AS four_way,
+       max(round(pct::numeric, 1) || CASE WHEN rank BETWEEN (n + 1) / 2 AND n / 2 + 1 THEN '*' ELSE '' END) FILTER (WHERE metric = 'connected_node_ratio') AS cnr,
+       max(round(pct::numeric, 1) || CASE WHEN rank BETWEEN (n + 1) / 2 AND n / 2 + 1 THEN '*' ELSE '' END) FILTER (WHERE metric = 'orientation_order') AS phi,
+       max(round(pct::numeric, 1) || CASE WHEN rank BETWEEN (n + 1) / 2 AND n / 2 + 1 THEN '*' ELSE '' END) FILTER (WHERE metric = 'block_area_median') AS block
+  FROM r GROUP BY name, seed ORDER BY name, seed;
 SELECT method, round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY score))::numeric, 1) AS median_over_pairs_pct,
        round((100 * max(score))::numeric, 1) AS worst_pair_pct
   FROM cmp WHERE metric = 'median_abs_relative_difference' GROUP BY method;

@@ -462,8 +462,8 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       }
       if (used < sizeof(buf)) used += static_cast<std::size_t>(snprintf(buf + used, sizeof(buf) - used, ")"));
     }
-    ereport(DEBUG1, (errmsg("grow_patches: patch size at fronts (local terciles %.0f, %.0f m): %s", stats.size_cut[0],
-                            stats.size_cut[1], buf)));
+    ereport(DEBUG1, (errmsg("grow_patches: patch size at fronts (local terciles %.0f, %.0f m): %s; stratified redraws %zu",
+                            stats.size_cut[0], stats.size_cut[1], buf, stats.size_redraws)));
   }
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();

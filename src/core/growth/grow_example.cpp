@@ -3147,8 +3147,10 @@ class Grower {
     // every patch legal; the placed ones' classes show what legality shifts.
     if (!keyed_.empty()) ++stats_.size_first[library_[keyed_[0].second].size_class];
     int tries = 0;
-    for (const auto& [key, j] : keyed_) {
+    const bool stratify = size_redraw_here();
+    for (std::size_t i = 0; i < keyed_.size(); ++i) {
       if (tries++ >= params_.patch.tries) break;
+      const std::uint32_t j = keyed_[i].second;
       const LibPatch& lp = library_[j];
       ++stats_.size_tried[lp.size_class];
       refusal_ = kRefNone;
@@ -3159,6 +3161,15 @@ class Grower {
       }
       ++stats_.size_refusals[lp.size_class][refusal_];
       if (arterial_front) ++stats_.arterial_refusals[refusal_];
+      // Stratified redraw (see PatchGrowParams::size_redraw): the first draw, eq. 2's choice were
+      // every patch legal, refused for a conflict that grows with street length; the next draws
+      // come from its size class first, in their key order, then the others.
+      if (i == 0 && stratify && length_conflict(refusal_)) {
+        const int cls = lp.size_class;
+        std::stable_partition(keyed_.begin() + 1, keyed_.end(),
+                              [&](const auto& k) { return library_[k.second].size_class == cls; });
+        ++stats_.size_redraws;
+      }
     }
     }  // pass
     if (arterial_front) count_arterial_stop(v, any_candidate);
@@ -3246,6 +3257,14 @@ class Grower {
   bool refuse(int reason) {
     refusal_ = reason;
     return false;
+  }
+  static bool length_conflict(int reason) {
+    return reason == kRefClearance || reason == kRefCrossing || reason == kRefAngle;
+  }
+  // PatchGrowParams::size_redraw at this front: the local phase only (as measured; the arterial
+  // phase's few fronts are left as they were), and not for a city of cul-de-sacs.
+  bool size_redraw_here() const {
+    return params_.patch.size_redraw && !(hierarchy_ && phase_arterial_) && !cul_de_sac_city(example_dead_end_share_);
   }
   int refusal_ = kRefNone;
   struct BestPair {
