@@ -1157,3 +1157,128 @@ TEST(GrowExample, JunctionMixCountsAddUp) {
     EXPECT_GE(degree_counts(r)[1] + joined, s.dead_end_made) << "seed " << seed;
   }
 }
+
+namespace {
+
+// An n x n grid of `size` m blocks whose interior crossings are drawn as two Ts `jog` m apart
+// (OSM's staggered crossings): each column is a polyline through (x, y - jog/2) and
+// (x, y + jog/2) at an interior crossing; the row edge from the west ends at the first, the one
+// to the east starts at the second. Border crossings are plain points.
+std::vector<ExampleEdge> staggered_grid(int n, double size, double jog) {
+  auto interior = [n](int i, int j) { return i > 0 && i < n && j > 0 && j < n; };
+  std::vector<ExampleEdge> out;
+  std::int64_t id = 0;
+  for (int i = 0; i <= n; ++i) {  // column x = i * size
+    Polyline line;
+    for (int j = 0; j <= n; ++j) {
+      if (interior(i, j)) {
+        line.push_back({i * size, j * size - jog / 2});
+        line.push_back({i * size, j * size + jog / 2});
+      } else {
+        line.push_back({i * size, j * size});
+      }
+    }
+    out.push_back({line, "street", ++id});
+  }
+  for (int j = 0; j <= n; ++j) {  // row y = j * size, one edge per block side
+    for (int i = 0; i < n; ++i) {
+      Point a{i * size, j * size + (interior(i, j) ? jog / 2 : 0.0)};
+      Point b{(i + 1) * size, j * size - (interior(i + 1, j) ? jog / 2 : 0.0)};
+      out.push_back({{a, b}, "street", ++id});
+    }
+  }
+  return out;
+}
+
+// Degrees of the example's nodes (points within a millimetre are one), segments counted once.
+std::map<std::pair<long long, long long>, int> example_degrees(const std::vector<ExampleEdge>& edges) {
+  auto key = [](Point p) { return std::make_pair(std::llround(p.x * 1000.0), std::llround(p.y * 1000.0)); };
+  std::set<std::pair<std::pair<long long, long long>, std::pair<long long, long long>>> seen;
+  std::map<std::pair<long long, long long>, int> degree;
+  for (const ExampleEdge& e : edges) {
+    for (std::size_t i = 0; i + 1 < e.line.size(); ++i) {
+      auto a = key(e.line[i]), b = key(e.line[i + 1]);
+      if (a == b || !seen.insert({std::min(a, b), std::max(a, b)}).second) continue;
+      ++degree[a];
+      ++degree[b];
+    }
+  }
+  return degree;
+}
+
+}  // namespace
+
+TEST(GrowExample, ShortExampleSegmentsAreContractedIntoOneNode) {
+  const int n = 4;
+  const double size = 80.0, jog = 4.0;
+  std::vector<ExampleEdge> example = staggered_grid(n, size, jog);
+  // Two short segments that are not between junctions, so they stay: a 3 m dead end off a corner
+  // (which becomes a T), and a shape point 3 m from a border T.
+  example.push_back({{{0.0, 0.0}, {-3.0, 0.0}}, "street", 1000});
+  for (ExampleEdge& e : example) {
+    if (e.line.size() == 2 && e.line[0].x == size && e.line[0].y == 0.0 && e.line[1].x == 2 * size) {
+      e.line.insert(e.line.begin() + 1, Point{size + 3.0, 0.0});
+    }
+  }
+  auto before = example_degrees(example);
+  std::size_t segments = 0;
+  double total = 0.0;
+  for (const ExampleEdge& e : example) {
+    for (std::size_t i = 0; i + 1 < e.line.size(); ++i, ++segments) total += distance(e.line[i], e.line[i + 1]);
+  }
+  for (const auto& [p, d] : before) EXPECT_LE(d, 3);  // as drawn: Ts only
+  ContractedExample c = contract_short_segments(example, 0.15);
+  EXPECT_NEAR(c.mean_length, total / static_cast<double>(segments), 1e-9);  // the example as given
+  EXPECT_EQ(c.contracted, static_cast<std::size_t>((n - 1) * (n - 1)));
+  EXPECT_EQ(c.edges.size(), example.size());
+  auto after = example_degrees(c.edges);
+  EXPECT_EQ(after.size(), before.size() - static_cast<std::size_t>((n - 1) * (n - 1)));
+  // Every interior crossing is one node of degree 4 at the midpoint of its two Ts; the border
+  // nodes keep their place and degree.
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; j <= n; ++j) {
+      auto k = std::make_pair(std::llround(i * size * 1000.0), std::llround(j * size * 1000.0));
+      ASSERT_TRUE(after.count(k)) << i << " " << j;
+      bool interior = i > 0 && i < n && j > 0 && j < n;
+      bool corner = (i == 0 || i == n) && (j == 0 || j == n);
+      const int spur = i == 0 && j == 0;
+      EXPECT_EQ(after[k], (interior ? 4 : corner ? 2 : 3) + spur) << i << " " << j;
+    }
+  }
+  EXPECT_EQ(after[std::make_pair(std::llround(-3000.0), 0LL)], 1);
+  EXPECT_EQ(after[std::make_pair(std::llround((size + 3.0) * 1000.0), 0LL)], 2);
+  std::size_t short_left = 0;
+  for (const ExampleEdge& e : c.edges) {
+    for (std::size_t i = 0; i + 1 < e.line.size(); ++i) short_left += distance(e.line[i], e.line[i + 1]) < 0.15 * c.mean_length;
+  }
+  EXPECT_EQ(short_left, 2u);  // the dead end and the shape point's
+  // Nothing under the factor: the example comes back as given.
+  ContractedExample none = contract_short_segments(example, 0.01);
+  EXPECT_EQ(none.contracted, 0u);
+  EXPECT_EQ(example_degrees(none.edges), before);
+}
+
+TEST(GrowExample, CrossingsDrawnAsTwoTsGrowAsCrossings) {
+  // The example has no node of degree 4 as drawn, so without the contraction no output node
+  // can have four streets (snapping never makes a node busier than the example's).
+  Fixture f;
+  GrowInput in = f.input();
+  in.example = staggered_grid(8, 80.0, 4.0);
+  for (std::uint64_t seed : {1u, 2u}) {
+    GrowParams p = unrotated_params(seed);
+    GrowResult r = grow_example(f.geos, in, p);
+    ASSERT_GT(r.edges.size(), 100u);
+    std::map<std::int64_t, int> degree;
+    for (const GrownEdge& e : r.edges) {
+      ++degree[e.from_node];
+      ++degree[e.to_node];
+    }
+    std::size_t four = 0, three = 0;
+    for (const auto& [node, d] : degree) {
+      four += d >= 4;
+      three += d == 3;
+    }
+    EXPECT_GT(four, three) << "seed " << seed;  // the example's junctions (49 of 81 nodes) are all crossings
+    expect_planar(r, seed);
+  }
+}

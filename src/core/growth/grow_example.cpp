@@ -20,6 +20,7 @@
 #include "core/geometry_checks.hpp"
 #include "core/growth/terrain.hpp"
 #include "core/interrupts.hpp"
+#include "core/union_find.hpp"
 
 namespace streetgen::core {
 namespace {
@@ -130,6 +131,10 @@ struct Example {
 // snap band.
 constexpr double kCulDeSacShare = 0.15;
 bool cul_de_sac_city(double dead_end_share) { return dead_end_share > kCulDeSacShare; }
+
+// No edge shorter than this many mean example segments is made (min_length_); example segments
+// shorter than it are contracted before matching (contract_short_segments).
+constexpr double kMinLengthFactor = 0.15;
 
 // Example growth: a free end snaps to a node only if the node lies within this many snap distances
 // of the copied edge's line (laterally), measured on bench/growth (README, growth10).
@@ -293,7 +298,13 @@ class Grower {
     } else if (params.use_patches) {
       build_library(input.patches, input.patches_b);
     } else {
-      build_examples(input.example);
+      // Node matching copies from the example with its short segments between two junctions
+      // contracted (a crossing drawn as two close Ts is one crossing); the scales (min_length_,
+      // snap, r) stay those of the example as given.
+      ContractedExample contracted = contract_short_segments(input.example, kMinLengthFactor);
+      build_examples(contracted.edges);
+      if (contracted.mean_length > 0.0) mean_length_ = contracted.mean_length;
+      stats_.example_contracted = contracted.contracted;
     }
     prepare_legal_area(input);
     prepare_guide(input.guide);
@@ -305,7 +316,7 @@ class Grower {
     // 0.45, 0.55, 0.6 (bench/growth, README). Patch and parametric growth keep 0.45.
     const double snap_factor = params.use_patches || params.parametric ? 0.45 : 0.55;
     snap_ = params.snap > 0.0 ? params.snap : snap_factor * mean_length_;
-    min_length_ = params.parametric ? shape_.min_length : 0.15 * mean_length_;
+    min_length_ = params.parametric ? shape_.min_length : kMinLengthFactor * mean_length_;
     if (!params.parametric) derive_shape();
     if (params.use_patches) derive_patch_shape();
     crop_margin_ = params.crop_margin >= 0.0 ? params.crop_margin : mean_length_;
@@ -3972,6 +3983,82 @@ class Grower {
 };
 
 }  // namespace
+
+ContractedExample contract_short_segments(const std::vector<ExampleEdge>& example, double factor) {
+  ContractedExample out;
+  // Nodes as build_examples makes them: per example, points within a millimetre are one.
+  std::map<std::pair<int, MillimetreKey>, std::uint32_t> index;
+  std::vector<Point> pos;
+  std::vector<std::vector<std::uint32_t>> line_nodes(example.size());
+  std::set<std::pair<std::uint32_t, std::uint32_t>> seen;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> segments;
+  double total = 0.0;
+  for (std::size_t e = 0; e < example.size(); ++e) {
+    for (Point p : example[e].line) {
+      MillimetreKey key{std::llround(p.x * 1000.0), std::llround(p.y * 1000.0)};
+      auto [it, added] = index.emplace(std::make_pair(example[e].example, key), static_cast<std::uint32_t>(pos.size()));
+      if (added) pos.push_back(p);
+      line_nodes[e].push_back(it->second);
+    }
+    for (std::size_t i = 0; i + 1 < line_nodes[e].size(); ++i) {
+      std::uint32_t a = line_nodes[e][i], b = line_nodes[e][i + 1];
+      if (a == b || !seen.insert({std::min(a, b), std::max(a, b)}).second) continue;
+      segments.push_back({a, b});
+      total += distance(pos[a], pos[b]);
+    }
+  }
+  if (segments.empty()) {
+    out.edges = example;
+    return out;
+  }
+  out.mean_length = total / static_cast<double>(segments.size());
+  const double threshold = factor * out.mean_length;
+  std::vector<int> degree(pos.size(), 0);
+  for (const auto& [a, b] : segments) {
+    ++degree[a];
+    ++degree[b];
+  }
+  UnionFind sets(pos.size());
+  std::vector<Point> at = pos;  // each node's position: its set's mean position
+  for (int round = 0; round < 8; ++round) {
+    bool merged = false;
+    for (const auto& [a, b] : segments) {
+      std::size_t ra = sets.find(a), rb = sets.find(b);
+      if (ra == rb || distance(at[ra], at[rb]) >= threshold) continue;
+      // Only a segment between two junctions: contracting one to a shape point or a dead end as
+      // well made strasbourg and canberra denser (bench/growth, README, growth14).
+      if (degree[a] < 3 || degree[b] < 3) continue;
+      sets.unite(ra, rb);
+      ++out.contracted;
+      merged = true;
+    }
+    if (!merged) break;
+    std::vector<Point> sum(pos.size(), Point{0.0, 0.0});
+    std::vector<double> count(pos.size(), 0.0);
+    for (std::size_t i = 0; i < pos.size(); ++i) {
+      std::size_t r = sets.find(i);
+      sum[r] = sum[r] + pos[i];
+      count[r] += 1.0;
+    }
+    for (std::size_t i = 0; i < pos.size(); ++i) {
+      if (count[i] > 0.0) at[i] = Point{sum[i].x / count[i], sum[i].y / count[i]};
+    }
+  }
+  for (std::size_t e = 0; e < example.size(); ++e) {
+    ExampleEdge edge = example[e];
+    edge.line.clear();
+    std::size_t last = SIZE_MAX;
+    for (std::uint32_t n : line_nodes[e]) {
+      std::size_t r = sets.find(n);
+      if (r == last) continue;
+      edge.line.push_back(at[r]);
+      last = r;
+    }
+    if (edge.line.size() >= 2) out.edges.push_back(std::move(edge));
+  }
+  if (out.edges.empty()) out.edges = example;  // nothing left: let build_examples report the example as given
+  return out;
+}
 
 GrowResult grow_example(GeosContext& geos, const GrowInput& input, const GrowParams& params) {
   Grower grower(geos, input, params);

@@ -261,6 +261,7 @@ struct GrowStats {
   double snap = 0.0;
   double dead_end_share = 0.0;     // the (first) example's dead ends among its street ends (not near the crop)
   double small_block = 0.0;        // the (first) example's small-block perimeter (m; 0: the rule is off)
+  std::size_t example_contracted = 0;  // example segments under the minimum edge contracted (contract_short_segments)
   std::size_t small_cycles_refused = 0;  // joins refused for closing a cycle shorter than that
   std::size_t sibling_joins_refused = 0; // joins refused for closing a triangle with two sibling edges
   // The junction mix (DEBUG1, growth13): where dead ends and 4-way junctions are made or lost.
@@ -300,5 +301,20 @@ struct GrowResult {
 // Sets up the terrain and water checks of every step (legality of new streets, bending along the
 // contour, bridges).
 GrowResult grow_example(GeosContext& geos, const GrowInput& input, const GrowParams& params);
+
+// The example as grow_example's node matching reads it: every segment (between consecutive
+// vertices, two-way streets mapped twice counted once) between two junctions (nodes of degree 3
+// or more as given) and shorter than `factor` x the mean segment is contracted, its two end nodes
+// made one at their mean position with their other segments re-attached, until none is left (at
+// most 8 rounds: a contracted node can bring two nodes closer). A crossing drawn in OSM as two
+// T-junctions a few metres apart becomes one node of degree 4. Segments to shape points and dead
+// ends are kept. Edges that collapse to a point are dropped. mean_length is the mean segment length
+// of the example as given (the scale grow_example keeps); contracted counts the segments merged.
+struct ContractedExample {
+  std::vector<ExampleEdge> edges;
+  double mean_length = 0.0;
+  std::size_t contracted = 0;
+};
+ContractedExample contract_short_segments(const std::vector<ExampleEdge>& example, double factor);
 
 }  // namespace streetgen::core
