@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "core/streets/bisector.hpp"
@@ -104,4 +105,22 @@ TEST(PolygonContact, OverlapsAreFound) {
   EXPECT_TRUE(interiors_may_meet(junction, {{2, 0}, {6, 0}, {6, 4}, {2, 4}}));
   // Overlapping along a shared edge line where the overlap's edge runs between a vertex of each.
   EXPECT_TRUE(interiors_may_meet({{0, 0}, {4, 0}, {2, 2}}, {{2, 0}, {6, 0}, {4, 2}}));
+}
+
+// Two polygons sharing a segmentised arc (a curb shared by a junction and its sidewalk): the
+// chords' middles, rounded to doubles, fall a hair inside either, yet a shared edge lies on both
+// boundaries: apart. Moved inwards by a millimetre, the same arc overlaps.
+TEST(PolygonContact, ASharedChainOfChordsIsABoundary) {
+  const double r = 1.2602880658436213, pi = 3.14159265358979323846;
+  Polyline arc;
+  for (int k = 0; k <= 8; ++k) arc.push_back({r * std::cos(pi / 2 * k / 8), r * std::sin(pi / 2 * k / 8)});
+  Polyline quarter_disc{{0, 0}};
+  quarter_disc.insert(quarter_disc.end(), arc.begin(), arc.end());
+  Polyline spandrel(arc.rbegin(), arc.rend());
+  spandrel.push_back({r, r});
+  EXPECT_FALSE(interiors_may_meet(quarter_disc, spandrel));
+  EXPECT_FALSE(interiors_may_meet(spandrel, quarter_disc));
+  Polyline dented = spandrel;
+  dented[4] = 0.999 * dented[4];
+  EXPECT_TRUE(interiors_may_meet(quarter_disc, dented));
 }

@@ -327,3 +327,76 @@ TEST(StreetSurfaces, PhaseTimesAddUpToTheCallsCpuTime) {
   EXPECT_FALSE(r.sidewalks.empty());
   EXPECT_GT(t.sidewalks, 0.0);
 }
+
+namespace {
+const SidewalkResult* junction_sidewalk(const SurfaceResult& r) {
+  const SidewalkResult* found = nullptr;
+  for (const auto& w : r.sidewalks) {
+    if (w.side == "around") {
+      EXPECT_EQ(found, nullptr) << "one sidewalk per junction";
+      found = &w;
+    }
+  }
+  return found;
+}
+
+// The 4-way cross of two straight streets 8 m wide through (0, 0), sidewalks `w` on both sides.
+std::vector<SurfaceAxis> cross_with_sidewalks(double speed, double w) {
+  std::vector<SurfaceAxis> axes{axis(1, {{-60, 0}, {0, 0}}, 8, speed), axis(2, {{0, 0}, {60, 0}}, 8, speed),
+                                axis(3, {{0, 0}, {0, 60}}, 8, speed), axis(4, {{0, -60}, {0, 0}}, 8, speed)};
+  for (SurfaceAxis& a : axes) a.sidewalk_left = a.sidewalk_right = w;
+  return axes;
+}
+}  // namespace
+
+// A junction's sidewalk is the band between each corner's curb and the curb moved out by the
+// sidewalk width, up to the streets' border lines. On a cross whose arcs start at the border
+// lines (no straight curb between): with a radius above the width, four bands between the
+// segmentised arc of radius r and that of radius r - w (eight chords a quarter each); with a
+// radius below it, the border lines cross at the arc's centre and each band is the whole
+// segmentised quarter disc (a buffer's outline is cut there by the streets' own claims).
+TEST(StreetDetails, JunctionSidewalksFollowTheCurbArcs) {
+  GeosContext ctx;
+  const double chords = 4 * std::sin(kPi / 16);  // a quarter circle of 8 chords: chords * r^2
+  for (double speed : {30.0, 20.0}) {
+    const double w = 2.0;
+    SurfaceResult r = street_surfaces(ctx, cross_with_sidewalks(speed, w), {}, SurfaceSettings{});
+    ASSERT_EQ(r.corners.size(), 4u);
+    double radius = r.corners.front().radius;
+    for (const auto& c : r.corners) ASSERT_EQ(c.status, "ok");
+    const SidewalkResult* around = junction_sidewalk(r);
+    ASSERT_NE(around, nullptr);
+    EXPECT_EQ(GEOSisValid_r(ctx.handle(), around->surface.get()), 1);
+    EXPECT_EQ(GEOSGetNumGeometries_r(ctx.handle(), around->surface.get()), 4);
+    double expected = radius > w ? 4 * chords * (radius * radius - (radius - w) * (radius - w))
+                                 : 4 * chords * radius * radius;
+    EXPECT_NEAR(area(ctx, around->surface.get()), expected, 1e-3) << "speed " << speed << ", radius " << radius;
+    EXPECT_DOUBLE_EQ(around->width, w);
+    // Nothing of it on a roadway or on a street's sidewalk (the grid's micrometre aside).
+    for (const auto& s : r.sections) EXPECT_LT(overlap_area(ctx, around->surface.get(), s.surface.get()), 1e-4);
+    for (const auto& i : r.intersections) EXPECT_LT(overlap_area(ctx, around->surface.get(), i.surface.get()), 1e-4);
+    for (const auto& o : r.sidewalks) {
+      if (&o != around) {
+        EXPECT_LT(overlap_area(ctx, around->surface.get(), o.surface.get()), 1e-4);
+      }
+    }
+  }
+}
+
+// Each corner takes the wider of its two streets' sides facing it: on a T whose through street
+// has no sidewalk on the far side, the far side of the junction gets none either.
+TEST(StreetDetails, AJunctionCornerWithoutSidewalksOnEitherSideGetsNone) {
+  GeosContext ctx;
+  std::vector<SurfaceAxis> axes{axis(1, {{-60, 0}, {0, 0}}, 8, 30), axis(2, {{0, 0}, {60, 0}}, 8, 30),
+                                axis(3, {{0, 0}, {0, 60}}, 8, 30)};
+  axes[0].sidewalk_left = axes[1].sidewalk_left = 2.0;  // the north side, towards the side street
+  axes[2].sidewalk_left = axes[2].sidewalk_right = 3.0;
+  SurfaceResult r = street_surfaces(ctx, axes, {}, SurfaceSettings{});
+  const SidewalkResult* around = junction_sidewalk(r);
+  ASSERT_NE(around, nullptr);
+  EXPECT_EQ(GEOSGetNumGeometries_r(ctx.handle(), around->surface.get()), 2);  // the two corners by the side street
+  double ymin = 0;
+  GEOSGeom_getYMin_r(ctx.handle(), around->surface.get(), &ymin);
+  EXPECT_GT(ymin, 4.0 - 1e-6);  // nothing south of the through street's north curb
+  EXPECT_DOUBLE_EQ(around->width, 3.0);
+}

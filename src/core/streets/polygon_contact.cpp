@@ -26,10 +26,22 @@ bool properly_cross(const P2& a1, const P2& a2, const P2& b1, const P2& b2) {
          o4 != CGAL::COLLINEAR && o3 != o4;
 }
 
+// Whether u and w are the two ends of an edge of ring b.
+bool is_edge_of(const P2& u, const P2& w, const std::vector<P2>& b) {
+  for (std::size_t j = 0; j < b.size(); ++j) {
+    const P2& s = b[j];
+    const P2& t = b[(j + 1) % b.size()];
+    if ((s == u && t == w) || (s == w && t == u)) return true;
+  }
+  return false;
+}
+
 // Does a point of `a`'s boundary lie strictly inside `b`? Each edge of `a` is cut at the vertices
 // of `b` on it; between two cuts the edge is all inside `b`, all outside, or all on its boundary
-// (no edge crosses properly: checked before), so its middle tells. `on_boundary_only` is left
-// true when every vertex and middle of `a` lies on `b`'s boundary.
+// (no edge crosses properly: checked before), so its middle tells, unless the piece is an edge of
+// `b` itself: then it lies on b's boundary, and its middle, rounded to doubles, need not (a curb
+// arc shared by a junction and its sidewalk, whose chords' middles fell inside either by 1e-16).
+// `on_boundary_only` is left true when every vertex and middle of `a` lies on `b`'s boundary.
 bool boundary_enters(const std::vector<P2>& a, const std::vector<P2>& b, bool& on_boundary_only) {
   const std::size_t n = a.size();
   for (std::size_t i = 0; i < n; ++i) {
@@ -46,6 +58,7 @@ bool boundary_enters(const std::vector<P2>& a, const std::vector<P2>& b, bool& o
     }
     std::sort(cuts.begin(), cuts.end(), [&](const P2& u, const P2& w) { return CGAL::has_smaller_distance_to_point(p, u, w); });
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+      if (is_edge_of(cuts[k], cuts[k + 1], b)) continue;
       P2 middle = CGAL::midpoint(cuts[k], cuts[k + 1]);
       auto mside = CGAL::bounded_side_2(b.begin(), b.end(), middle, Kernel());
       if (mside == CGAL::ON_BOUNDED_SIDE) return true;

@@ -602,54 +602,110 @@ class SurfaceBuilder {
   // The ring around the node: each end's border line, then the curb of each corner (along the
   // border back to the arc, the arc, out along the next border), as the paper's surface model.
   void build_intersection(std::size_t n) {
-    const TopologyNode& node = topo_.nodes[n];
     const std::vector<End>& ends = ends_of_node_[n];
-    const std::vector<CornerResult>& corners = corners_of_node_[n];
     Polyline ring;
-    // Points closer than a micrometre are one: GEOS sees a hair-thin back-and-forth as a
-    // self-intersection.
-    auto append = [&](const Polyline& pts) {
-      for (const Point& p : pts) {
-        if (ring.empty() || distance(ring.back(), p) > kSamePoint) ring.push_back(p);
-      }
-    };
     for (std::size_t i = 0; i < ends.size(); ++i) {
       const End& a = ends[i];
-      const End& b = ends[(i + 1) % ends.size()];
-      const CornerResult& c = corners[i];
-      append({border_point(a.outgoing, a.border, a.right, -1), border_point(a.outgoing, a.border, a.left, +1)});
-      if (c.status == "convex") {
-        // Around the outside of the node: a's left border in, round the node, b's right border out.
-        append(border_path(a.outgoing, a.border, 0.0, a.left, +1));
-        Point from = border_point(a.outgoing, 0.0, a.left, +1);
-        Point to = border_point(b.outgoing, 0.0, b.right, -1);
-        double h = 0.5 * (a.left + b.right);
-        double a0 = angle_of(from - node.position);
-        double sweep = ccw_angle(from - node.position, to - node.position);
-        if (sweep > 2 * kPi - 1e-9) sweep = 0.0;  // straight on: the borders continue each other
-        int steps = static_cast<int>(std::ceil(sweep / (kPi / 2) * kQuadrantSegments));
-        for (int k = 1; k < steps; ++k) {
-          double ang = a0 + sweep * k / steps;
-          ring.push_back(node.position + h * Point{std::cos(ang), std::sin(ang)});
-        }
-        append(border_path(b.outgoing, 0.0, b.border, b.right, -1));
-      } else if (c.status == "clamped" || c.status == "no_corner") {
-        // Straight across to the next border line.
-      } else {
-        // The arc's tangent points replace the border points at the feet: where a foot is at a
-        // bend of the axis the arc touches the rounded offset, not the normal of a segment.
-        double foot_a = project(a.outgoing, c.arc_points.front()).abscissa;
-        double foot_b = project(b.outgoing, c.arc_points.back()).abscissa;
-        Polyline in = border_path(a.outgoing, a.border, std::min(foot_a, a.border), a.left, +1);
-        in.pop_back();
-        Polyline out = border_path(b.outgoing, std::min(foot_b, b.border), b.border, b.right, -1);
-        out.erase(out.begin());
-        append(in);
-        append(c.arc_points);
-        append(out);
-      }
+      append_points(ring, {border_point(a.outgoing, a.border, a.right, -1)});
+      append_points(ring, curb(n, i, 0.0));
     }
     finish_intersection(n, make_polygon(ctx_, ring), "ok");
+  }
+
+  // Appends `pts` to `line`, dropping points closer than a micrometre to the last one: GEOS sees
+  // a hair-thin back-and-forth as a self-intersection.
+  static void append_points(Polyline& line, const Polyline& pts) {
+    for (const Point& p : pts) {
+      if (line.empty() || distance(line.back(), p) > kSamePoint) line.push_back(p);
+    }
+  }
+
+  // The curb of corner i of node n, from end i's left border point to end i + 1's right border
+  // point, moved `out` metres away from the roadway (0: the curb itself, the junction's ring
+  // between two border lines; w: the outer edge of a sidewalk w wide; not for the outside of a
+  // bend, a convex corner, whose outline callers buffer). Outward, an arc of radius
+  // r becomes the arc of radius r - out around the same centre, or, once out >= r, the corner
+  // where the two moved borders cross (as a buffer's outline has it: a sharp corner), or, when
+  // that lies beyond a border line, the single point where the two border lines cross. Empty
+  // when none of these exists (a corner without a curb, or border lines crossing too far out).
+  Polyline curb(std::size_t n, std::size_t i, double out) {
+    const std::vector<End>& ends = ends_of_node_[n];
+    const End& a = ends[i];
+    const End& b = ends[(i + 1) % ends.size()];
+    const CornerResult& c = corners_of_node_[n][i];
+    Polyline line{border_point(a.outgoing, a.border, a.left + out, +1)};
+    if (c.status == "convex") {
+      // Around the outside of the node: a's left border in, round the node, b's right border out.
+      // (Outward, callers buffer this curb instead: its joins are round.)
+      if (out > 0.0) return {};
+      Point node = topo_.nodes[n].position;
+      append_points(line, border_path(a.outgoing, a.border, 0.0, a.left, +1));
+      Point from = border_point(a.outgoing, 0.0, a.left, +1);
+      Point to = border_point(b.outgoing, 0.0, b.right, -1);
+      double h = 0.5 * (a.left + b.right);
+      double a0 = angle_of(from - node);
+      double sweep = ccw_angle(from - node, to - node);
+      if (sweep > 2 * kPi - 1e-9) sweep = 0.0;  // straight on: the borders continue each other
+      int steps = static_cast<int>(std::ceil(sweep / (kPi / 2) * kQuadrantSegments));
+      for (int k = 1; k < steps; ++k) {
+        double ang = a0 + sweep * k / steps;
+        line.push_back(node + h * Point{std::cos(ang), std::sin(ang)});
+      }
+      append_points(line, border_path(b.outgoing, 0.0, b.border, b.right, -1));
+      return line;
+    }
+    if (c.status == "clamped" || c.status == "no_corner") {
+      // Straight across to the next border line: no curb to follow outward.
+      if (out > 0.0) return {};
+      return line;
+    }
+    // The arc's tangent points replace the border points at the feet: where a foot is at a
+    // bend of the axis the arc touches the rounded offset, not the normal of a segment.
+    double foot_a = project(a.outgoing, c.arc_points.front()).abscissa;
+    double foot_b = project(b.outgoing, c.arc_points.back()).abscissa;
+    Polyline corner = c.arc_points;
+    if (out > 0.0) {
+      if (c.centre && c.radius > out) {
+        double k = (c.radius - out) / c.radius;
+        Point centre = *c.centre;
+        corner = arc_points(centre, centre + k * (c.arc_points.front() - centre), centre + k * (c.arc_points.back() - centre),
+                            c.radius - out);
+      } else {
+        // The moved borders cross: a's left border line at the foot, b's right one.
+        Point pa = border_point(a.outgoing, foot_a, a.left + out, +1);
+        Point pb = border_point(b.outgoing, foot_b, b.right + out, -1);
+        Point da = tangent_at(a.outgoing, foot_a);
+        Point db = tangent_at(b.outgoing, foot_b);
+        double det = cross(da, db);
+        if (std::abs(det) < 1e-9) return {};
+        Point x = pa + (cross(pb - pa, db) / det) * da;
+        foot_a = project(a.outgoing, x).abscissa;
+        foot_b = project(b.outgoing, x).abscissa;
+        if (foot_a > a.border || foot_b > b.border) {
+          // Beyond a border line, where a street's own claim is: the band then reaches the
+          // crossing of the two border lines, if that lies within `out` of both curbs' ends
+          // (a tight corner whose arc starts on both border lines: the whole corner up to them).
+          Point a_border = point_at(a.outgoing, a.border), b_border = point_at(b.outgoing, b.border);
+          Point across_a = left_normal(tangent_at(a.outgoing, a.border));
+          Point across_b = -1.0 * left_normal(tangent_at(b.outgoing, b.border));
+          double d = cross(across_a, across_b);
+          if (std::abs(d) < 1e-9) return {};
+          double ta = cross(b_border - a_border, across_b) / d;  // along a's border line, from its axis
+          double tb = cross(b_border - a_border, across_a) / d;  // along b's
+          if (ta < a.left - kSamePoint || ta > a.left + out || tb < b.right - kSamePoint || tb > b.right + out) return {};
+          return {a_border + ta * across_a};
+        }
+        corner = {x};
+      }
+    }
+    Polyline in = border_path(a.outgoing, a.border, std::min(foot_a, a.border), a.left + out, +1);
+    in.pop_back();
+    Polyline away = border_path(b.outgoing, std::min(foot_b, b.border), b.border, b.right + out, -1);
+    away.erase(away.begin());
+    append_points(line, in);
+    append_points(line, corner);
+    append_points(line, away);
+    return line;
   }
 
   // Keeps a valid constructed polygon, or repairs it. Otherwise the fallback: the stubs of the axes up to their border lines, buffered, with the node's
@@ -1130,6 +1186,215 @@ class SurfaceBuilder {
     return true;
   }
 
+  // A roadway, or a sidewalk's claim, in build_sidewalks.
+  struct SidewalkItem {
+    const GEOSGeometry* geom = nullptr;
+    GeomPtr owned;        // claims
+    int layer = 0;
+    bool roadway = false;
+    SidewalkResult meta;  // claims
+    // A street side's claim ends on the normals at its section's border points, and a junction
+    // corner's on its two streets' border lines: the lines through cut_point[k] across
+    // cut_direction[k] (pointing into the claim), when the whole claim lies on their inner side
+    // (cuts[k]; a tight bend can break that).
+    bool cuts[2] = {false, false};
+    Point cut_point[2];
+    Point cut_direction[2];
+    // A junction corner's claim (piece > 0, numbered from 1 round the node): its ring as built,
+    // which is tested exactly against what it may meet, and its pieces make one sidewalk.
+    int piece = 0;
+    Polyline ring;
+  };
+
+  // Which sidewalk width an end's street has on its side facing the corner to the left (true)
+  // or to the right (false) of its outgoing direction.
+  double facing_sidewalk(const End& e, bool left_of_outgoing) const {
+    const SurfaceAxis& axis = axes_[topo_.edges[e.edge].axis_index];
+    return left_of_outgoing != e.at_end ? axis.sidewalk_left : axis.sidewalk_right;
+  }
+
+  // A junction's sidewalk claimed corner by corner: the band between the curb and the curb moved
+  // out by the sidewalk width (the wider of the two streets' sides facing the corner), ending on
+  // the two streets' border lines, where their side claims end. Built from the corner's own
+  // lines it needs no buffer and, where the junction is as built, touches its neighbours only
+  // along its edges (each tested exactly). Adds nothing and returns false when a corner has no
+  // such band (no curb to follow, the moved curb crossing a border line, an invalid ring, or two
+  // corners' bands overlapping): the caller then claims the buffer of the whole junction.
+  bool add_corner_claims(std::size_t n, std::int64_t node_id, std::vector<SidewalkItem>& claims) {
+    const std::vector<End>& ends = ends_of_node_[n];
+    // (a street taken whole by the junction has no claim beyond its border line to end on)
+    for (const End& e : ends) {
+      if (!result_.sections[e.edge].surface) return false;
+    }
+    std::vector<SidewalkItem> pieces;
+    for (std::size_t i = 0; i < ends.size(); ++i) {
+      const End& a = ends[i];
+      const End& b = ends[(i + 1) % ends.size()];
+      double w = std::max(facing_sidewalk(a, true), facing_sidewalk(b, false));
+      if (!(w > 0.0)) continue;
+      Polyline ring = curb(n, i, 0.0);
+      SidewalkItem it;
+      if (corners_of_node_[n][i].status == "convex") {
+        // Round the outside of a bend, or a step between two streets' borders: the curb's
+        // single-sided buffer, whose joins are round as a buffer of the junction's were (the
+        // junction's ring runs counter-clockwise: its outside is on the right).
+        if (ring.size() < 2) return false;
+        GeomPtr line = make_line(ctx_, ring);
+        it.owned = single_sided_buffer(ctx_, line.get(), -w);
+        if (GEOSGeomTypeId_r(ctx_.handle(), it.owned.get()) != GEOS_POLYGON ||
+            GEOSGetNumInteriorRings_r(ctx_.handle(), it.owned.get()) != 0) {
+          return false;
+        }
+        ring = shells_of(it.owned.get()).front();
+      } else {
+        Polyline outer = curb(n, i, w);
+        if (outer.empty()) return false;
+        append_points(ring, Polyline(outer.rbegin(), outer.rend()));
+        if (ring.size() < 3) return false;
+        it.owned = make_polygon(ctx_, ring);
+      }
+      if (!it.owned || GEOSisValid_r(ctx_.handle(), it.owned.get()) != 1) return false;
+      it.geom = it.owned.get();
+      it.layer = topo_.nodes[n].layer;
+      it.piece = static_cast<int>(i) + 1;
+      it.ring = std::move(ring);
+      it.cut_point[0] = point_at(a.outgoing, a.border);
+      it.cut_direction[0] = -1.0 * tangent_at(a.outgoing, a.border);
+      it.cut_point[1] = point_at(b.outgoing, b.border);
+      it.cut_direction[1] = -1.0 * tangent_at(b.outgoing, b.border);
+      for (int k = 0; k < 2; ++k) it.cuts[k] = beyond_line(it.geom, it.cut_point[k], it.cut_direction[k]);
+      it.meta.node_id = node_id;
+      it.meta.side = "around";
+      it.meta.width = w;
+      pieces.push_back(std::move(it));
+    }
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      for (std::size_t j = i + 1; j < pieces.size(); ++j) {
+        if (interiors_may_meet(pieces[i].ring, pieces[j].ring)) return false;
+      }
+    }
+    for (SidewalkItem& it : pieces) claims.push_back(std::move(it));
+    return true;
+  }
+
+  // The side of a section's roadway outline, `side` +1 left of its centre line `between`, -1
+  // right, from its start border line to its end one: the chain of the outline's vertices
+  // between the corners it has on the two border lines (the outline is GEOS's flat-capped
+  // buffer, so its ends lie on those lines). Empty when the outline has no such corners.
+  Polyline roadway_side(const GEOSGeometry* section, const Polyline& between, int side) {
+    if (between.size() < 2 || GEOSGeomTypeId_r(ctx_.handle(), section) != GEOS_POLYGON) return {};
+    std::vector<Polyline> shells = shells_of(section);
+    if (shells.size() != 1 || shells[0].size() < 5) return {};
+    Polyline ring = shells[0];
+    ring.pop_back();  // (closed: the first point again)
+    const std::size_t n = ring.size();
+    Point ends[2] = {between.front(), between.back()};
+    Point along[2] = {unit(between[1] - between[0]), unit(between.back() - between[between.size() - 2])};
+    // On each border line, the outline's corners farthest to this side of the centre line and
+    // to the other side.
+    long corner[2] = {-1, -1}, opposite[2] = {-1, -1};
+    double reach[2] = {0.0, 0.0}, opposite_reach[2] = {0.0, 0.0};
+    for (std::size_t k = 0; k < n; ++k) {
+      for (int e = 0; e < 2; ++e) {
+        if (std::abs(dot(ring[k] - ends[e], along[e])) > kSamePoint) continue;
+        double r = side * cross(along[e], ring[k] - ends[e]);
+        if (r > reach[e]) {
+          reach[e] = r;
+          corner[e] = static_cast<long>(k);
+        } else if (-r > opposite_reach[e]) {
+          opposite_reach[e] = -r;
+          opposite[e] = static_cast<long>(k);
+        }
+      }
+    }
+    if (corner[0] < 0 || corner[1] < 0 || opposite[0] < 0 || opposite[1] < 0 || corner[0] == corner[1]) return {};
+    // Of the two ways round from one corner to the other, the one that passes neither of the
+    // other side's.
+    for (long step : {1L, -1L}) {
+      Polyline chain;
+      for (long k = corner[0];; k = (k + static_cast<long>(n) + step) % static_cast<long>(n)) {
+        if (k == opposite[0] || k == opposite[1]) {
+          chain.clear();
+          break;
+        }
+        chain.push_back(ring[static_cast<std::size_t>(k)]);
+        if (k == corner[1]) break;
+      }
+      if (chain.size() >= 2) return chain;
+    }
+    return {};
+  }
+
+  // A street side's claim as the band outside its roadway: the single-sided buffer of the
+  // roadway's side `edge` (along the centre line) by w metres (> 0 left, < 0 right), whose inner
+  // edge is the roadway's own outline, so that the two meet along that line only. Null when
+  // GEOS makes anything but one polygon without holes of it; `ring` gets its shell.
+  GeomPtr side_band(const Polyline& edge, double w, Polyline& ring) {
+    GeomPtr line = make_line(ctx_, edge);
+    GeomPtr band = single_sided_buffer(ctx_, line.get(), w);
+    if (GEOSGeomTypeId_r(ctx_.handle(), band.get()) != GEOS_POLYGON || GEOSGetNumInteriorRings_r(ctx_.handle(), band.get()) != 0) {
+      return nullptr;
+    }
+    std::vector<Polyline> shells = shells_of(band.get());
+    if (shells.size() != 1 || shells[0].size() < 4) return nullptr;
+    ring = std::move(shells[0]);
+    return band;
+  }
+
+  // The exterior rings of a polygon or multipolygon's parts.
+  std::vector<Polyline> shells_of(const GEOSGeometry* g) {
+    GEOSContextHandle_t h = ctx_.handle();
+    std::vector<Polyline> out;
+    auto add = [&](const GEOSGeometry* polygon) {
+      const GEOSGeometry* shell = GEOSGetExteriorRing_r(h, polygon);
+      const GEOSCoordSequence* seq = shell ? GEOSGeom_getCoordSeq_r(h, shell) : nullptr;
+      unsigned int size = 0;
+      if (seq == nullptr || GEOSCoordSeq_getSize_r(h, seq, &size) == 0) ctx_.fail("coordinates");
+      Polyline ring(size);
+      for (unsigned int k = 0; k < size; ++k) {
+        if (GEOSCoordSeq_getXY_r(h, seq, k, &ring[k].x, &ring[k].y) == 0) ctx_.fail("coordinates");
+      }
+      out.push_back(std::move(ring));
+    };
+    int type = GEOSGeomTypeId_r(h, g);
+    if (type == GEOS_POLYGON) {
+      add(g);
+    } else if (type == GEOS_MULTIPOLYGON) {
+      int parts = GEOSGetNumGeometries_r(h, g);
+      for (int k = 0; k < parts; ++k) add(GEOSGetGeometryN_r(h, g, k));
+    }
+    return out;
+  }
+
+  // Whether a claim built by its own ring (a junction corner's, a band outside a roadway) may
+  // share area with `blocker`: false only when
+  // certainly not (every part's shell tested exactly, polygon_contact.hpp; a part with holes
+  // counts by its shell, which can only say "may").
+  bool claim_may_meet(const Polyline& ring, const GEOSGeometry* blocker) {
+    std::vector<Polyline> shells = shells_of(blocker);
+    if (shells.empty()) return true;
+    for (const Polyline& shell : shells) {
+      if (shell.size() >= 4 && interiors_may_meet(ring, shell)) return true;
+    }
+    return false;
+  }
+
+  // A ring rounded vertex by vertex to the sidewalk grid, as a polygon, or null when rounding
+  // leaves it invalid. (Snap rounding by GEOS gives the same for a ring that nothing cuts, at
+  // about 240 us a ring in GEOS 3.11: it builds a std::random_device each time.)
+  GeomPtr rounded_polygon(Polyline ring) {
+    for (Point& p : ring) {
+      p.x = std::round(p.x / kSidewalkGrid) * kSidewalkGrid;
+      p.y = std::round(p.y / kSidewalkGrid) * kSidewalkGrid;
+    }
+    Polyline kept;
+    append_points(kept, ring);
+    if (kept.size() < 3) return nullptr;
+    GeomPtr polygon = make_polygon(ctx_, kept);
+    if (!polygon || GEOSisValid_r(ctx_.handle(), polygon.get()) != 1) return nullptr;
+    return polygon;
+  }
+
   // Sidewalks: each section's side bands (the single-sided buffer of its centre line between
   // the border lines, out to half the roadway plus the sidewalk width) and each junction's
   // surroundings (its surface buffered by the widest sidewalk of its streets: round joins follow
@@ -1138,19 +1403,7 @@ class SurfaceBuilder {
   // sidewalks never overlap a roadway or each other, and a sidewalk depends only on what lies
   // within its reach, whatever else the engine was given.
   void build_sidewalks(InterruptPoller& poller) {
-    struct Item {
-      const GEOSGeometry* geom = nullptr;
-      GeomPtr owned;        // claims
-      int layer = 0;
-      bool roadway = false;
-      SidewalkResult meta;  // claims
-      // A street side's claim ends on the normals at its section's border points: the lines
-      // through cut_point[k] across cut_direction[k] (pointing into the claim), when the whole
-      // claim lies on their inner side (cuts[k]; a tight bend can break that).
-      bool cuts[2] = {false, false};
-      Point cut_point[2];
-      Point cut_direction[2];
-    };
+    using Item = SidewalkItem;
     std::vector<Item> items;
     std::map<std::int64_t, std::size_t> node_index;
     for (std::size_t n = 0; n < topo_.nodes.size(); ++n) node_index[topo_.nodes[n].id] = n;
@@ -1168,6 +1421,7 @@ class SurfaceBuilder {
       it.geom = ir.surface.get();
       it.layer = topo_.nodes[node_index.at(ir.node_id)].layer;
       it.roadway = true;
+      it.meta.node_id = ir.node_id;
       items.push_back(std::move(it));
     }
     std::size_t first_claim = items.size();
@@ -1187,8 +1441,15 @@ class SurfaceBuilder {
           double shift = plans_[topo_.edges[e].axis_index].centre_offset;
           double d = axis.roadway_width / 2 + (side == 0 ? shift : -shift) + w;
           Item it;
-          it.owned = single_sided_buffer(ctx_, line.get(), side == 0 ? d : -d);
+          // (a section as built: outside its roadway's side, a band of its own; else the
+          // buffer from the axis, which loses the roadway by an overlay)
+          if (sec.status == "ok") {
+            Polyline edge = roadway_side(sec.surface.get(), between, side == 0 ? +1 : -1);
+            if (edge.size() >= 2) it.owned = side_band(edge, side == 0 ? w : -w, it.ring);
+          }
+          if (!it.owned) it.owned = single_sided_buffer(ctx_, line.get(), side == 0 ? d : -d);
           if (GEOSisValid_r(ctx_.handle(), it.owned.get()) != 1) {
+            it.ring.clear();
             // (its polygons only: a made-valid buffer can hold lines, and an overlay refuses
             // input of mixed dimension)
             GeomPtr fixed = own(ctx_, GEOSMakeValid_r(ctx_.handle(), it.owned.get()), "make valid");
@@ -1219,12 +1480,18 @@ class SurfaceBuilder {
       if (!ir.surface) continue;
       poller.tick();
       std::size_t n = node_index.at(ir.node_id);
+      // (a junction as built, not narrowed, repaired or a transition: its curb is its ring)
+      if (ir.status == "ok" && add_corner_claims(n, ir.node_id, claims)) {
+        ++result_.stats.junction_sidewalks_by_corner;
+        continue;
+      }
       double w = 0.0;
       for (const End& e : ends_of_node_[n]) {
         const SurfaceAxis& axis = axes_[topo_.edges[e.edge].axis_index];
         w = std::max({w, axis.sidewalk_left, axis.sidewalk_right});
       }
       if (!(w > 0.0)) continue;
+      ++result_.stats.junction_sidewalks_by_buffer;
       Item it;
       it.owned = own(ctx_, GEOSBufferWithStyle_r(ctx_.handle(), ir.surface.get(), w, kQuadrantSegments, GEOSBUF_CAP_ROUND,
                                                  GEOSBUF_JOIN_ROUND, 5.0),
@@ -1236,11 +1503,12 @@ class SurfaceBuilder {
       it.meta.width = w;
       claims.push_back(std::move(it));
     }
-    // Key order: sections' (axis, part, left before right), then junctions' by node id.
+    // Key order: sections' (axis, part, left before right), then junctions' by node id (a
+    // junction's corners in turn).
     std::sort(claims.begin(), claims.end(), [](const Item& a, const Item& b) {
       bool ja = a.meta.node_id != 0, jb = b.meta.node_id != 0;
-      return std::make_tuple(ja, a.meta.node_id, a.meta.axis_id, a.meta.part, a.meta.side) <
-             std::make_tuple(jb, b.meta.node_id, b.meta.axis_id, b.meta.part, b.meta.side);
+      return std::make_tuple(ja, a.meta.node_id, a.piece, a.meta.axis_id, a.meta.part, a.meta.side) <
+             std::make_tuple(jb, b.meta.node_id, b.piece, b.meta.axis_id, b.meta.part, b.meta.side);
     });
     items.reserve(items.size() + claims.size());
     for (Item& c : claims) items.push_back(std::move(c));
@@ -1272,6 +1540,25 @@ class SurfaceBuilder {
         items[k].geom = nullptr;
       }
     };
+    // A junction's corner claims make one sidewalk: their polygons gather here until the next
+    // claim is not one of them.
+    SidewalkResult junction;
+    std::vector<GeomPtr> junction_parts;
+    auto emit_junction = [&] {
+      if (junction_parts.empty()) return;
+      GeomPtr surface = make_collection(ctx_, GEOS_MULTIPOLYGON, junction_parts);
+      junction_parts.clear();
+      // (corner bands do not overlap and lie apart, the streets between them; a difference
+      // could still leave two touching along an edge, which one multipolygon may not)
+      if (GEOSisValid_r(ctx_.handle(), surface.get()) != 1) {
+        GeomPtr united = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), surface.get()), "union");
+        surface = polygons_of(ctx_, united.get(), kMinSidewalkArea);
+        if (!surface) return;
+      }
+      junction.surface = std::move(surface);
+      result_.sidewalks.push_back(std::move(junction));
+      junction = SidewalkResult{};
+    };
     for (std::size_t i = first_claim; i < items.size(); ++i) {
       poller.tick();
       if (i > first_claim) {  // (at the top: every path through the claim before ends in `continue`)
@@ -1280,74 +1567,121 @@ class SurfaceBuilder {
         std::vector<std::size_t>().swap(blockers[i - 1]);
       }
       Item& it = items[i];
+      if (!junction_parts.empty() && !(it.piece > 0 && it.meta.node_id == junction.node_id)) {
+        try {
+          emit_junction();
+        } catch (const Error& err) {
+          if (err.kind() != ErrorKind::geometry_engine) throw;
+          report_sidewalk_failure(junction, err, node_index);
+          junction = SidewalkResult{};
+        }
+      }
       try {
-        GeomPtr rest = own(ctx_, GEOSGeom_clone_r(ctx_.handle(), it.geom), "clone");
-        // Boxes overlap far more often than shapes (long diagonal streets): only what the claim
-        // really meets is taken away (a predicate that fails counts as meeting).
-        std::vector<const GEOSGeometry*> meeting;
-        if (!blockers[i].empty()) {
-          std::sort(blockers[i].begin(), blockers[i].end());
-          const GEOSPreparedGeometry* prepared = GEOSPrepare_r(ctx_.handle(), it.geom);
-          if (prepared == nullptr) ctx_.fail("prepare");
-          for (std::size_t b : blockers[i]) {
-            // (a junction's roadway touches a street side's claim along the border line, and
-            // a difference with it took nothing away: 89,000 of the street sides' 170,000
-            // floating differences on Paris. A line with the claim on one side and the blocker
-            // on the other shows that without an overlay.)
-            if ((it.cuts[0] && beyond_line(items[b].geom, it.cut_point[0], -1.0 * it.cut_direction[0])) ||
-                (it.cuts[1] && beyond_line(items[b].geom, it.cut_point[1], -1.0 * it.cut_direction[1]))) {
-              continue;
-            }
-            char meets = GEOSPreparedIntersects_r(ctx_.handle(), prepared, items[b].geom);
-            if (meets == 2) ctx_.clear_error();
-            if (meets != 0) meeting.push_back(items[b].geom);
-          }
-          GEOSPreparedGeom_destroy_r(ctx_.handle(), prepared);
-        }
-        // One blocker after another, not their union: a difference clips the blocker to the
-        // claim's box before it nodes anything (a union has no such envelope, and a long
-        // street's roadway or a large junction's sidewalk would be united whole for every claim
-        // along it). The last step is snap-rounded on the micrometre grid, and so is a claim
-        // nothing blocks: an overlay can leave a sliver nanometres wide along an edge it nearly
-        // shares, present or not as the roadways around differ in their last bits (a local
-        // refresh and a full run then disagreed by 2.75 m of sliver, 1e-8 m2); snap rounding
-        // collapses such slivers, those of the floating steps before it included, and gives
-        // valid output. (A union of the blockers in floating precision once had a zero-area
-        // hole through a vertex of the claim, and the whole claim came back: pgTAP 62.)
-        for (std::size_t k = 0; k < meeting.size() && rest; ++k) {
-          rest = k + 1 < meeting.size()
-                     ? difference_by_part(std::move(rest), meeting[k])
-                     : own(ctx_, GEOSDifferencePrec_r(ctx_.handle(), rest.get(), meeting[k], kSidewalkGrid), "difference");
-          if (!rest) break;
-          // (a floating difference can leave a collapsed edge as a line beside the polygons, and
-          // the next overlay would refuse input of mixed dimension)
-          int type = GEOSGeomTypeId_r(ctx_.handle(), rest.get());
-          if (type != GEOS_POLYGON && type != GEOS_MULTIPOLYGON) rest = polygons_of(ctx_, rest.get(), 0.0);
-        }
-        if (!rest) continue;
-        if (meeting.empty()) {
-          rest = own(ctx_, GEOSGeom_setPrecision_r(ctx_.handle(), rest.get(), kSidewalkGrid, 0), "sidewalk grid");
-        }
-        GeomPtr surface = polygons_of(ctx_, rest.get(), kMinSidewalkArea);
+        GeomPtr surface = sidewalk_of(it, blockers[i], items);
         if (!surface) continue;
-        if (GEOSisValid_r(ctx_.handle(), surface.get()) != 1) {
-          GeomPtr fixed = own(ctx_, GEOSMakeValid_r(ctx_.handle(), surface.get()), "make valid");
-          surface = polygons_of(ctx_, fixed.get(), kMinSidewalkArea);
-          if (!surface) continue;
+        if (it.piece > 0) {
+          junction.node_id = it.meta.node_id;
+          junction.side = it.meta.side;
+          junction.width = std::max(junction.width, it.meta.width);
+          append_polygons(ctx_, surface.get(), junction_parts);
+          continue;
         }
         it.meta.surface = std::move(surface);
         result_.sidewalks.push_back(std::move(it.meta));
       } catch (const Error& err) {
         if (err.kind() != ErrorKind::geometry_engine) throw;
-        std::string detail = err.what() + std::string(": ") + err.detail();
-        if (it.meta.node_id == 0) {
-          result_.issues.push_back({it.meta.axis_id, "sidewalk_failed", detail, it.meta.part});
-        } else {  // a junction's: about the node, under its first axis
-          const TopologyNode& node = topo_.nodes[node_index.at(it.meta.node_id)];
-          result_.issues.push_back({node.axis_ids.front(), "sidewalk_failed", detail, std::nullopt, node.id});
-        }
+        report_sidewalk_failure(it.meta, err, node_index);
       }
     }
+    try {
+      emit_junction();
+    } catch (const Error& err) {
+      if (err.kind() != ErrorKind::geometry_engine) throw;
+      report_sidewalk_failure(junction, err, node_index);
+    }
+  }
+
+  void report_sidewalk_failure(const SidewalkResult& meta, const Error& err, const std::map<std::int64_t, std::size_t>& node_index) {
+    std::string detail = err.what() + std::string(": ") + err.detail();
+    if (meta.node_id == 0) {
+      result_.issues.push_back({meta.axis_id, "sidewalk_failed", detail, meta.part});
+    } else {  // a junction's: about the node, under its first axis
+      const TopologyNode& node = topo_.nodes[node_index.at(meta.node_id)];
+      result_.issues.push_back({node.axis_ids.front(), "sidewalk_failed", detail, std::nullopt, node.id});
+    }
+  }
+
+  // What is left of claim `it` once every roadway of its layer and every claim before it that
+  // it meets (of `blockers`, by box) are taken away: its sidewalk, or null.
+  GeomPtr sidewalk_of(const SidewalkItem& it, std::vector<std::size_t>& blockers, const std::vector<SidewalkItem>& items) {
+    // Boxes overlap far more often than shapes (long diagonal streets): only what the claim
+    // really meets is taken away (a predicate that fails counts as meeting).
+    std::vector<const GEOSGeometry*> meeting;
+    if (!blockers.empty()) {
+      std::sort(blockers.begin(), blockers.end());
+      const GEOSPreparedGeometry* prepared = nullptr;
+      if (it.ring.empty()) {
+        prepared = GEOSPrepare_r(ctx_.handle(), it.geom);
+        if (prepared == nullptr) ctx_.fail("prepare");
+      }
+      for (std::size_t b : blockers) {
+        // (a junction's roadway touches a street side's claim along the border line, and
+        // a difference with it took nothing away: 89,000 of the street sides' 170,000
+        // floating differences on Paris. A line with the claim on one side and the blocker
+        // on the other shows that without an overlay.)
+        if ((it.cuts[0] && beyond_line(items[b].geom, it.cut_point[0], -1.0 * it.cut_direction[0])) ||
+            (it.cuts[1] && beyond_line(items[b].geom, it.cut_point[1], -1.0 * it.cut_direction[1]))) {
+          continue;
+        }
+        if (prepared == nullptr) {  // a corner's band: exactly, against the blocker's rings
+          if (claim_may_meet(it.ring, items[b].geom)) meeting.push_back(items[b].geom);
+          continue;
+        }
+        char meets = GEOSPreparedIntersects_r(ctx_.handle(), prepared, items[b].geom);
+        if (meets == 2) ctx_.clear_error();
+        if (meets != 0) meeting.push_back(items[b].geom);
+      }
+      if (prepared != nullptr) GEOSPreparedGeom_destroy_r(ctx_.handle(), prepared);
+    }
+    // A corner's band that meets nothing is its own ring on the grid.
+    if (meeting.empty() && !it.ring.empty()) {
+      if (GeomPtr rounded = rounded_polygon(it.ring)) {
+        ++result_.stats.sidewalks_without_overlay;
+        return polygons_of(ctx_, rounded.get(), kMinSidewalkArea);
+      }
+    }
+    GeomPtr rest = own(ctx_, GEOSGeom_clone_r(ctx_.handle(), it.geom), "clone");
+    // One blocker after another, not their union: a difference clips the blocker to the
+    // claim's box before it nodes anything (a union has no such envelope, and a long
+    // street's roadway or a large junction's sidewalk would be united whole for every claim
+    // along it). The last step is snap-rounded on the micrometre grid, and so is a claim
+    // nothing blocks: an overlay can leave a sliver nanometres wide along an edge it nearly
+    // shares, present or not as the roadways around differ in their last bits (a local
+    // refresh and a full run then disagreed by 2.75 m of sliver, 1e-8 m2); snap rounding
+    // collapses such slivers, those of the floating steps before it included, and gives
+    // valid output. (A union of the blockers in floating precision once had a zero-area
+    // hole through a vertex of the claim, and the whole claim came back: pgTAP 62.)
+    for (std::size_t k = 0; k < meeting.size() && rest; ++k) {
+      rest = k + 1 < meeting.size()
+                 ? difference_by_part(std::move(rest), meeting[k])
+                 : own(ctx_, GEOSDifferencePrec_r(ctx_.handle(), rest.get(), meeting[k], kSidewalkGrid), "difference");
+      if (!rest) break;
+      // (a floating difference can leave a collapsed edge as a line beside the polygons, and
+      // the next overlay would refuse input of mixed dimension)
+      int type = GEOSGeomTypeId_r(ctx_.handle(), rest.get());
+      if (type != GEOS_POLYGON && type != GEOS_MULTIPOLYGON) rest = polygons_of(ctx_, rest.get(), 0.0);
+    }
+    if (!rest) return nullptr;
+    if (meeting.empty()) {
+      rest = own(ctx_, GEOSGeom_setPrecision_r(ctx_.handle(), rest.get(), kSidewalkGrid, 0), "sidewalk grid");
+    }
+    GeomPtr surface = polygons_of(ctx_, rest.get(), kMinSidewalkArea);
+    if (!surface) return nullptr;
+    if (GEOSisValid_r(ctx_.handle(), surface.get()) != 1) {
+      GeomPtr fixed = own(ctx_, GEOSMakeValid_r(ctx_.handle(), surface.get()), "make valid");
+      surface = polygons_of(ctx_, fixed.get(), kMinSidewalkArea);
+    }
+    return surface;
   }
 
   // Whether every vertex of `g` lies on the side of the line through `p` across `direction`

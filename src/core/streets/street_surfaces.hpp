@@ -130,8 +130,8 @@ struct CrossingResult {
   GeomPtr surface;
 };
 
-// CPU seconds spent in each phase of one run (reported at DEBUG1 by the SQL entry and printed by
-// bench/surfaces, for profiling).
+// CPU seconds spent in each phase of one run, and a few counts (reported at DEBUG1 by the SQL
+// entry and printed by bench/surfaces, for profiling).
 struct SurfaceRunStats {
   double topology = 0;   // snapping, splitting, lane plans
   double corners = 0;    // corner arcs and border points per node
@@ -139,6 +139,12 @@ struct SurfaceRunStats {
   double lanes = 0;      // lanes and markings
   double junctions = 0;  // intersection and transition surfaces and their separation
   double sidewalks = 0;  // sidewalks and crossings
+  // How the sidewalks were made: junctions claimed corner by corner (a band along each curb)
+  // or by a buffer of the whole junction (narrowed, repaired or transition junctions, corners
+  // without a curb to follow); claims of any kind that met nothing and needed no overlay.
+  long junction_sidewalks_by_corner = 0;
+  long junction_sidewalks_by_buffer = 0;
+  long sidewalks_without_overlay = 0;
 };
 
 struct SurfaceResult {
