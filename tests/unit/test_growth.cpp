@@ -899,27 +899,38 @@ TEST(GrowExample, FreeEndsSnapToNodesOnlyNearTheCopiedLine) {
   expect_same_edges(grow_example(f.geos, in, band_params(1)).edges, first);
 }
 
+namespace {
+
+// The 80 m grid with a 40 m dead-end tooth at the middle of the block sides of its inner rows:
+// every side, or every other one.
+std::vector<ExampleEdge> grid_with_teeth(bool every_other_side) {
+  std::vector<ExampleEdge> out;
+  std::int64_t id = 0;
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      const double x = j * 80.0, y = i * 80.0;
+      out.push_back({{{i * 80.0, x}, {i * 80.0, x + 80.0}}, "street", ++id});
+      if (i == 0 || i == 8 || (every_other_side && (i + j) % 2 == 0)) {
+        out.push_back({{{x, y}, {x + 80.0, y}}, "street", ++id});
+        continue;
+      }
+      out.push_back({{{x, y}, {x + 40.0, y}}, "street", ++id});
+      out.push_back({{{x + 40.0, y}, {x + 80.0, y}}, "street", ++id});
+      out.push_back({{{x + 40.0, y}, {x + 40.0, y + 40.0}}, "street", ++id});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 TEST(GrowExample, ACityOfCulDeSacsSnapsWithoutTheBand) {
   // The same set-up (snap 44 m) with a 40 m dead-end tooth at the middle of every block side of the
   // grid's inner rows: its dead ends are over 15 % of its street ends, so free ends snap to any node
   // within the snap, and some turn onto the existing street's dead end.
   Fixture f;
   GrowInput in = f.input();
-  in.example.clear();
-  std::int64_t id = 0;
-  for (int i = 0; i <= 8; ++i) {
-    for (int j = 0; j < 8; ++j) {
-      const double x = j * 80.0, y = i * 80.0;
-      in.example.push_back({{{i * 80.0, x}, {i * 80.0, x + 80.0}}, "street", ++id});
-      if (i == 0 || i == 8) {
-        in.example.push_back({{{x, y}, {x + 80.0, y}}, "street", ++id});
-        continue;
-      }
-      in.example.push_back({{{x, y}, {x + 40.0, y}}, "street", ++id});
-      in.example.push_back({{{x + 40.0, y}, {x + 80.0, y}}, "street", ++id});
-      in.example.push_back({{{x + 40.0, y}, {x + 40.0, y + 40.0}}, "street", ++id});
-    }
-  }
+  in.example = grid_with_teeth(false);
   in.existing = side_streets();
   std::size_t turned = 0;
   for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u}) {
@@ -1111,21 +1122,7 @@ TEST(GrowExample, JunctionMixCountsAddUp) {
   // output: the 80 m grid with a 40 m dead-end tooth at the middle of every other inner block side.
   Fixture f;
   GrowInput in = f.input();
-  in.example.clear();
-  std::int64_t id = 0;
-  for (int i = 0; i <= 8; ++i) {
-    for (int j = 0; j < 8; ++j) {
-      const double x = j * 80.0, y = i * 80.0;
-      in.example.push_back({{{i * 80.0, x}, {i * 80.0, x + 80.0}}, "street", ++id});
-      if (i == 0 || i == 8 || (i + j) % 2 == 0) {
-        in.example.push_back({{{x, y}, {x + 80.0, y}}, "street", ++id});
-        continue;
-      }
-      in.example.push_back({{{x, y}, {x + 40.0, y}}, "street", ++id});
-      in.example.push_back({{{x + 40.0, y}, {x + 80.0, y}}, "street", ++id});
-      in.example.push_back({{{x + 40.0, y}, {x + 40.0, y + 40.0}}, "street", ++id});
-    }
-  }
+  in.example = grid_with_teeth(true);
   for (std::uint64_t seed : {1u, 2u, 3u}) {
     GrowResult r = grow_example(f.geos, in, unrotated_params(seed));
     const GrowStats& s = r.stats;
