@@ -1200,10 +1200,13 @@ class SurfaceBuilder {
     bool cuts[2] = {false, false};
     Point cut_point[2];
     Point cut_direction[2];
-    // A junction corner's claim (piece > 0, numbered from 1 round the node): its ring as built,
-    // which is tested exactly against what it may meet, and its pieces make one sidewalk.
+    // A junction corner's claim: piece > 0, numbered from 1 round the node; the pieces of one
+    // junction make one sidewalk.
     int piece = 0;
-    Polyline ring;
+    // A claim that is one polygon without holes built for its own shape (a corner's band, a band
+    // outside a roadway): tested exactly against what it may meet, by its shell (read from its
+    // geometry when its turn comes: every claim's ring held at once was a copy of them all).
+    bool own_ring = false;
   };
 
   // Which sidewalk width an end's street has on its side facing the corner to the left (true)
@@ -1227,6 +1230,7 @@ class SurfaceBuilder {
       if (!result_.sections[e.edge].surface) return false;
     }
     std::vector<SidewalkItem> pieces;
+    std::vector<Polyline> rings;  // (the pieces')
     for (std::size_t i = 0; i < ends.size(); ++i) {
       const End& a = ends[i];
       const End& b = ends[(i + 1) % ends.size()];
@@ -1257,7 +1261,8 @@ class SurfaceBuilder {
       it.geom = it.owned.get();
       it.layer = topo_.nodes[n].layer;
       it.piece = static_cast<int>(i) + 1;
-      it.ring = std::move(ring);
+      it.own_ring = true;
+      rings.push_back(std::move(ring));
       it.cut_point[0] = point_at(a.outgoing, a.border);
       it.cut_direction[0] = -1.0 * tangent_at(a.outgoing, a.border);
       it.cut_point[1] = point_at(b.outgoing, b.border);
@@ -1270,7 +1275,7 @@ class SurfaceBuilder {
     }
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       for (std::size_t j = i + 1; j < pieces.size(); ++j) {
-        if (interiors_may_meet(pieces[i].ring, pieces[j].ring)) return false;
+        if (interiors_may_meet(rings[i], rings[j])) return false;
       }
     }
     for (SidewalkItem& it : pieces) claims.push_back(std::move(it));
@@ -1328,16 +1333,13 @@ class SurfaceBuilder {
   // A street side's claim as the band outside its roadway: the single-sided buffer of the
   // roadway's side `edge` (along the centre line) by w metres (> 0 left, < 0 right), whose inner
   // edge is the roadway's own outline, so that the two meet along that line only. Null when
-  // GEOS makes anything but one polygon without holes of it; `ring` gets its shell.
-  GeomPtr side_band(const Polyline& edge, double w, Polyline& ring) {
+  // GEOS makes anything but one polygon without holes of it.
+  GeomPtr side_band(const Polyline& edge, double w) {
     GeomPtr line = make_line(ctx_, edge);
     GeomPtr band = single_sided_buffer(ctx_, line.get(), w);
     if (GEOSGeomTypeId_r(ctx_.handle(), band.get()) != GEOS_POLYGON || GEOSGetNumInteriorRings_r(ctx_.handle(), band.get()) != 0) {
       return nullptr;
     }
-    std::vector<Polyline> shells = shells_of(band.get());
-    if (shells.size() != 1 || shells[0].size() < 4) return nullptr;
-    ring = std::move(shells[0]);
     return band;
   }
 
@@ -1445,11 +1447,12 @@ class SurfaceBuilder {
           // buffer from the axis, which loses the roadway by an overlay)
           if (sec.status == "ok") {
             Polyline edge = roadway_side(sec.surface.get(), between, side == 0 ? +1 : -1);
-            if (edge.size() >= 2) it.owned = side_band(edge, side == 0 ? w : -w, it.ring);
+            if (edge.size() >= 2) it.owned = side_band(edge, side == 0 ? w : -w);
+            it.own_ring = it.owned != nullptr;
           }
           if (!it.owned) it.owned = single_sided_buffer(ctx_, line.get(), side == 0 ? d : -d);
           if (GEOSisValid_r(ctx_.handle(), it.owned.get()) != 1) {
-            it.ring.clear();
+            it.own_ring = false;
             // (its polygons only: a made-valid buffer can hold lines, and an overlay refuses
             // input of mixed dimension)
             GeomPtr fixed = own(ctx_, GEOSMakeValid_r(ctx_.handle(), it.owned.get()), "make valid");
@@ -1617,10 +1620,12 @@ class SurfaceBuilder {
     // Boxes overlap far more often than shapes (long diagonal streets): only what the claim
     // really meets is taken away (a predicate that fails counts as meeting).
     std::vector<const GEOSGeometry*> meeting;
+    Polyline ring;
+    if (it.own_ring) ring = shells_of(it.geom).front();
     if (!blockers.empty()) {
       std::sort(blockers.begin(), blockers.end());
       const GEOSPreparedGeometry* prepared = nullptr;
-      if (it.ring.empty()) {
+      if (!it.own_ring) {
         prepared = GEOSPrepare_r(ctx_.handle(), it.geom);
         if (prepared == nullptr) ctx_.fail("prepare");
       }
@@ -1633,8 +1638,8 @@ class SurfaceBuilder {
             (it.cuts[1] && beyond_line(items[b].geom, it.cut_point[1], -1.0 * it.cut_direction[1]))) {
           continue;
         }
-        if (prepared == nullptr) {  // a corner's band: exactly, against the blocker's rings
-          if (claim_may_meet(it.ring, items[b].geom)) meeting.push_back(items[b].geom);
+        if (prepared == nullptr) {  // a band of its own shape: exactly, against the blocker's rings
+          if (claim_may_meet(ring, items[b].geom)) meeting.push_back(items[b].geom);
           continue;
         }
         char meets = GEOSPreparedIntersects_r(ctx_.handle(), prepared, items[b].geom);
@@ -1644,8 +1649,8 @@ class SurfaceBuilder {
       if (prepared != nullptr) GEOSPreparedGeom_destroy_r(ctx_.handle(), prepared);
     }
     // A corner's band that meets nothing is its own ring on the grid.
-    if (meeting.empty() && !it.ring.empty()) {
-      if (GeomPtr rounded = rounded_polygon(it.ring)) {
+    if (meeting.empty() && it.own_ring) {
+      if (GeomPtr rounded = rounded_polygon(ring)) {
         ++result_.stats.sidewalks_without_overlay;
         return polygons_of(ctx_, rounded.get(), kMinSidewalkArea);
       }
