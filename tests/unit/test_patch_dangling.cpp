@@ -407,7 +407,8 @@ TEST(PatchDangling, RefillGrowsOnInTheVoidsLeft) {
   ASSERT_GT(on.stats.reseeds, 0u);
   EXPECT_GT(on.stats.refill_islands, 0u);
   EXPECT_GT(east(on), 0.25 * grown_length(on));
-  EXPECT_GT(grown_length(on), 0.9 * on.stats.refill_target);  // the last void may be narrower than the example's widest gap
+  // (the last void may be narrower than the example's widest gap)
+  EXPECT_GT(grown_length(on), 0.9 * on.stats.refill_target);
   EXPECT_LT(grown_length(off), 0.6 * on.stats.refill_target);
   EXPECT_EQ(crossings_without_node(on), 0);
   for (const GrownEdge& e : on.edges) {

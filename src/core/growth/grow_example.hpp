@@ -113,9 +113,10 @@ struct PatchGrowParams {
   // area, a random legal point farther from every street than the example's own widest gap (its
   // parks stay parks) is drawn and the street point nearest to it becomes a front (the void grows
   // from its edge, as Nishida et al. seed local streets along streets); where that grows nothing, a
-  // seed patch inside the void (not across water or an obstacle). Until the length is reached or no such point is found. Without it
-  // canberra's local phase died out like a branching process (street density -16 to -64 %);
-  // 0.85 measured best of 0.7 / 0.85 / 1 (bench/patches, README). 0: off.
+  // seed patch inside the void (not across water or an obstacle). Until the length is reached or
+  // no such point is found. Without it canberra's local phase died out like a branching process
+  // (street density -16 to -64 %); 0.85 measured best of 0.7 / 0.85 / 1 (bench/patches, README).
+  // 0: off.
   double refill = 0.85;
 };
 
