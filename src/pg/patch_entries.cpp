@@ -443,6 +443,10 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                             stats.arterial_front_refused, reasons, stats.arterial_conn_front, stats.arterial_conn_clipped,
                             stats.arterial_conn_merged, stats.arterial_conn_dropped, stats.arterial_dead_ends)));
   }
+  ereport(DEBUG1, (errmsg("grow_patches: refill: target %.0f m, gap %.0f m, %.0f m grown when the queue first emptied, "
+                          "%zu reseeds (%zu inside the void)",
+                          stats.refill_target, stats.refill_gap, stats.refill_before, stats.reseeds,
+                          stats.refill_islands)));
   {
     // Patch size at fronts: legality against size (terciles of the local patches' connector length).
     char buf[1024];

@@ -163,6 +163,15 @@ SELECT ok((SELECT count(DISTINCT g.origin) FROM grown g JOIN pt ON pt.name = g.n
 SELECT ok((SELECT count(DISTINCT g.origin) FROM grown g JOIN pt ON pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin
             WHERE g.name = 'canberra_south_large' AND 'roundabout' = ANY (pt.tags)) >= 2,
           'roundabouts reappear: canberra''s roundabout patches are used');
+-- Refill: canberra's local phase dies out like a branching process (seed 5 from its hull's centre
+-- stopped at a third of the example's street length); the voids it left grow on from their edges.
+SELECT ok((SELECT sum(ST_Length(ST_Intersection(g.geom, ST_Buffer(r.geom, -50)))) FROM region r,
+                  streetgen.grow_patches('SELECT * FROM pt WHERE name = ''canberra_south_large''', r.geom,
+                                         ST_PointOnSurface(r.geom), NULL, '{"seed": 5}') AS g
+            WHERE r.name = 'canberra_south_large')
+          > 0.75 * (SELECT sum(ST_Length(ST_Intersection(e.geom, ST_Buffer(r.geom, -50)))) FROM ex e, region r
+                     WHERE e.name = 'canberra_south_large' AND r.name = e.name),
+          'refill: canberra seed 5 grows over 75 % of the example''s street length in its hull (a third without)');
 SELECT is((SELECT count(*) FROM grown g JOIN pt ON pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin
             WHERE g.name = 'tokyo' AND 'roundabout' = ANY (pt.tags)), 0::bigint, 'and none appear from tokyo''s grid');
 -- Levels: arterials first (the rows come in growth order), then local streets seeded along them.

@@ -371,3 +371,62 @@ TEST(PatchDangling, StratifiedRedrawLeavesACityOfCulsDeSac) {
   EXPECT_EQ(r.stats.size_redraws, 0u);
   EXPECT_EQ(crossings_without_node(r), 0);
 }
+
+namespace {
+double grown_length(const GrowResult& r) {
+  double total = 0.0;
+  for (const GrownEdge& e : r.edges) total += std::hypot(e.b.x - e.a.x, e.b.y - e.a.y);
+  return total;
+}
+}  // namespace
+
+// refill: the voids a growth left (here the second part of a region of two, 200 m apart: the
+// seed's part fills, the other stays empty) are grown on, up to the example's street length per
+// area: from a front at the void's edge first (it grows nothing across the gap), then from a seed
+// patch inside the void; planar, inside the region, deterministic.
+TEST(PatchDangling, RefillGrowsOnInTheVoidsLeft) {
+  Fixture f;
+  GeomPtr two = wkt(f.geos,
+                    "MULTIPOLYGON(((-1500 -1500, -100 -1500, -100 1500, -1500 1500, -1500 -1500)),"
+                    "((100 -1500, 1500 -1500, 1500 1500, 100 1500, 100 -1500)))");
+  GrowInput in = f.input(uneven_grid());
+  in.region = two.get();
+  in.seeds = {{-800.0, 0.0}};
+  GrowParams p = Fixture::patch_growth();
+  p.patch.refill = 0.0;
+  GrowResult off = grow_example(f.geos, in, p);
+  p.patch.refill = 0.85;  // (its default)
+  GrowResult on = grow_example(f.geos, in, p);
+  auto east = [](const GrowResult& r) {
+    double total = 0.0;
+    for (const GrownEdge& e : r.edges) total += e.a.x > 0.0 ? std::hypot(e.b.x - e.a.x, e.b.y - e.a.y) : 0.0;
+    return total;
+  };
+  EXPECT_EQ(off.stats.reseeds, 0u);
+  EXPECT_EQ(east(off), 0.0);
+  ASSERT_GT(on.stats.reseeds, 0u);
+  EXPECT_GT(on.stats.refill_islands, 0u);
+  EXPECT_GT(east(on), 0.25 * grown_length(on));
+  // (the last void may be narrower than the example's widest gap)
+  EXPECT_GT(grown_length(on), 0.9 * on.stats.refill_target);
+  EXPECT_LT(grown_length(off), 0.6 * on.stats.refill_target);
+  EXPECT_EQ(crossings_without_node(on), 0);
+  for (const GrownEdge& e : on.edges) {
+    EXPECT_FALSE(std::abs(e.a.x) < 100.0 || std::abs(e.b.x) < 100.0 || e.a.x * e.b.x < 0.0);
+  }
+  expect_same_graph(grow_example(f.geos, in, p), on);
+}
+
+// Not across a wall: the void beyond an obstacle (or water) that the growth could not cross gets
+// a front at its edge, which grows nothing, and no seed inside it (the far bank is the bridges').
+TEST(PatchDangling, RefillDoesNotJumpAWall) {
+  Fixture f;
+  GrowInput in = f.input(uneven_grid());
+  GeomPtr wall = wkt(f.geos, "POLYGON((-60 -1600, 60 -1600, 60 1600, -60 1600, -60 -1600))");
+  in.obstacles = {wall.get()};
+  in.seeds = {{-800.0, 0.0}};
+  GrowResult r = grow_example(f.geos, in, Fixture::patch_growth());
+  EXPECT_GT(r.stats.reseeds, 0u);
+  EXPECT_EQ(r.stats.refill_islands, 0u);
+  for (const GrownEdge& e : r.edges) EXPECT_TRUE(e.a.x < -60.0 && e.b.x < -60.0);
+}
