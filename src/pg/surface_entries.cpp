@@ -400,8 +400,11 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
        "streetgen: surfaces in CPU seconds: topology %.3f, corners %.3f, sections %.3f, lanes %.3f, junctions %.3f, "
        "sidewalks %.3f",
        t.topology, t.corners, t.sections, t.lanes, t.junctions, t.sidewalks);
-  elog(DEBUG1, "streetgen: junction sidewalks %ld by corner, %ld by buffer; %ld sidewalks without an overlay",
-       t.junction_sidewalks_by_corner, t.junction_sidewalks_by_buffer, t.sidewalks_without_overlay);
+  elog(DEBUG1,
+       "streetgen: junction sidewalks %ld by corner (%ld corners of them by buffer), %ld by buffer; %ld sidewalks "
+       "without an overlay",
+       t.junction_sidewalks_by_corner, t.junction_corners_by_buffer, t.junction_sidewalks_by_buffer,
+       t.sidewalks_without_overlay);
 
   // Phases 2 and 3 in turn, a chunk of rows at a time: rows from the result (C++), then out
   // (PostgreSQL; each row's datums in a context reset after tuplestore_putvalues has copied them).

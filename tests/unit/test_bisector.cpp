@@ -124,3 +124,29 @@ TEST(PolygonContact, ASharedChainOfChordsIsABoundary) {
   dented[4] = 0.999 * dented[4];
   EXPECT_TRUE(interiors_may_meet(quarter_disc, dented));
 }
+
+// Only the edges near the other ring are looked at (where the two boxes meet); what lies there
+// decides as before. A long roadway of 2,000 edges with a band along a stretch of its side,
+// sharing its vertices there: apart; the band's vertex moved a nanometre into the roadway, or an
+// arm of the roadway folded back into the band far from its own stretch, overlaps; a band beyond
+// the roadway's box is apart.
+TEST(PolygonContact, OnlyTheEdgesNearTheOtherRingAreTested) {
+  Polyline roadway;
+  for (int k = 0; k <= 1000; ++k) roadway.push_back({0.5 * k, 0.0});
+  for (int k = 1000; k >= 0; --k) roadway.push_back({0.5 * k, -8.0});
+  roadway.push_back(roadway.front());
+  Polyline band{{100.0, 0.0}, {100.5, 0.0}, {101.0, 0.0}, {101.0, 2.0}, {100.0, 2.0}, {100.0, 0.0}};
+  EXPECT_FALSE(interiors_may_meet(roadway, band));
+  EXPECT_FALSE(interiors_may_meet(band, roadway));
+  Polyline dented = band;
+  dented[1].y = -1e-9;
+  EXPECT_TRUE(interiors_may_meet(roadway, dented));
+  EXPECT_TRUE(interiors_may_meet(dented, roadway));
+  // The same roadway with an arm from its far end folded back over the band (a U-turn's curb).
+  Polyline folded(roadway.begin(), roadway.begin() + 999);  // (the north side up to x = 499)
+  for (Point p : Polyline{{499.0, 1.0}, {100.5, 1.0}, {100.5, 3.0}, {500.0, 3.0}}) folded.push_back(p);
+  folded.insert(folded.end(), roadway.begin() + 1001, roadway.end());
+  EXPECT_TRUE(interiors_may_meet(folded, band));
+  Polyline beyond{{600.0, 0.0}, {601.0, 0.0}, {601.0, 2.0}, {600.0, 2.0}};
+  EXPECT_FALSE(interiors_may_meet(roadway, beyond));
+}

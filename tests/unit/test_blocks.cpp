@@ -93,3 +93,23 @@ TEST(Blocks, SliversBetweenSurfacesAreNotPartsOfTheBlock) {
   EXPECT_EQ(GEOSGetNumGeometries_r(ctx.handle(), out[0].get()), 1);
   EXPECT_NEAR(area(ctx, out[0].get()), 100 * 92, 1e-3);
 }
+
+// Where a sidewalk meets its roadway up to rounding and ends short of the next street, the gap
+// between them opens onto the block: a channel of no width, 50 m long, that the block must not
+// keep (it doubled the perimeter of some blocks; the block is rounded to the grid, which closes it).
+TEST(Blocks, AGapBetweenSurfacesOpeningOntoTheBlockIsNotPartOfIt) {
+  core::GeosContext ctx;
+  std::vector<core::GeomPtr> faces;
+  faces.push_back(test::wkt(ctx, "POLYGON((0 0, 100 0, 100 100, 0 100, 0 0))"));
+  std::vector<core::GeomPtr> pieces;
+  pieces.push_back(test::wkt(ctx, "POLYGON((-10 -5, 110 -5, 110 5, -10 5, -10 -5))"));
+  pieces.push_back(test::wkt(ctx, "POLYGON((-10 5.0000001, 50 5.0000001, 50 8, -10 8, -10 5.0000001))"));
+  auto out = core::faces_minus_pieces(ctx, raw(faces), raw(pieces), 1e-6);
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_TRUE(out[0]);
+  EXPECT_EQ(GEOSisValid_r(ctx.handle(), out[0].get()), 1);
+  EXPECT_NEAR(area(ctx, out[0].get()), 100 * 95 - 50 * 3, 1e-3);
+  double perimeter = 0.0;
+  GEOSLength_r(ctx.handle(), out[0].get(), &perimeter);
+  EXPECT_NEAR(perimeter, 50 + 3 + 50 + 95 + 100 + 92, 1e-3);
+}

@@ -400,3 +400,42 @@ TEST(StreetDetails, AJunctionCornerWithoutSidewalksOnEitherSideGetsNone) {
   EXPECT_GT(ymin, 4.0 - 1e-6);  // nothing south of the through street's north curb
   EXPECT_DOUBLE_EQ(around->width, 3.0);
 }
+
+// A corner without a band of its own claims the buffer of its own curb, not the junction the
+// buffer of its whole ring: on a T whose side street leaves at 60 degrees, the obtuse corner's
+// border lines lie farther out than its sidewalk reaches (the acute corner pushed them), so its
+// band has no corner to end in. Its neighbours keep their bands, and the junction's sidewalk
+// still closes the ring round it: no gap within the sidewalk's width of the junction.
+TEST(StreetDetails, ACornerWithoutABandClaimsItsOwnCurbsBuffer) {
+  GeosContext ctx;
+  const double w = 3.0;
+  const double rad = 60.0 * kPi / 180;
+  std::vector<SurfaceAxis> axes{axis(1, {{-100, 0}, {0, 0}}, 8, 30), axis(2, {{0, 0}, {100, 0}}, 8, 30),
+                                axis(3, {{0, 0}, {100 * std::cos(rad), 100 * std::sin(rad)}}, 8, 30)};
+  for (SurfaceAxis& a : axes) a.sidewalk_left = a.sidewalk_right = w;
+  SurfaceResult r = street_surfaces(ctx, axes, {}, SurfaceSettings{});
+  ASSERT_EQ(r.intersections.size(), 1u);
+  ASSERT_EQ(r.intersections.front().status, "ok");
+  EXPECT_EQ(r.stats.junction_sidewalks_by_corner, 1);
+  EXPECT_EQ(r.stats.junction_sidewalks_by_buffer, 0);
+  EXPECT_EQ(r.stats.junction_corners_by_buffer, 1);
+  const SidewalkResult* around = junction_sidewalk(r);
+  ASSERT_NE(around, nullptr);
+  EXPECT_EQ(GEOSisValid_r(ctx.handle(), around->surface.get()), 1);
+  for (const auto& s : r.sections) EXPECT_LT(overlap_area(ctx, around->surface.get(), s.surface.get()), 1e-4);
+  for (const auto& i : r.intersections) EXPECT_LT(overlap_area(ctx, around->surface.get(), i.surface.get()), 1e-4);
+  std::vector<GeomPtr> all;
+  for (const auto& o : r.sidewalks) {
+    if (&o != around) {
+      EXPECT_LT(overlap_area(ctx, around->surface.get(), o.surface.get()), 1e-4);
+    }
+    all.push_back(own(ctx, GEOSGeom_clone_r(ctx.handle(), o.surface.get()), "clone"));
+  }
+  for (const auto& s : r.sections) all.push_back(own(ctx, GEOSGeom_clone_r(ctx.handle(), s.surface.get()), "clone"));
+  all.push_back(own(ctx, GEOSGeom_clone_r(ctx.handle(), r.intersections.front().surface.get()), "clone"));
+  GeomPtr covered = own(ctx, GEOSUnaryUnion_r(ctx.handle(), make_collection(ctx, GEOS_GEOMETRYCOLLECTION, all).get()),
+                        "union");
+  GeomPtr near = own(ctx, GEOSBuffer_r(ctx.handle(), r.intersections.front().surface.get(), 0.9 * w, 8), "buffer");
+  GeomPtr gap = own(ctx, GEOSDifference_r(ctx.handle(), near.get(), covered.get()), "difference");
+  EXPECT_LT(area(ctx, gap.get()), 0.05);
+}

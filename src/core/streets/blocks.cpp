@@ -77,16 +77,20 @@ void keep_block(GeosContext& ctx, const GEOSGeometry* rest, GeomPtr& result) {
   }
 }
 
-// One face, floating-point (grid_size < 0) or on the grid: the pieces cut to the face, united,
+// One face, floating-point or on the grid of `grid_size`: the pieces cut to the face, united,
 // and taken from it. Returns false when a float overlay failed (the caller retries on the grid);
 // throws when an overlay on the grid fails. (Taking the pieces away one after another, each
 // difference clipping the piece to the face's box, was 10 % faster on the small faces of the
 // Paris graph but 2.6 times slower on Liechtenstein, whose faces hold hundreds of pieces.)
+// In floating point the pieces are united by a buffer of distance 0, which nodes all their rings
+// at once (a cascade of overlays nodes each pair it unites: 19 s against 8 s of CPU on Paris), and
+// the difference is rounded to the grid: where two pieces meet up to rounding, the difference
+// kept the nanometre gap between them as part of the block, a channel of no width along the
+// street (on Paris in about 6,000 of the 13,140 blocks, up to 256 m long).
 bool cut_face(GeosContext& ctx, const GEOSGeometry* face, const GEOSPreparedGeometry* prepared,
               const std::vector<const GEOSGeometry*>& pieces, const std::vector<std::size_t>& candidates, double grid_size,
-              GeomPtr& result, FaceCutStats& stats) {
+              bool grid, GeomPtr& result, FaceCutStats& stats) {
   GEOSContextHandle_t h = ctx.handle();
-  const bool grid = grid_size >= 0;
   std::vector<GeomPtr> parts;
   {  // (the clips' time, however the loop ends)
     ScopeCpuTime clip_time(stats.clip_seconds);
@@ -121,7 +125,7 @@ bool cut_face(GeosContext& ctx, const GEOSGeometry* face, const GEOSPreparedGeom
   }
   GeomPtr collection = make_collection(ctx, GEOS_GEOMETRYCOLLECTION, parts);
   std::clock_t start = std::clock();
-  GEOSGeometry* u = grid ? GEOSUnaryUnionPrec_r(h, collection.get(), grid_size) : GEOSUnaryUnion_r(h, collection.get());
+  GEOSGeometry* u = grid ? GEOSUnaryUnionPrec_r(h, collection.get(), grid_size) : GEOSBuffer_r(h, collection.get(), 0.0, 8);
   stats.union_seconds += seconds_since(start);
   if (u == nullptr) {
     if (grid) ctx.fail("block overlay (union on the grid)");
@@ -138,6 +142,16 @@ bool cut_face(GeosContext& ctx, const GEOSGeometry* face, const GEOSPreparedGeom
     return false;
   }
   GeomPtr difference(d, GeomDeleter{h});
+  if (!grid) {
+    start = std::clock();
+    GEOSGeometry* rounded = GEOSGeom_setPrecision_r(h, difference.get(), grid_size, 0);
+    stats.rounding_seconds += seconds_since(start);
+    if (rounded == nullptr) {
+      forget_or_rethrow(ctx, "block rounding");
+      return false;
+    }
+    difference.reset(rounded);
+  }
   keep_block(ctx, difference.get(), result);
   return true;
 }
@@ -194,9 +208,9 @@ std::vector<GeomPtr> faces_minus_pieces(GeosContext& ctx, const std::vector<cons
     const GEOSGeometry* face = faces[f];
     std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter> prepared(GEOSPrepare_r(h, face), PreparedDeleter{h});
     if (!prepared) ctx.fail("prepared geometry");
-    if (!cut_face(ctx, face, prepared.get(), pieces, candidates[f], -1.0, out[f], s)) {
+    if (!cut_face(ctx, face, prepared.get(), pieces, candidates[f], grid_size, false, out[f], s)) {
       ++s.grid_faces;
-      cut_face(ctx, face, prepared.get(), pieces, candidates[f], grid_size, out[f], s);
+      cut_face(ctx, face, prepared.get(), pieces, candidates[f], grid_size, true, out[f], s);
     }
   }
   s.total_seconds += seconds_since(call_start);

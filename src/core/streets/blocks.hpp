@@ -22,15 +22,16 @@ struct FaceCutStats {
   double clip_seconds = 0;          // in the pieces' intersections with the faces, with the predicates that pick them
   double union_seconds = 0;
   double difference_seconds = 0;
+  double rounding_seconds = 0;      // the floating differences rounded to the grid
   double total_seconds = 0;         // the whole call (the index, the predicates, the retries too)
 };
 
 // For each face: the face minus the union of `pieces` (each clipped to the face first), as a
 // MultiPolygon of the parts of at least 0.01 m² (smaller ones are slivers between surfaces that
 // meet up to rounding), or nullptr when nothing is left. The same operations as the SQL it
-// replaces (ST_Intersection, ST_CollectionExtract, ST_UnaryUnion, ST_Difference): floating-point
-// overlay first; where GEOS throws on nearly coincident edges, the face again with OverlayNG on a
-// grid of `grid_size` (which never fails). A piece whose box misses the face, or that does not
+// replaced (ST_Intersection, ST_CollectionExtract, a union, ST_Difference): floating-point
+// overlay first, its result rounded to the grid of `grid_size`; where GEOS throws on nearly
+// coincident edges, the face again with OverlayNG on that grid (which never fails). A piece whose box misses the face, or that does not
 // touch it, adds nothing; one inside the face's interior is taken as is (its intersection with
 // the face). A null face gives a null result. Polls interrupts between faces.
 std::vector<GeomPtr> faces_minus_pieces(GeosContext& ctx, const std::vector<const GEOSGeometry*>& faces,

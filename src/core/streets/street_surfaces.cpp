@@ -1220,9 +1220,12 @@ class SurfaceBuilder {
   // out by the sidewalk width (the wider of the two streets' sides facing the corner), ending on
   // the two streets' border lines, where their side claims end. Built from the corner's own
   // lines it needs no buffer and, where the junction is as built, touches its neighbours only
-  // along its edges (each tested exactly). Adds nothing and returns false when a corner has no
-  // such band (no curb to follow, the moved curb crossing a border line, an invalid ring, or two
-  // corners' bands overlapping): the caller then claims the buffer of the whole junction.
+  // along its edges (each tested exactly). A corner without such a band (no curb to follow
+  // outward: clamped, no arc; the moved curb crossing a border line; an invalid ring) claims the
+  // buffer of its own curb instead, which gives way to the roadways and earlier claims by
+  // overlays, as a junction's buffer would, but only there. Adds nothing and returns false when
+  // the junction has no curb per corner or two corners' bands overlap: the caller then claims
+  // the buffer of the whole junction.
   bool add_corner_claims(std::size_t n, std::int64_t node_id, std::vector<SidewalkItem>& claims) {
     const std::vector<End>& ends = ends_of_node_[n];
     // (a street taken whole by the junction has no claim beyond its border line to end on)
@@ -1230,38 +1233,32 @@ class SurfaceBuilder {
       if (!result_.sections[e.edge].surface) return false;
     }
     std::vector<SidewalkItem> pieces;
-    std::vector<Polyline> rings;  // (the pieces')
+    std::vector<Polyline> rings;  // (the bands', by piece; empty for a buffered corner)
+    long buffered = 0;
     for (std::size_t i = 0; i < ends.size(); ++i) {
       const End& a = ends[i];
       const End& b = ends[(i + 1) % ends.size()];
       double w = std::max(facing_sidewalk(a, true), facing_sidewalk(b, false));
       if (!(w > 0.0)) continue;
-      Polyline ring = curb(n, i, 0.0);
       SidewalkItem it;
-      if (corners_of_node_[n][i].status == "convex") {
-        // Round the outside of a bend, or a step between two streets' borders: the curb's
-        // single-sided buffer, whose joins are round as a buffer of the junction's were (the
-        // junction's ring runs counter-clockwise: its outside is on the right).
-        if (ring.size() < 2) return false;
-        GeomPtr line = make_line(ctx_, ring);
-        it.owned = single_sided_buffer(ctx_, line.get(), -w);
-        if (GEOSGeomTypeId_r(ctx_.handle(), it.owned.get()) != GEOS_POLYGON ||
-            GEOSGetNumInteriorRings_r(ctx_.handle(), it.owned.get()) != 0) {
-          return false;
-        }
-        ring = shells_of(it.owned.get()).front();
+      Polyline ring = corner_band(n, i, w, it);
+      if (ring.empty()) {
+        // (a clamped corner's curb is a's border point alone: the ring goes straight on to b's)
+        Polyline curb_line = curb(n, i, 0.0);
+        append_points(curb_line, {border_point(b.outgoing, b.border, b.right, -1)});
+        if (curb_line.size() < 2) return false;
+        GeomPtr line = make_line(ctx_, curb_line);
+        it.owned = own(ctx_, GEOSBufferWithStyle_r(ctx_.handle(), line.get(), w, kQuadrantSegments, GEOSBUF_CAP_ROUND,
+                                                   GEOSBUF_JOIN_ROUND, 5.0),
+                       "corner sidewalk buffer");
+        it.own_ring = false;
+        ++buffered;
       } else {
-        Polyline outer = curb(n, i, w);
-        if (outer.empty()) return false;
-        append_points(ring, Polyline(outer.rbegin(), outer.rend()));
-        if (ring.size() < 3) return false;
-        it.owned = make_polygon(ctx_, ring);
+        it.own_ring = true;
       }
-      if (!it.owned || GEOSisValid_r(ctx_.handle(), it.owned.get()) != 1) return false;
       it.geom = it.owned.get();
       it.layer = topo_.nodes[n].layer;
       it.piece = static_cast<int>(i) + 1;
-      it.own_ring = true;
       rings.push_back(std::move(ring));
       it.cut_point[0] = point_at(a.outgoing, a.border);
       it.cut_direction[0] = -1.0 * tangent_at(a.outgoing, a.border);
@@ -1273,13 +1270,43 @@ class SurfaceBuilder {
       it.meta.width = w;
       pieces.push_back(std::move(it));
     }
+    // (a buffered corner gives way to the bands before it, and the bands after it to it, as any
+    // claims do; two bands, each built whole, must not overlap)
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       for (std::size_t j = i + 1; j < pieces.size(); ++j) {
-        if (interiors_may_meet(rings[i], rings[j])) return false;
+        if (!rings[i].empty() && !rings[j].empty() && interiors_may_meet(rings[i], rings[j])) return false;
       }
     }
+    result_.stats.junction_corners_by_buffer += buffered;
     for (SidewalkItem& it : pieces) claims.push_back(std::move(it));
     return true;
+  }
+
+  // Corner i's band of width w (see add_corner_claims) into `it.owned`, and its shell; empty
+  // when the corner has none.
+  Polyline corner_band(std::size_t n, std::size_t i, double w, SidewalkItem& it) {
+    Polyline ring = curb(n, i, 0.0);
+    if (corners_of_node_[n][i].status == "convex") {
+      // Round the outside of a bend, or a step between two streets' borders: the curb's
+      // single-sided buffer, whose joins are round as a buffer of the junction's were (the
+      // junction's ring runs counter-clockwise: its outside is on the right).
+      if (ring.size() < 2) return {};
+      GeomPtr line = make_line(ctx_, ring);
+      it.owned = single_sided_buffer(ctx_, line.get(), -w);
+      if (GEOSGeomTypeId_r(ctx_.handle(), it.owned.get()) != GEOS_POLYGON ||
+          GEOSGetNumInteriorRings_r(ctx_.handle(), it.owned.get()) != 0) {
+        return {};
+      }
+      ring = shells_of(it.owned.get()).front();
+    } else {
+      Polyline outer = curb(n, i, w);
+      if (outer.empty()) return {};
+      append_points(ring, Polyline(outer.rbegin(), outer.rend()));
+      if (ring.size() < 3) return {};
+      it.owned = make_polygon(ctx_, ring);
+    }
+    if (!it.owned || GEOSisValid_r(ctx_.handle(), it.owned.get()) != 1) return {};
+    return ring;
   }
 
   // The side of a section's roadway outline, `side` +1 left of its centre line `between`, -1

@@ -141,9 +141,10 @@ struct SurfaceRunStats {
   double sidewalks = 0;  // sidewalks and crossings
   // How the sidewalks were made: junctions claimed corner by corner (a band along each curb)
   // or by a buffer of the whole junction (narrowed, repaired or transition junctions, corners
-  // without a curb to follow); claims of any kind that met nothing and needed no overlay.
+  // whose bands overlap); claims of any kind that met nothing and needed no overlay.
   long junction_sidewalks_by_corner = 0;
   long junction_sidewalks_by_buffer = 0;
+  long junction_corners_by_buffer = 0;  // (of junctions claimed by corner: a corner without a band of its own)
   long sidewalks_without_overlay = 0;
 };
 
