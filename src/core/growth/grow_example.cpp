@@ -440,21 +440,28 @@ class Grower {
   static constexpr int kRestarts = 5;
   static constexpr int kMaxReseeds = 200;
 
-  bool reseed() {
+  // One draw of a point in the region's box: true when it lies in the region, off obstacles and
+  // water, farther than fill_gap_ from every street.
+  bool draw_void_point(Point& q) {
     GEOSContextHandle_t h = geos_.handle();
+    q = Point{env_min_.x + uniform01() * (env_max_.x - env_min_.x), env_min_.y + uniform01() * (env_max_.y - env_min_.y)};
+    if (crowded(q, fill_gap_, UINT32_MAX)) return false;
+    GeomPtr g = own(geos_, GEOSGeom_createPointFromXY_r(h, q.x, q.y), "reseed point");
+    char inside = GEOSPreparedContains_r(h, region_.get(), g.get());
+    if (inside == 2) geos_.fail("reseed in region");
+    if (inside == 0) return false;
+    if (obstacles_prepared_) {
+      char hit = GEOSPreparedIntersects_r(h, obstacles_prepared_.get(), g.get());
+      if (hit == 2) geos_.fail("reseed in obstacle");
+      if (hit == 1) return false;
+    }
+    return !in_water(q);
+  }
+
+  bool reseed() {
     for (int t = 0; t < 64; ++t) {
-      Point q{env_min_.x + uniform01() * (env_max_.x - env_min_.x), env_min_.y + uniform01() * (env_max_.y - env_min_.y)};
-      if (crowded(q, fill_gap_, UINT32_MAX)) continue;
-      GeomPtr g = own(geos_, GEOSGeom_createPointFromXY_r(h, q.x, q.y), "reseed point");
-      char inside = GEOSPreparedContains_r(h, region_.get(), g.get());
-      if (inside == 2) geos_.fail("reseed in region");
-      if (inside == 0) continue;
-      if (obstacles_prepared_) {
-        char hit = GEOSPreparedIntersects_r(h, obstacles_prepared_.get(), g.get());
-        if (hit == 2) geos_.fail("reseed in obstacle");
-        if (hit == 1) continue;
-      }
-      if (in_water(q)) continue;
+      Point q;
+      if (!draw_void_point(q)) continue;
       ++stats_.reseeds;
       unfinished_.push_back(add_node(q));
       return true;
@@ -497,20 +504,9 @@ class Grower {
   // parks) from every street; the point of the street nearest to it becomes a front (split there
   // unless a node lies within min_length_), so the void grows from its edge, joined to the network.
   bool reseed_at_edge(Point& void_point, Point& edge_point) {
-    GEOSContextHandle_t h = geos_.handle();
     for (int t = 0; t < 64; ++t) {
-      Point q{env_min_.x + uniform01() * (env_max_.x - env_min_.x), env_min_.y + uniform01() * (env_max_.y - env_min_.y)};
-      if (crowded(q, fill_gap_, UINT32_MAX)) continue;
-      GeomPtr g = own(geos_, GEOSGeom_createPointFromXY_r(h, q.x, q.y), "reseed point");
-      char inside = GEOSPreparedContains_r(h, region_.get(), g.get());
-      if (inside == 2) geos_.fail("reseed in region");
-      if (inside == 0) continue;
-      if (obstacles_prepared_) {
-        char hit = GEOSPreparedIntersects_r(h, obstacles_prepared_.get(), g.get());
-        if (hit == 2) geos_.fail("reseed in obstacle");
-        if (hit == 1) continue;
-      }
-      if (in_water(q)) continue;
+      Point q;
+      if (!draw_void_point(q)) continue;
       hits_.clear();
       edge_tree_.query(bgi::nearest(BPoint(q.x, q.y), 16), std::back_inserter(hits_));
       std::uint32_t best = UINT32_MAX;
