@@ -1424,13 +1424,14 @@ class SurfaceBuilder {
     return polygon;
   }
 
-  // Sidewalks: each section's side bands (the single-sided buffer of its centre line between
-  // the border lines, out to half the roadway plus the sidewalk width) and each junction's
-  // surroundings (its surface buffered by the widest sidewalk of its streets: round joins follow
-  // the curb arcs) are claims; a sidewalk is its claim minus every roadway of its layer and the
-  // claims that come before it (sections' in key order, then junctions' by node id), so that
-  // sidewalks never overlap a roadway or each other, and a sidewalk depends only on what lies
-  // within its reach, whatever else the engine was given.
+  // Sidewalks: each section's side bands (the band outside its roadway's own outline, or for a
+  // narrowed section the single-sided buffer of its centre line out to half the roadway plus the
+  // sidewalk width) and each junction's surroundings (a band per corner along its curb, the
+  // buffer of a corner's curb where it has no band, or the junction's surface buffered by the
+  // widest sidewalk of its streets: add_corner_claims) are claims; a sidewalk is its claim minus
+  // every roadway of its layer and the claims that come before it (sections' in key order, then
+  // junctions' by node id), so that sidewalks never overlap a roadway or each other, and a
+  // sidewalk depends only on what lies within its reach, whatever else the engine was given.
   void build_sidewalks(InterruptPoller& poller) {
     using Item = SidewalkItem;
     std::vector<Item> items;
