@@ -76,18 +76,26 @@ TEST(Blocks, RefusesABadGrid) {
   }
 }
 
+namespace {
+// A 100 m square face with a street along its bottom edge (its roadway up to y = 5) and
+// `sidewalk` beside it: the face minus both.
+std::vector<core::GeomPtr> square_minus_street_and(core::GeosContext& ctx, const char* sidewalk) {
+  std::vector<core::GeomPtr> faces;
+  faces.push_back(test::wkt(ctx, "POLYGON((0 0, 100 0, 100 100, 0 100, 0 0))"));
+  std::vector<core::GeomPtr> pieces;
+  pieces.push_back(test::wkt(ctx, "POLYGON((-10 -5, 110 -5, 110 5, -10 5, -10 -5))"));
+  pieces.push_back(test::wkt(ctx, sidewalk));
+  return core::faces_minus_pieces(ctx, raw(faces), raw(pieces), 1e-6);
+}
+}  // namespace
+
 // Two surfaces whose edges meet up to rounding leave a gap nanometres wide between them: the
 // block keeps the real part only, not that sliver.
 TEST(Blocks, SliversBetweenSurfacesAreNotPartsOfTheBlock) {
   core::GeosContext ctx;
-  std::vector<core::GeomPtr> faces;
-  faces.push_back(test::wkt(ctx, "POLYGON((0 0, 100 0, 100 100, 0 100, 0 0))"));
-  std::vector<core::GeomPtr> pieces;
-  // A street along the bottom edge, and a sidewalk along it 1e-7 m off its edge: a gap across
-  // the face, 100 m long, of 1e-5 m2, cut off from the rest of the face by the sidewalk.
-  pieces.push_back(test::wkt(ctx, "POLYGON((-10 -5, 110 -5, 110 5, -10 5, -10 -5))"));
-  pieces.push_back(test::wkt(ctx, "POLYGON((-10 5.0000001, 110 5.0000001, 110 8, -10 8, -10 5.0000001))"));
-  auto out = core::faces_minus_pieces(ctx, raw(faces), raw(pieces), 1e-6);
+  // A sidewalk along the street 1e-7 m off its edge: a gap across the face, 100 m long, of
+  // 1e-5 m2, cut off from the rest of the face by the sidewalk.
+  auto out = square_minus_street_and(ctx, "POLYGON((-10 5.0000001, 110 5.0000001, 110 8, -10 8, -10 5.0000001))");
   ASSERT_EQ(out.size(), 1u);
   ASSERT_TRUE(out[0]);
   EXPECT_EQ(GEOSGetNumGeometries_r(ctx.handle(), out[0].get()), 1);
@@ -99,12 +107,7 @@ TEST(Blocks, SliversBetweenSurfacesAreNotPartsOfTheBlock) {
 // keep (it doubled the perimeter of some blocks; the block is rounded to the grid, which closes it).
 TEST(Blocks, AGapBetweenSurfacesOpeningOntoTheBlockIsNotPartOfIt) {
   core::GeosContext ctx;
-  std::vector<core::GeomPtr> faces;
-  faces.push_back(test::wkt(ctx, "POLYGON((0 0, 100 0, 100 100, 0 100, 0 0))"));
-  std::vector<core::GeomPtr> pieces;
-  pieces.push_back(test::wkt(ctx, "POLYGON((-10 -5, 110 -5, 110 5, -10 5, -10 -5))"));
-  pieces.push_back(test::wkt(ctx, "POLYGON((-10 5.0000001, 50 5.0000001, 50 8, -10 8, -10 5.0000001))"));
-  auto out = core::faces_minus_pieces(ctx, raw(faces), raw(pieces), 1e-6);
+  auto out = square_minus_street_and(ctx, "POLYGON((-10 5.0000001, 50 5.0000001, 50 8, -10 8, -10 5.0000001))");
   ASSERT_EQ(out.size(), 1u);
   ASSERT_TRUE(out[0]);
   EXPECT_EQ(GEOSisValid_r(ctx.handle(), out[0].get()), 1);
