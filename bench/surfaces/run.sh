@@ -109,16 +109,17 @@ done
 say ""
 say "Where generate's time goes: the engine's phases in CPU seconds (topology, corners, sections,"
 say "lanes and markings, junctions, sidewalks and crossings), then the blocks' overlays per face"
-say "(clip with its predicates, union, difference, rounding to the grid, and the whole call), all CPU seconds, from the DEBUG1"
+say "(the winding pass, then for the faces it leaves clip with its predicates, union, difference; rounding to the grid, and"
+say "the whole call), all CPU seconds, from the DEBUG1"
 say "messages of the generate above:"
 say ""
-say "| dataset | topology | corners | sections | lanes | junctions | sidewalks | blocks: clip | union | difference | rounding | all |"
-say "|---|---|---|---|---|---|---|---|---|---|---|---|"
+say "| dataset | topology | corners | sections | lanes | junctions | sidewalks | blocks: winding | clip | union | difference | rounding | all |"
+say "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for n in "${names[@]}"; do
   say "| $n | $(awk '
     /streetgen: surfaces in CPU seconds/ { e = ""; sep = ""; for (i = 1; i <= NF; i++) if ($i ~ /^[0-9.]+,?$/) { v = $i; sub(",", "", v); e = e sep v; sep = " | " } }
-    /streetgen: blocks of/ { b = ""; for (i = 1; i <= NF; i++) if ($i == "clips" || $i == "unions" || $i == "differences" || $i == "rounding" || $i == "all") { v = $(i + 1); sub(",", "", v); b = b " | " v } }
-    END { print (e == "" ? "n/a | | | | |" : e) (b == "" ? " | n/a | | | |" : b) }' "$out/generate-$n.log") |"
+    /streetgen: blocks of/ { b = ""; for (i = 1; i <= NF; i++) if ($i == "winding" || $i == "clips" || $i == "unions" || $i == "differences" || $i == "rounding" || $i == "all") { v = $(i + 1); sub(",", "", v); b = b " | " v } }
+    END { print (e == "" ? "n/a | | | | |" : e) (b == "" ? " | n/a | | | | |" : b) }' "$out/generate-$n.log") |"
 done
 say ""
 say "Corners by status, intersections by status, issues by kind:"

@@ -79,10 +79,11 @@ Datum _streetgen_faces_minus(PG_FUNCTION_ARGS) {
   pg::raise_if_failed(error);
 
   elog(DEBUG1,
-       "streetgen: blocks of %zu faces, %zu (face, piece) pairs by box, %zu pieces clipped, %zu faces on the grid; "
-       "CPU seconds in clips %.3f, unions %.3f, differences %.3f, rounding %.3f, all %.3f",
-       rows->stats.faces, rows->stats.candidate_pairs, rows->stats.clipped_pairs, rows->stats.grid_faces,
-       rows->stats.clip_seconds, rows->stats.union_seconds, rows->stats.difference_seconds, rows->stats.rounding_seconds,
+       "streetgen: blocks of %zu faces, %zu (face, polygon) pairs by box, %zu faces by winding, %zu polygons clipped, "
+       "%zu faces on the grid; CPU seconds in winding %.3f, clips %.3f, unions %.3f, differences %.3f, rounding %.3f, "
+       "all %.3f",
+       rows->stats.faces, rows->stats.candidate_pairs, rows->stats.winding_faces, rows->stats.clipped_pairs,
+       rows->stats.grid_faces, rows->stats.winding_seconds, rows->stats.clip_seconds, rows->stats.union_seconds, rows->stats.difference_seconds, rows->stats.rounding_seconds,
        rows->stats.total_seconds);
   auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
   for (std::size_t i = 0; i < rows->geoms.size(); ++i) {

@@ -17,8 +17,10 @@ struct FaceCutStats {
   std::size_t faces = 0;
   std::size_t candidate_pairs = 0;  // (face, piece) pairs whose boxes overlap
   std::size_t clipped_pairs = 0;    // pairs that needed an overlay (the piece crosses the face's boundary)
+  std::size_t winding_faces = 0;    // faces done in one pass by a winding count (the others are clipped and united)
   std::size_t grid_faces = 0;       // faces that fell back to the micrometre grid
   // CPU seconds
+  double winding_seconds = 0;       // in the winding passes, with the predicates that pick the pieces
   double clip_seconds = 0;          // in the pieces' intersections with the faces, with the predicates that pick them
   double union_seconds = 0;
   double difference_seconds = 0;
@@ -26,14 +28,19 @@ struct FaceCutStats {
   double total_seconds = 0;         // the whole call (the index, the predicates, the retries too)
 };
 
-// For each face: the face minus the union of `pieces` (each clipped to the face first), as a
-// MultiPolygon of the parts of at least 0.01 m² (smaller ones are slivers between surfaces that
-// meet up to rounding), or nullptr when nothing is left. The same operations as the SQL it
-// replaced (ST_Intersection, ST_CollectionExtract, a union, ST_Difference): floating-point
-// overlay first, its result rounded to the grid of `grid_size`; where GEOS throws on nearly
-// coincident edges, the face again with OverlayNG on that grid (which never fails). A piece whose box misses the face, or that does not
-// touch it, adds nothing; one inside the face's interior is taken as is (its intersection with
-// the face). A null face gives a null result. Polls interrupts between faces.
+// For each face: the face minus the union of the polygons of `pieces`, as a MultiPolygon of the
+// parts of at least 0.01 m² (smaller ones are slivers between surfaces that meet up to
+// rounding), or nullptr when nothing is left. Each face goes the first way that works:
+// 1. one buffer of distance 0 over a winding count (the face +1, each touching piece -1), in
+//    floating point, rounded to the grid of `grid_size`; not for a face that a piece with a hole
+//    touches;
+// 2. the pieces clipped to the face (one inside the face's interior taken as is), united, and
+//    taken from it, in floating point, rounded to the grid: the operations of the SQL it replaced
+//    (ST_Intersection, a union, ST_Difference);
+// 3. the same with OverlayNG on the grid, which never fails (GEOS throws on nearly coincident
+//    edges on a few real faces).
+// A piece whose box misses the face, or that does not touch it, adds nothing. A null face gives
+// a null result. Polls interrupts between faces.
 std::vector<GeomPtr> faces_minus_pieces(GeosContext& ctx, const std::vector<const GEOSGeometry*>& faces,
                                         const std::vector<const GEOSGeometry*>& pieces, double grid_size,
                                         FaceCutStats* stats = nullptr);
