@@ -3926,17 +3926,17 @@ class Grower {
   // there): drawing anew each time made junctions of degree d + 1 more frequent than the example's
   // (bench/growth: tokyo 4-way +10.7 %, barcelona +12.3 % over seeds 1-18; README).
   //
-  // A T junction takes a fourth edge while the output has fewer crossings among its junctions than
-  // the example as given (both counted farther than crop_margin inside the region or the example's
-  // hull), and not once it has as many, whatever the draw says (growth16: a one-sided top-up lifted
-  // the seeds below the example and left those above it, bench/growth, README). The draw assumes copies make the crossings and joins only add
-  // the example's share on top; where copies lose arms (canberra: arms within min_angle or under the
-  // minimum edge; strasbourg), the output was short of crossings: canberra's 4-way share -59 / -56 %
-  // (growth15), strasbourg's -27 / -26 % (bench/growth, README). The target is the example as given,
-  // as compare_networks measures it, not the contracted one: contracting staggered T pairs raised
-  // barcelona's to 0.358 against 0.340 (and its 5-way share among 4+ to 0.042 against 0.024), so the
-  // top-up pushed it past its example (growth16). Only T -> crossing: a 4 -> 5 top-up fired in
-  // barcelona (5-way junctions where its diagonal crosses the grid) and took 4-way junctions away.
+  // At a T the output's own count decides instead of the draw: a T takes a fourth edge while the
+  // output has fewer crossings among its junctions than the example as given, and not once it has
+  // as many (both counted farther than crop_margin inside the region or the example's hull). The
+  // draw assumed copies make the crossings and joins only add the example's share on top; where
+  // copies lose arms (canberra: arms within min_angle or under the minimum edge; strasbourg) the
+  // output was short of crossings: canberra's 4-way share -59 / -56 % (growth15), strasbourg's -27 /
+  // -26 %. The target is the example as given, as compare_networks measures it, not the contracted
+  // one: contracting staggered T pairs raised barcelona's share to 0.358 against 0.340. Two-sided: a
+  // top-up alone lifted the seeds below the example and left those above (barcelona 4-way +8..+11 %).
+  // Only at T's: a 4 -> 5 top-up took barcelona's crossings away. The draw is still made, so the
+  // random stream is the same. bench/growth, README (growth16).
   bool node_allows_one_more(std::uint32_t w) {
     ONode& n = nodes_[w];
     const std::size_t d = n.edges.size();
