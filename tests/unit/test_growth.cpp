@@ -408,6 +408,7 @@ TEST(GrowExample, FrontsThatCanNeitherGrowNorJoinAreCutBack) {
   for (int i = 0; i <= 8; ++i) {
     for (int j = 0; j < 8; ++j) {
       in.example.push_back({{at(j, i), at(j + 1, i)}, "street", ++id});
+      if (j % 3 == 0 && i > 0 && i < 8) continue;  // T junctions: the top-up does not join every failed front
       in.example.push_back({{at(i, j), at(i, j + 1)}, "street", ++id});
     }
   }
@@ -765,10 +766,14 @@ TEST(GrowExample, ShortSegmentsGoOnPastTheirOwnStreet) {
 
 TEST(GrowExample, JoinsKeepTheExampleJunctionMix) {
   // A grid of 80 m blocks with a third of its inner cross streets' segments left out: junctions
-  // are 3 in 4 T (56 T, 14 crossings). Joining a T node is allowed with the example's probability
-  // that a node of degree 3 has a fourth edge, drawn once per node and degree: refused joins are
-  // asked again (fronts retry, neighbours' proposals end there), and a fresh draw each time made
-  // more crossings (29.7 % of the output's junctions over these 20 seeds, against 26.2 %).
+  // are 3 in 4 T (56 T, 14 crossings), 2 in 5 crossings away from its crop edge (10 of 25). Joining
+  // a T node is allowed with the example's probability that a node of degree 3 has a fourth edge,
+  // drawn once per node and degree: refused joins are asked again (fronts retry, neighbours'
+  // proposals end there), and a fresh draw each time made more crossings (29.7 % of the output's
+  // junctions over these 20 seeds, against 26.2 %). Since growth16 a join onto a T is made while
+  // the output is short of the example's crossings away from the crop edge (40 %) and refused once
+  // it has them, whatever the draw says: the output has 36.9 % (growth16's one-sided top-up: 38.0 %,
+  // with fresh draws 38.3 %), and the test checks that it does not pass the example.
   Fixture f;
   GrowInput in = f.input();
   in.example.clear();
@@ -801,7 +806,7 @@ TEST(GrowExample, JoinsKeepTheExampleJunctionMix) {
     }
   }
   ASSERT_GT(tees + crossings, 1000u);
-  EXPECT_LT(static_cast<double>(crossings) / static_cast<double>(tees + crossings), 0.28)
+  EXPECT_LT(static_cast<double>(crossings) / static_cast<double>(tees + crossings), 0.40)
       << crossings << " crossings, " << tees << " T junctions";
 }
 
@@ -1334,4 +1339,54 @@ TEST(GrowExample, ACityOfCulDeSacsKeepsItsCrossingsThroughJoins) {
   const double share = static_cast<double>(crossings) / static_cast<double>(tees + crossings);
   // 113 crossings and 670 T's over these seeds (14 %); with the draw alone 50 and 650 (7 %).
   EXPECT_GT(share, 0.11) << crossings << " crossings, " << tees << " T junctions";
+}
+
+TEST(GrowExample, CrossingsLostByCopiesAreToppedUpByJoins) {
+  // A grid (not a city of cul-de-sacs) whose crossings each start their northern arm with a 3 m
+  // segment to a shape point, under the minimum edge: a copy of a crossing loses that arm and makes
+  // a T, so the example's crossings come back only through joins onto T's. A join onto a T that the
+  // example's draw refused is made while the output (away from the region's edge) has fewer
+  // crossings among its junctions than the example as given (growth16: strasbourg's 4-way share
+  // -27 -> -4 %). Away from the region's edge (100 m), over seeds 1-6.
+  Fixture f;
+  GrowInput in = f.input();
+  in.example.clear();
+  std::int64_t id = 0;
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      const double x = j * 80.0;
+      in.example.push_back({{{i * 80.0, x}, {i * 80.0, x + 3.0}, {i * 80.0, x + 80.0}}, "street", ++id});
+      in.example.push_back({{{x, i * 80.0}, {x + 80.0, i * 80.0}}, "street", ++id});
+    }
+  }
+  std::size_t tees = 0, crossings = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    GrowParams p;
+    p.seed = seed;
+    p.rotation = false;
+    p.max_edges = 3000;
+    p.fill = true;  // growth that cannot go north through a crossing goes on from new seeds
+    GrowResult r = grow_example(f.geos, in, p);
+    ASSERT_GT(r.edges.size(), 100u) << "seed " << seed;
+    EXPECT_LT(r.stats.dead_end_share, 0.15);  // not a city of cul-de-sacs
+    expect_planar(r, seed);
+    std::map<std::int64_t, int> degree;
+    std::map<std::int64_t, Point> at;
+    for (const GrownEdge& e : r.edges) {
+      ++degree[e.from_node];
+      ++degree[e.to_node];
+      at[e.from_node] = e.a;
+      at[e.to_node] = e.b;
+    }
+    for (const auto& [node, d] : degree) {
+      const Point q = at[node];
+      if (std::min({q.x, q.y, 1000.0 - q.x, 1000.0 - q.y}) < 100.0) continue;
+      tees += d == 3;
+      crossings += d >= 4;
+    }
+  }
+  ASSERT_GT(tees + crossings, 150u);
+  const double share = static_cast<double>(crossings) / static_cast<double>(tees + crossings);
+  // 50 crossings and 164 T's over these seeds (23 %); with the draw alone 32 and 186 (15 %).
+  EXPECT_GT(share, 0.19) << crossings << " crossings, " << tees << " T junctions";
 }
