@@ -189,3 +189,21 @@ TEST(Blocks, AHoleOfAPieceOutsideTheFaceIsNotBlock) {
   EXPECT_NEAR(area(ctx, out[0].get()), 3806.9494, 1e-3);
   EXPECT_EQ(GEOSisValid_r(ctx.handle(), out[0].get()), 1);
 }
+
+// A face with a hole (an island of streets inside it that polygonize leaves out of it): the hole
+// stays out of the block, and a piece across the hole's edge takes only what lies in the face.
+TEST(Blocks, AFacesHoleStaysOutOfItsBlock) {
+  core::GeosContext ctx;
+  std::vector<core::GeomPtr> faces;
+  faces.push_back(test::wkt(ctx, "POLYGON((0 0, 100 0, 100 100, 0 100, 0 0), (40 40, 60 40, 60 60, 40 60, 40 40))"));
+  std::vector<core::GeomPtr> pieces;
+  pieces.push_back(test::wkt(ctx, "POLYGON((35 45, 50 45, 50 55, 35 55, 35 45))"));  // 50 m² in the face, 50 in the hole
+  pieces.push_back(test::wkt(ctx, "POLYGON((45 45, 55 45, 55 55, 45 55, 45 45))"));  // inside the hole only
+  core::FaceCutStats stats;
+  auto out = core::faces_minus_pieces(ctx, raw(faces), raw(pieces), 1e-6, &stats);
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_TRUE(out[0]);
+  EXPECT_NEAR(area(ctx, out[0].get()), 10000 - 400 - 50, 1e-6);
+  EXPECT_EQ(GEOSisValid_r(ctx.handle(), out[0].get()), 1);
+  EXPECT_EQ(stats.winding_faces, 1u);
+}
