@@ -30,11 +30,14 @@ mkdir -p "$out"
 source "$repo/bench/lib.sh"
 bench_cluster "$port" nobuild
 psql -X -q -v ON_ERROR_STOP=1 <<SQL
+-- ids, and the table's order the grower reads the example in, follow the features' order in the file:
+-- without the window's ORDER BY they depended on what else the table held (growth17).
 CREATE TABLE patch AS
-SELECT n AS name, row_number() OVER (PARTITION BY n) AS id, f -> 'properties' ->> 'type' AS road_class,
+SELECT n AS name, row_number() OVER (PARTITION BY n ORDER BY i) AS id, f -> 'properties' ->> 'type' AS road_class,
        ST_SetSRID(ST_GeomFromGeoJSON(f -> 'geometry'), 0) AS geom
   FROM unnest(ARRAY['tokyo', 'canberra_south_large', 'barcelona_east', 'new-york', 'strasbourg']) AS n,
-       jsonb_array_elements(pg_read_file('$data/examples/patches/' || n || '.geojson')::jsonb -> 'features') AS f;
+       jsonb_array_elements(pg_read_file('$data/examples/patches/' || n || '.geojson')::jsonb -> 'features')
+         WITH ORDINALITY AS e(f, i);
 CREATE TABLE region AS
 SELECT name, ST_ConvexHull(ST_Collect(geom)) AS geom FROM patch GROUP BY name;
 CREATE TABLE grown (name text, seed integer, id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry);
