@@ -514,7 +514,8 @@ class Grower {
   // (a far bank is the bridges', as for refill).
   bool draw_point_beyond(double gap, Point& q) {
     GEOSContextHandle_t h = geos_.handle();
-    q = Point{env_min_.x + uniform01() * (env_max_.x - env_min_.x), env_min_.y + uniform01() * (env_max_.y - env_min_.y)};
+    q = Point{env_min_.x + uniform01() * (env_max_.x - env_min_.x),
+              env_min_.y + uniform01() * (env_max_.y - env_min_.y)};
     if (crowded(q, gap, UINT32_MAX)) return false;
     hits_.clear();
     edge_tree_.query(bgi::nearest(BPoint(q.x, q.y), 16), std::back_inserter(hits_));
