@@ -443,6 +443,12 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                             stats.arterial_front_refused, reasons, stats.arterial_conn_front, stats.arterial_conn_clipped,
                             stats.arterial_conn_merged, stats.arterial_conn_dropped, stats.arterial_dead_ends)));
   }
+  if (stats.arterial_refill_target > 0.0) {
+    ereport(DEBUG1, (errmsg("grow_patches: arterial refill: main streets %.0f m aimed at, gap %.0f m, %.0f m when the "
+                            "arterial phase first stopped, %.0f m at its end, %zu arterial seeds",
+                            stats.arterial_refill_target, stats.arterial_refill_gap, stats.arterial_refill_before,
+                            stats.arterial_refill_after, stats.arterial_reseeds)));
+  }
   ereport(DEBUG1, (errmsg("grow_patches: refill: target %.0f m, gap %.0f m, %.0f m grown when the queue first emptied, "
                           "%zu reseeds (%zu inside the void)",
                           stats.refill_target, stats.refill_gap, stats.refill_before, stats.reseeds,

@@ -382,7 +382,8 @@ TEST(GrowPatches, ArterialsFirstThenLocalStreetsFromTheirSeeds) {
                               s.arterial_front_reach + s.arterial_front_hausdorff + s.arterial_front_refused;
   EXPECT_GT(s.arterial_fronts, 0u);
   EXPECT_LE(stopped, s.arterial_fronts);
-  EXPECT_GE(s.arterial_fronts - stopped + 1, s.arterial_patches_placed);  // the seed's patch has no front
+  // the seed's patch and the arterial refill's seed patches have no front
+  EXPECT_GE(s.arterial_fronts - stopped + 1 + s.arterial_reseeds, s.arterial_patches_placed);
   std::size_t refused = 0;
   for (std::size_t k = 0; k < kPatchRefusals; ++k) refused += s.arterial_refusals[k];
   EXPECT_EQ(s.arterial_refusals[kRefNone], 0u);
@@ -418,4 +419,69 @@ TEST(GrowPatches, ArterialsFirstThenLocalStreetsFromTheirSeeds) {
     if (flat.edges[i].road_class == "street") flat_first_street = i;
   }
   EXPECT_LT(flat_first_street, 20u);
+}
+
+// arterial_refill: the arterial phase copies the example's arterials outwards from its seed patch
+// and stops where they stop (here the second part of a region of two, 200 m apart, which no
+// arterial reaches); arterial seed patches in the land farther from every arterial than the
+// example's widest space between its own arterials grow arterials there too, before the local
+// phase. Planar, inside the region, deterministic.
+TEST(GrowPatches, ArterialRefillSeedsArterialsWhereThePhaseStopped) {
+  GeosContext geos;
+  GeomPtr two = wkt(geos,
+                    "MULTIPOLYGON(((-1200 -1200, -100 -1200, -100 1200, -1200 1200, -1200 -1200)),"
+                    "((100 -1200, 1200 -1200, 1200 1200, 100 1200, 100 -1200)))");
+  GrowInput in;
+  in.patches = extract_patches(geos, avenue_grid(), PatchParams{}).patches;
+  in.region = two.get();
+  in.seeds = {{-600.0, 0.0}};
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 2;
+  p.max_edges = 20000;
+  p.patch.arterial_refill = 0.0;
+  GrowResult off = grow_example(geos, in, p);
+  p.patch.arterial_refill = 0.5;  // (its default)
+  GrowResult on = grow_example(geos, in, p);
+  auto avenues_east = [](const GrowResult& r) {
+    double total = 0.0;
+    for (const GrownEdge& e : r.edges) {
+      if (e.road_class == "avenue" && e.a.x > 0.0) total += std::hypot(e.b.x - e.a.x, e.b.y - e.a.y);
+    }
+    return total;
+  };
+  auto avenues = [](const GrowResult& r) {
+    double total = 0.0;
+    for (const GrownEdge& e : r.edges) {
+      if (e.road_class == "avenue") total += std::hypot(e.b.x - e.a.x, e.b.y - e.a.y);
+    }
+    return total;
+  };
+  EXPECT_EQ(off.stats.arterial_reseeds, 0u);
+  EXPECT_EQ(avenues_east(off), 0.0);
+  ASSERT_GT(on.stats.arterial_reseeds, 0u);
+  EXPECT_GT(avenues_east(on), 1000.0);
+  EXPECT_GT(avenues(on), avenues(off) + 1000.0);
+  // (the joins after growth may add arterial pieces: arterial T's continued across)
+  EXPECT_LE(on.stats.arterial_refill_after, avenues(on) + 1e-6);
+  EXPECT_GT(on.stats.arterial_refill_after, on.stats.arterial_refill_before + 1000.0);
+  // (the last land left is narrower than the gap)
+  EXPECT_GT(on.stats.arterial_refill_after, 0.8 * on.stats.arterial_refill_target);
+  // The example's widest space between avenues: from its corner (600, 600) to the avenues at 400 m.
+  EXPECT_NEAR(on.stats.arterial_refill_gap, 200.0, 10.0);
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    EXPECT_FALSE(std::abs(on.edges[i].a.x) < 100.0 || std::abs(on.edges[i].b.x) < 100.0 ||
+                 on.edges[i].a.x * on.edges[i].b.x < 0.0);
+    for (std::size_t j = i + 1; j < on.edges.size(); ++j) bad += crosses_without_node(on.edges[i], on.edges[j]);
+  }
+  EXPECT_EQ(bad, 0u);
+  GrowResult again = grow_example(geos, in, p);
+  ASSERT_EQ(again.edges.size(), on.edges.size());
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    EXPECT_EQ(again.edges[i].from_node, on.edges[i].from_node);
+    EXPECT_EQ(again.edges[i].to_node, on.edges[i].to_node);
+    EXPECT_DOUBLE_EQ(again.edges[i].a.x, on.edges[i].a.x);
+    EXPECT_DOUBLE_EQ(again.edges[i].b.y, on.edges[i].b.y);
+  }
 }

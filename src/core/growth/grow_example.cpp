@@ -378,6 +378,7 @@ class Grower {
     // segments crowds itself out) starts again from the seeds with the next random draws.
     for (int restart = 0;; ++restart) {
       grow();
+      if (arterial_refill_on()) arterial_refill();
       if (start_local_phase()) grow();
       if (params_.use_patches && params_.patch.refill > 0.0 && new_edges_ >= kMinGrowth) refill();
       // A growth whose fronts all died before the region was covered starts again from a random
@@ -454,6 +455,116 @@ class Grower {
     return !in_water(q);
   }
 
+  // PatchGrowParams::arterial_refill (levels): after the arterial phase, arterial seed patches in
+  // the land farther from every arterial than the example's own widest space between arterials.
+  bool arterial_refill_on() const {
+    return params_.use_patches && hierarchy_ && phase_arterial_ && params_.patch.arterial_refill > 0.0 &&
+           new_edges_ > 0 && !cul_de_sac_city(example_dead_end_share_);
+  }
+  double grown_main_length() const {
+    double total = 0.0;
+    for (const OEdge& e : edges_) {
+      if (level_is_main(e.level)) total += distance(nodes_[e.a].p, nodes_[e.b].p);
+    }
+    return total;
+  }
+  // The example's main streets: their length, and the largest distance from a point inside its
+  // hull to the nearest of them (a 64 x 64 lattice, as largest_gap).
+  void example_main_streets(double& len, double& gap) const {
+    len = 0.0;
+    gap = 0.0;
+    if (examples_.empty()) return;
+    const Example& ex = examples_[0];
+    std::vector<std::pair<Point, Point>> main;
+    for (const auto& [a, b] : ex.segments) {
+      bool is_main = false;
+      for (const ExHalf& half : ex.nodes[a].halves) is_main = is_main || (half.to == b && level_is_main(half.level));
+      if (!is_main) continue;
+      main.emplace_back(ex.nodes[a].p, ex.nodes[b].p);
+      len += distance(ex.nodes[a].p, ex.nodes[b].p);
+    }
+    if (main.empty()) return;
+    std::vector<Point> pts;
+    pts.reserve(ex.nodes.size());
+    for (const ExNode& n : ex.nodes) pts.push_back(n.p);
+    const std::vector<Point> hull = convex_hull(std::move(pts));
+    if (hull.size() < 3) return;
+    Point lo = hull[0], hi = hull[0];
+    for (Point q : hull) {
+      lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)};
+      hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+    }
+    constexpr int kSteps = 64;
+    for (int i = 0; i < kSteps; ++i) {
+      for (int j = 0; j < kSteps; ++j) {
+        const Point q{lo.x + (i + 0.5) * (hi.x - lo.x) / kSteps, lo.y + (j + 0.5) * (hi.y - lo.y) / kSteps};
+        bool inside = true;  // counter-clockwise hull: q is left of every edge
+        for (std::size_t k = 0; k < hull.size() && inside; ++k) {
+          inside = cross(hull[(k + 1) % hull.size()] - hull[k], q - hull[k]) >= 0.0;
+        }
+        if (!inside) continue;
+        double d = INFINITY;
+        for (const auto& [a, b] : main) d = std::min(d, point_segment_distance(q, a, b));
+        gap = std::max(gap, d);
+      }
+    }
+  }
+  // A random legal point (region, obstacles, water) farther than gap from every street (in the
+  // arterial phase: every arterial), with no water or obstacle between it and the nearest street
+  // (a far bank is the bridges', as for refill).
+  bool draw_point_beyond(double gap, Point& q) {
+    GEOSContextHandle_t h = geos_.handle();
+    q = Point{env_min_.x + uniform01() * (env_max_.x - env_min_.x),
+              env_min_.y + uniform01() * (env_max_.y - env_min_.y)};
+    if (crowded(q, gap, UINT32_MAX)) return false;
+    hits_.clear();
+    edge_tree_.query(bgi::nearest(BPoint(q.x, q.y), 16), std::back_inserter(hits_));
+    double best_d = INFINITY;
+    Point nearest{};
+    for (const BoxValue& hv : hits_) {
+      const OEdge& e = edges_[hv.second];
+      if (e.level < 0) continue;
+      const Point a = nodes_[e.a].p, b = nodes_[e.b].p;
+      const Point ab = b - a;
+      const double len2 = dot(ab, ab);
+      const Point x = a + (len2 > 0.0 ? std::clamp(dot(q - a, ab) / len2, 0.0, 1.0) : 0.0) * ab;
+      if (distance(q, x) < best_d) {
+        best_d = distance(q, x);
+        nearest = x;
+      }
+    }
+    if (std::isfinite(best_d) && blocked(nearest, q)) return false;
+    GeomPtr g = own(geos_, GEOSGeom_createPointFromXY_r(h, q.x, q.y), "arterial seed point");
+    char inside = GEOSPreparedContains_r(h, region_.get(), g.get());
+    if (inside == 2) geos_.fail("arterial seed in region");
+    if (inside == 0) return false;
+    if (obstacles_prepared_) {
+      char hit = GEOSPreparedIntersects_r(h, obstacles_prepared_.get(), g.get());
+      if (hit == 2) geos_.fail("arterial seed in obstacle");
+      if (hit == 1) return false;
+    }
+    return !in_water(q);
+  }
+  void arterial_refill() {
+    if (examples_.empty() || !(examples_[0].hull_area > 0.0)) return;
+    double len = 0.0, gap = 0.0;
+    example_main_streets(len, gap);
+    if (!(len > 0.0) || !(gap > 0.0)) return;
+    const double target = params_.patch.arterial_refill * len / examples_[0].hull_area * region_area_;
+    stats_.arterial_refill_target = target;
+    stats_.arterial_refill_gap = gap;
+    stats_.arterial_refill_before = grown_main_length();
+    for (int k = 0; k < kMaxReseeds && new_edges_ < params_.max_edges && grown_main_length() < target; ++k) {
+      bool found = false;
+      Point q;
+      for (int t = 0; t < 64 && !found; ++t) found = draw_point_beyond(gap, q);
+      if (!found) break;
+      ++stats_.arterial_reseeds;
+      unfinished_.push_back(add_node(q));
+      grow();
+    }
+    stats_.arterial_refill_after = grown_main_length();
+  }
   bool reseed() {
     for (int t = 0; t < 64; ++t) {
       Point q;
@@ -3204,7 +3315,7 @@ class Grower {
     // inner end on v, scored by the Hausdorff distance between it and that street (both cut to the
     // shorter length); each patch keeps its best pair.
     const double window = params_.patch.angle_window * kPi / 180.0;
-    const double cap = 3.0 * street_stats_.length_mean;
+    const double cap = street_cap();
     int level = 0;
     // Corners are refused only at a dead-end front with a node or street ahead within a mean
     // street (where the example would have had the junction), not at the edge of the growth, and
@@ -3366,13 +3477,19 @@ class Grower {
   // Why an arterial front got no patch (DEBUG1): candidates all refused, or none drawn — then a
   // second look at the connectors in its streets' directions, without the reach filter, tells
   // whether none points that way, all are used up, or none is close enough by reach or Hausdorff.
+  // How far along a front's street it is compared with the connectors: 3 mean streets, or the
+  // whole street in the arterial phase (PatchGrowParams::arterial_whole_streets).
+  double street_cap() const {
+    if (params_.patch.arterial_whole_streets && hierarchy_ && phase_arterial_) return INFINITY;
+    return 3.0 * street_stats_.length_mean;
+  }
   void count_arterial_stop(std::uint32_t v, bool any_candidate) {
     if (any_candidate) {
       ++stats_.arterial_front_refused;
       return;
     }
     const double window = params_.patch.angle_window * kPi / 180.0;
-    const double cap = 3.0 * street_stats_.length_mean;
+    const double cap = street_cap();
     const int span = static_cast<int>(std::ceil(window / (2.0 * kPi / kBuckets)));
     bool direction = false, unused = false, reach = false;
     for (std::uint32_t e : nodes_[v].edges) {
@@ -3653,16 +3770,21 @@ class Grower {
     }
     // Angles and degrees at existing nodes.
     std::map<std::uint32_t, std::vector<double>> leaving;
+    std::map<std::uint32_t, std::vector<Point>> leaving_from;  // where in the patch each street leaves from
     for (const Planned& pl : plan) {
       if (pl.a >= 0) {
         leaving[static_cast<std::uint32_t>(pl.a)].push_back(std::atan2(pl.line[1].y - pl.line[0].y, pl.line[1].x - pl.line[0].x));
+        leaving_from[static_cast<std::uint32_t>(pl.a)].push_back(pl.from);
       }
       if (pl.b >= 0) {
         const Point& z = pl.line.back();
         const Point& y = pl.line[pl.line.size() - 2];
         leaving[static_cast<std::uint32_t>(pl.b)].push_back(std::atan2(y.y - z.y, y.x - z.x));
+        leaving_from[static_cast<std::uint32_t>(pl.b)].push_back(pl.to);
       }
     }
+    // PatchGrowParams::arterial_own_angles: two streets from one patch vertex keep the example's angle.
+    const bool own_angles = params_.patch.arterial_own_angles && hierarchy_ && phase_arterial_;
     std::vector<std::uint32_t> merged;
     for (auto& [node, angles] : leaving) {
       merged.push_back(node);
@@ -3681,7 +3803,10 @@ class Grower {
       }
       for (std::size_t a = 0; a < angles.size(); ++a) {
         bool ok = angle_free(node, angles[a]);
-        for (std::size_t b = a + 1; b < angles.size() && ok; ++b) ok = std::abs(wrap(angles[a] - angles[b])) >= min_angle_;
+        for (std::size_t b = a + 1; b < angles.size() && ok; ++b) {
+          if (own_angles && distance(leaving_from[node][a], leaving_from[node][b]) <= kContact) continue;
+          ok = std::abs(wrap(angles[a] - angles[b])) >= min_angle_;
+        }
         if (!ok) {
           ++stats_.patch_illegal;
           return refuse(kRefAngle);

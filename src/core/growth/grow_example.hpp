@@ -118,6 +118,29 @@ struct PatchGrowParams {
   // (street density -16 to -64 %); 0.85 measured best of 0.7 / 0.85 / 1 (bench/patches, README).
   // 0: off.
   double refill = 0.85;
+  // Arterial refill (levels, after the arterial phase, before the local one): the arterial phase
+  // copies the example's arterial network outwards from the seed patch, so it covers only the part
+  // of the region the example's arterials reach from there (measured: 6-39 % of the example's
+  // arterial length on five of six examples, strasbourg 11-39 %), and the local phase then built
+  // the junctions the example has on arterials with its fallback (strasbourg: +31 to +76 %
+  // intersections). While the grown main streets are shorter than `arterial_refill` x the
+  // example's main-street length per area of its hull x the region's area, an arterial seed patch
+  // is placed at a random legal point farther from every arterial than the example's widest space
+  // between its own arterials (not across water or an obstacle from the nearest arterial), and
+  // the arterial phase grows on from it. Not for a city of cul-de-sacs (its local phase filled the
+  // land between the new arterials: canberra street density +29 to +42 %). 0.5 measured better
+  // than 0.85 (bench/patches, README). 0: off.
+  double arterial_refill = 0.5;
+  // Arterial phase: a front's street that a patch made is compared whole with the connectors (up
+  // to its junction), not over 3 mean streets of all levels: an arterial connector is longer than
+  // that (tokyo 279 m on average against a 149 m cap), so the example's own neighbouring patch,
+  // whose connector is that street reversed, fell outside max_distance by reach.
+  bool arterial_whole_streets = true;
+  // Arterial phase: two streets leaving the same vertex of a patch keep the angle between them that
+  // the example has, whatever min_angle (the example's dual carriageways part at 10-15 degrees:
+  // strasbourg's own neighbouring patch was refused for it); min_angle still holds against the
+  // streets already there and between patch vertices merged into one node.
+  bool arterial_own_angles = true;
 };
 
 struct GrowParams {
@@ -228,6 +251,12 @@ struct GrowStats {
   double refill_gap = 0.0;         // metres: a refill seed lies farther than this from every street
   double refill_before = 0.0;      // metres of grown streets when the queue first emptied
   std::size_t refill_islands = 0;  // refill fronts at a void's edge that grew nothing, seeded inside the void instead
+  // PatchGrowParams::arterial_refill: the main-street length aimed at, the example's widest space
+  // between its main streets, the grown main streets when the arterial phase first stopped and at
+  // its end, the arterial seeds placed.
+  double arterial_refill_target = 0.0, arterial_refill_gap = 0.0;
+  double arterial_refill_before = 0.0, arterial_refill_after = 0.0;
+  std::size_t arterial_reseeds = 0;
   std::size_t pruned = 0;          // output segments cut back from fronts that could neither grow nor join
   std::size_t patches_placed = 0;  // patch growth: fronts (and seeds) where a patch was glued
   std::size_t patch_candidates = 0;  // patches within max_distance, summed over fronts
