@@ -167,8 +167,9 @@ struct SurfaceResult {
 // How the run hands over the outputs that no later phase reads (lanes, markings, crossings,
 // sidewalks). By default as GEOS geometries (`surface`, `line`). With `ewkb_srid` set, as EWKB
 // with that SRID (`ewkb`; the geometry is null), written as soon as each is built: a caller that
-// only stores them keeps a third of the memory (a point is 16 bytes in EWKB against 24 in GEOS,
-// without GEOS' objects around it), while the rest of a whole city is still being built.
+// only stores them holds them in less memory while the rest of a whole city is built (a point
+// is 16 bytes in EWKB against 24 in GEOS, without GEOS' objects around it; Reisterstown's
+// backend peak 110 -> 88 MB with the rest of that change).
 struct SurfaceOutput {
   std::optional<int> ewkb_srid;
 };
