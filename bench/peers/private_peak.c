@@ -1,6 +1,8 @@
-/* LD_PRELOAD'ed into a peer: at exit, appends its peak private memory to $PRIVATE_PEAK_OUT, by the
- * measure bench/surfaces uses for the PostgreSQL backend: VmHWM - RssFile - RssShmem (peak
- * resident memory without mapped files such as shared libraries, read at the end). With
+/* LD_PRELOAD'ed into a peer: at exit, appends its peak private memory to $PRIVATE_PEAK_OUT:
+ * VmHWM - RssFile - RssShmem (peak resident memory without mapped files such as shared
+ * libraries, read at the end). A peer maps no shared memory that grows after its peak, so this is
+ * its private peak (or a little above, should file pages have been dropped since); the backend,
+ * which keeps touching shared buffers, is sampled instead (bench/anon_peak.sh). With
  * /usr/bin/time's peak RSS alone, a peer's libraries counted against it and not against us. */
 #include <stdio.h>
 #include <stdlib.h>

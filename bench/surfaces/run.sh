@@ -32,28 +32,32 @@ now() { date +%s.%N; }
 since() { awk -v s="$1" -v e="$(now)" 'BEGIN { printf "%.2f", e - s }'; }
 
 # generate MODEL -> prints "seconds peak_kb base_kb": wall time of generate() and the backend's
-# peak private memory (VmHWM - RssShmem - RssFile: without shared buffers and mapped files such
-# as libraries and the PROJ database, which other processes share), and the same
-# before generate() (libraries loaded, model read) - one fresh backend per model. Its DEBUG1
-# messages (the engine's phase times, the blocks' overlays) go to $out/generate-MODEL.log.
+# peak private memory (its RssAnon, sampled every 20 ms by bench/anon_peak.sh: without shared
+# buffers and mapped files such as libraries and the PROJ database, which other processes
+# share), and the same before generate() (libraries loaded, model read) - one fresh backend per
+# model. Its DEBUG1 messages (the engine's phase times, the blocks' overlays) go to
+# $out/generate-MODEL.log.
 generate() {
   local model=$1 start
-  local kb
+  local kb pid
   kb=$(psql -X -q -At 2>"$out/generate-$model.log" <<SQL
 SET client_min_messages = debug1;
 SELECT pg_backend_pid() AS pid \gset
 \setenv SGPID :pid
+\setenv SGPEAK $out/peak-$model.kb
 SELECT count(ST_AsEWKB(geom)), streetgen.version() FROM $model.axis \g /dev/null
-\! awk '/VmHWM/ { h = \$2 } /RssShmem/ { s = \$2 } /RssFile/ { f = \$2 } END { print h - s - f }' /proc/\$SGPID/status
+\! echo \$SGPID; awk '/RssAnon/ { print \$2 }' /proc/\$SGPID/status
+\! bash "$repo/bench/anon_peak.sh" \$SGPID "\$SGPEAK" >/dev/null 2>&1 &
 \! date +%s.%N
 SELECT count(*) FROM streetgen.generate('$model') \g /dev/null
 \! date +%s.%N
-\! awk '/VmHWM/ { h = \$2 } /RssShmem/ { s = \$2 } /RssFile/ { f = \$2 } END { print h - s - f }' /proc/\$SGPID/status
 SQL
 )
   grep -h -A2 "ERROR" "$out/generate-$model.log" >&2 || true  # (the DEBUG1 log holds generate's errors too)
-  read -r base t0 t1 peak <<<"$(echo $kb)"
-  echo "$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f", b - a }') $peak $base"
+  read -r pid base t0 t1 <<<"$(echo $kb)"
+  for _ in $(seq 100); do [ -d "/proc/$pid" ] || break; sleep 0.05; done  # (the sampler stops with the backend)
+  sleep 0.1
+  echo "$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f", b - a }') $(cat "$out/peak-$model.kb") $base"
 }
 
 declare -A import_s import_sections generate_s peak_kb base_kb

@@ -1,6 +1,7 @@
 // The street surface SRF: axes in as parallel arrays (EWKB geometries), every output of the
 // StreetGen engine out as rows tagged by kind (node, section, corner, intersection, issue).
 // sql/60-surfaces.sql turns them into tables (generate) or geometries (street_surfaces).
+#include <malloc.h>  // malloc_trim (glibc)
 #include <map>
 #include <optional>
 #include <string>
@@ -129,6 +130,9 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
     g.reset();
     return bytes;
   };
+  auto handed_over = [&](core::GeomPtr& g, core::Bytes& ewkb) {  // written by the engine already, or now
+    return g ? geometry_bytes(g) : std::move(ewkb);
+  };
   for (;;) {
     bool more = true;
     switch (emission.kind) {
@@ -217,7 +221,7 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
           row.direction = l.spec.direction;
           row.width = l.spec.width;
           row.detail = l.spec.turn;
-          row.geom = geometry_bytes(l.surface);
+          row.geom = handed_over(l.surface, l.ewkb);
           rows.push_back(std::move(row));
         });
         break;
@@ -232,7 +236,7 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
           }
           row.status = w.side;
           row.width = w.width;
-          row.geom = geometry_bytes(w.surface);
+          row.geom = handed_over(w.surface, w.ewkb);
           rows.push_back(std::move(row));
         });
         break;
@@ -244,7 +248,7 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
           row.node_id = c.node_id;
           row.item = c.position;
           row.width = c.width;
-          row.geom = geometry_bytes(c.surface);
+          row.geom = handed_over(c.surface, c.ewkb);
           rows.push_back(std::move(row));
         });
         break;
@@ -256,7 +260,7 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
           row.item = m.position;
           row.status = m.kind;
           row.detail = m.style;
-          row.geom = geometry_bytes(m.line);
+          row.geom = handed_over(m.line, m.ewkb);
           rows.push_back(std::move(row));
         });
         break;
@@ -391,7 +395,9 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
     }
     std::vector<core::CornerOverride> corner_overrides(overrides, overrides + override_count);
     SurfaceEmission& out = emission.emplace();
-    out.result = core::street_surfaces(geos, input, corner_overrides, settings);
+    core::SurfaceOutput output;
+    output.ewkb_srid = srid;  // (the rows are EWKB anyway: the engine writes lanes to sidewalks as it goes)
+    out.result = core::street_surfaces(geos, input, corner_overrides, settings, output);
     out.srid = srid;
   });
   pg::raise_if_failed(error);
@@ -479,6 +485,10 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
   }
   emission.release();
   MemoryContextDelete(row_context);
+  // The engine's heap is free now, but glibc keeps it mapped (freed as many small chunks, most
+  // of them below the top of the heap): hand it back to the system, so that what this backend
+  // does next (storing the rows, the blocks) does not stack its own peak on the engine's.
+  malloc_trim(0);
   PG_RETURN_NULL();
 }
 

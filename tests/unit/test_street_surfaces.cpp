@@ -439,3 +439,45 @@ TEST(StreetDetails, ACornerWithoutABandClaimsItsOwnCurbsBuffer) {
   GeomPtr gap = own(ctx, GEOSDifference_r(ctx.handle(), near.get(), covered.get()), "difference");
   EXPECT_LT(area(ctx, gap.get()), 0.05);
 }
+
+// Asked for EWKB, the engine hands lanes, markings, crossings and sidewalks over as soon as they
+// are built (their geometries null), and the bytes are those of the geometries it builds by
+// default: the memory saving changes no output.
+TEST(StreetSurfaces, OutputsHandedOverAsEwkbAreTheGeometriesWritten) {
+  GeosContext ctx;
+  std::vector<SurfaceAxis> axes;
+  for (int i = 0; i < 3; ++i) {  // a 3 x 3 grid of 80 m blocks with sidewalks, two lanes a street
+    axes.push_back(axis(1 + i, {{0, 80.0 * i}, {160, 80.0 * i}}, 7, 40));
+    axes.push_back(axis(11 + i, {{80.0 * i, 0}, {80.0 * i, 160}}, 7, 40));
+  }
+  for (SurfaceAxis& a : axes) {
+    a.sidewalk_left = a.sidewalk_right = 2.5;
+    a.lane_input.lanes = 2;
+  }
+  SurfaceResult live = street_surfaces(ctx, axes, {}, SurfaceSettings{});
+  SurfaceOutput output;
+  output.ewkb_srid = 2154;
+  SurfaceResult handed = street_surfaces(ctx, axes, {}, SurfaceSettings{}, output);
+  ASSERT_FALSE(live.lanes.empty());
+  ASSERT_FALSE(live.markings.empty());
+  ASSERT_FALSE(live.crossings.empty());
+  ASSERT_FALSE(live.sidewalks.empty());
+  auto same = [&](auto& live_items, auto& handed_items, auto geometry_of, const char* kind) {
+    ASSERT_EQ(live_items.size(), handed_items.size()) << kind;
+    for (std::size_t i = 0; i < live_items.size(); ++i) {
+      GeomPtr& expected = geometry_of(live_items[i]);
+      ASSERT_TRUE(expected) << kind << " " << i;
+      EXPECT_FALSE(geometry_of(handed_items[i])) << kind << " " << i << ": still a GEOS geometry";
+      EXPECT_EQ(handed_items[i].ewkb, write_ewkb(ctx, expected.get(), 2154)) << kind << " " << i;
+    }
+  };
+  same(live.lanes, handed.lanes, [](LaneResult& l) -> GeomPtr& { return l.surface; }, "lane");
+  same(live.markings, handed.markings, [](MarkingResult& m) -> GeomPtr& { return m.line; }, "marking");
+  same(live.crossings, handed.crossings, [](CrossingResult& c) -> GeomPtr& { return c.surface; }, "crossing");
+  same(live.sidewalks, handed.sidewalks, [](SidewalkResult& w) -> GeomPtr& { return w.surface; }, "sidewalk");
+  // The rest stays as it was: sections and junctions are read by later phases and by the caller.
+  ASSERT_EQ(live.sections.size(), handed.sections.size());
+  for (std::size_t i = 0; i < live.sections.size(); ++i) {
+    EXPECT_EQ(static_cast<bool>(live.sections[i].surface), static_cast<bool>(handed.sections[i].surface));
+  }
+}

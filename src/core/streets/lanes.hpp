@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/ewkb.hpp"
 #include "core/geos_context.hpp"
 #include "core/streets/polyline.hpp"
 
@@ -70,6 +71,7 @@ struct LaneResult {
   int index = 0;  // 1.. from the left edge of the roadway, looking along the axis
   LaneSpec spec;
   GeomPtr surface;  // polygon, or multipolygon where a narrowed section cuts a lane in two
+  Bytes ewkb;       // instead of surface, when the run hands outputs over as EWKB (SurfaceOutput)
 };
 
 struct MarkingResult {
@@ -79,6 +81,7 @@ struct MarkingResult {
   int position = 0;   // lines: the lane boundary (between lanes position and position + 1); stop lines: 0 start, 1 end
   std::string style;  // solid, dashed
   GeomPtr line;       // linestring or multilinestring
+  Bytes ewkb;         // instead of line, when the run hands outputs over as EWKB (SurfaceOutput)
 };
 
 // Lanes and markings of one section: `centre` is its centre line between the border lines,

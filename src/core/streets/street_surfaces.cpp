@@ -5,6 +5,7 @@
 #include <ctime>
 #include <map>
 #include <set>
+#include <string_view>
 
 #include "core/error.hpp"
 #include "core/interrupts.hpp"
@@ -256,8 +257,8 @@ class PhaseClock {
 class SurfaceBuilder {
  public:
   SurfaceBuilder(GeosContext& ctx, const std::vector<SurfaceAxis>& axes, const std::vector<CornerOverride>& overrides,
-                 const SurfaceSettings& settings)
-      : ctx_(ctx), axes_(axes), overrides_(overrides), s_(settings) {}
+                 const SurfaceSettings& settings, const SurfaceOutput& output)
+      : ctx_(ctx), axes_(axes), overrides_(overrides), s_(settings), output_(output) {}
 
   SurfaceResult run() {
     PhaseClock clock;
@@ -300,6 +301,9 @@ class SurfaceBuilder {
     separate_overlapping_sections();
     result_.stats.sections = clock.lap();
     build_lanes(poller);
+    // (grown by doubling, up to twice what they hold, and held to the end)
+    result_.lanes.shrink_to_fit();
+    result_.markings.shrink_to_fit();
     result_.stats.lanes = clock.lap();
     for (SectionResult& sec : result_.sections) {
       if (sec.surface) section_surface_[{sec.axis_id, sec.part}] = sec.surface.get();
@@ -317,13 +321,24 @@ class SurfaceBuilder {
     result_.stats.junctions = clock.lap();
     build_sidewalks(poller);
     result_.stats.sidewalks = clock.lap();
+    std::size_t corner_count = 0;
+    for (const auto& corners : corners_of_node_) corner_count += corners.size();
+    result_.corners.reserve(corner_count);
     for (auto& corners : corners_of_node_) {
       for (CornerResult& c : corners) result_.corners.push_back(std::move(c));
+      std::vector<CornerResult>().swap(corners);
     }
     return std::move(result_);
   }
 
  private:
+  // A finished output that no later phase reads, handed over as EWKB when the caller asked for it.
+  void hand_over(GeomPtr& geom, Bytes& ewkb) {
+    if (!output_.ewkb_srid || !geom) return;
+    ewkb = write_ewkb(ctx_, geom.get(), *output_.ewkb_srid);
+    geom.reset();
+  }
+
   double axis_radius(const SurfaceAxis& a) const {
     return a.radius_override ? *a.radius_override : radius_for_speed(s_, a.speed_kmh);
   }
@@ -1133,8 +1148,14 @@ class SurfaceBuilder {
         result_.issues.push_back({sec.axis_id, "lanes_failed", e.what() + std::string(": ") + e.detail(), sec.part});
         continue;
       }
-      for (LaneResult& l : lanes) result_.lanes.push_back(std::move(l));
-      for (MarkingResult& m : markings) result_.markings.push_back(std::move(m));
+      for (LaneResult& l : lanes) {
+        hand_over(l.surface, l.ewkb);
+        result_.lanes.push_back(std::move(l));
+      }
+      for (MarkingResult& m : markings) {
+        hand_over(m.line, m.ewkb);
+        result_.markings.push_back(std::move(m));
+      }
     }
   }
 
@@ -1182,9 +1203,29 @@ class SurfaceBuilder {
     c.node_id = topo_.nodes[at_end ? edge.to_node : edge.from_node].id;
     c.width = s_.crossing_width;
     c.surface = std::move(area);
+    hand_over(c.surface, c.ewkb);
     result_.crossings.push_back(std::move(c));
     return true;
   }
+
+  // What a claim's sidewalk will be: a SidewalkResult without its geometry (a city has tens of
+  // thousands of claims, held at once).
+  struct ClaimKey {
+    std::int64_t axis_id = 0;
+    std::int64_t part = 0;
+    std::int64_t node_id = 0;
+    std::string_view side;  // "left", "right", "around"
+    double width = 0.0;
+    SidewalkResult result() const {
+      SidewalkResult r;
+      r.axis_id = axis_id;
+      r.part = part;
+      r.node_id = node_id;
+      r.side = std::string(side);
+      r.width = width;
+      return r;
+    }
+  };
 
   // A roadway, or a sidewalk's claim, in build_sidewalks.
   struct SidewalkItem {
@@ -1192,7 +1233,7 @@ class SurfaceBuilder {
     GeomPtr owned;        // claims
     int layer = 0;
     bool roadway = false;
-    SidewalkResult meta;  // claims
+    ClaimKey meta;        // claims
     // A street side's claim ends on the normals at its section's border points, and a junction
     // corner's on its two streets' border lines: the lines through cut_point[k] across
     // cut_direction[k] (pointing into the claim), when the whole claim lies on their inner side
@@ -1437,6 +1478,16 @@ class SurfaceBuilder {
     std::vector<Item> items;
     std::map<std::int64_t, std::size_t> node_index;
     for (std::size_t n = 0; n < topo_.nodes.size(); ++n) node_index[topo_.nodes[n].id] = n;
+    // Roadways, then the claims in one vector, sized up front: an item is a few hundred bytes,
+    // and a city's claims grown by doubling, then moved behind the roadways, were held up to three
+    // times over at the phase's peak (7 MB on Reisterstown). A street side or a junction corner
+    // makes one claim each.
+    std::size_t expected = 0;
+    for (const SectionResult& sec : result_.sections) expected += sec.surface ? 3 : 0;
+    for (const IntersectionResult& ir : result_.intersections) {
+      expected += 1 + ends_of_node_[node_index.at(ir.node_id)].size();
+    }
+    items.reserve(expected);
     for (const SectionResult& sec : result_.sections) {
       if (!sec.surface) continue;
       Item it;
@@ -1455,7 +1506,7 @@ class SurfaceBuilder {
       items.push_back(std::move(it));
     }
     std::size_t first_claim = items.size();
-    std::vector<Item> claims;
+    std::vector<Item>& claims = items;  // (from first_claim on)
     for (std::size_t e = 0; e < result_.sections.size(); ++e) {
       const SectionResult& sec = result_.sections[e];
       if (!sec.surface) continue;
@@ -1536,18 +1587,24 @@ class SurfaceBuilder {
     }
     // Key order: sections' (axis, part, left before right), then junctions' by node id (a
     // junction's corners in turn).
-    std::sort(claims.begin(), claims.end(), [](const Item& a, const Item& b) {
+    std::sort(items.begin() + static_cast<std::ptrdiff_t>(first_claim), items.end(), [](const Item& a, const Item& b) {
       bool ja = a.meta.node_id != 0, jb = b.meta.node_id != 0;
       return std::make_tuple(ja, a.meta.node_id, a.piece, a.meta.axis_id, a.meta.part, a.meta.side) <
              std::make_tuple(jb, b.meta.node_id, b.piece, b.meta.axis_id, b.meta.part, b.meta.side);
     });
-    items.reserve(items.size() + claims.size());
-    for (Item& c : claims) items.push_back(std::move(c));
-    std::vector<Item>().swap(claims);  // (its capacity too: a few MB on a town)
 
     std::vector<Box> boxes(items.size());
     for (std::size_t i = 0; i < items.size(); ++i) envelope_box(ctx_, items[i].geom, boxes[i]);
     // What each claim must give way to: roadways, and claims before it, on its layer.
+    // One sidewalk per street side's claim and per junction (whose corners' claims follow each
+    // other in this order): sized up front, as the items.
+    std::size_t sidewalk_count = 0;
+    for (std::size_t i = first_claim; i < items.size(); ++i) {
+      bool next_corner = items[i].piece > 0 && i > first_claim && items[i - 1].piece > 0 &&
+                         items[i - 1].meta.node_id == items[i].meta.node_id;
+      if (!next_corner) ++sidewalk_count;
+    }
+    result_.sidewalks.reserve(sidewalk_count);
     std::vector<std::vector<std::size_t>> blockers(items.size());
     for_each_overlapping_pair(boxes, [&](std::size_t i, std::size_t j) {
       if (items[i].layer != items[j].layer) return;
@@ -1587,6 +1644,7 @@ class SurfaceBuilder {
         if (!surface) return;
       }
       junction.surface = std::move(surface);
+      hand_over(junction.surface, junction.ewkb);
       result_.sidewalks.push_back(std::move(junction));
       junction = SidewalkResult{};
     };
@@ -1612,16 +1670,18 @@ class SurfaceBuilder {
         if (!surface) continue;
         if (it.piece > 0) {
           junction.node_id = it.meta.node_id;
-          junction.side = it.meta.side;
+          junction.side = std::string(it.meta.side);
           junction.width = std::max(junction.width, it.meta.width);
           append_polygons(ctx_, surface.get(), junction_parts);
           continue;
         }
-        it.meta.surface = std::move(surface);
-        result_.sidewalks.push_back(std::move(it.meta));
+        SidewalkResult sidewalk = it.meta.result();
+        sidewalk.surface = std::move(surface);
+        hand_over(sidewalk.surface, sidewalk.ewkb);
+        result_.sidewalks.push_back(std::move(sidewalk));
       } catch (const Error& err) {
         if (err.kind() != ErrorKind::geometry_engine) throw;
-        report_sidewalk_failure(it.meta, err, node_index);
+        report_sidewalk_failure(it.meta.result(), err, node_index);
       }
     }
     try {
@@ -1841,6 +1901,7 @@ class SurfaceBuilder {
   const std::vector<SurfaceAxis>& axes_;
   const std::vector<CornerOverride>& overrides_;
   const SurfaceSettings& s_;
+  const SurfaceOutput& output_;
   Topology topo_;
   std::vector<std::vector<End>> ends_of_node_;
   std::vector<std::pair<double, double>> border_;  // per edge: border abscissa at its start, at its end
@@ -1863,7 +1924,8 @@ double radius_for_speed(const SurfaceSettings& settings, double speed_kmh) {
 }
 
 SurfaceResult street_surfaces(GeosContext& ctx, const std::vector<SurfaceAxis>& axes,
-                              const std::vector<CornerOverride>& corner_overrides, const SurfaceSettings& settings) {
+                              const std::vector<CornerOverride>& corner_overrides, const SurfaceSettings& settings,
+                              const SurfaceOutput& output) {
   auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   if (!(std::isfinite(settings.snap_tolerance) && settings.snap_tolerance >= 0.0) || !positive(settings.min_radius) ||
       !positive(settings.max_radius) || !positive(settings.turn_speed_ratio) || !positive(settings.lateral_acceleration) ||
@@ -1877,7 +1939,7 @@ SurfaceResult street_surfaces(GeosContext& ctx, const std::vector<SurfaceAxis>& 
   for (const CornerOverride& o : corner_overrides) {
     if (!positive(o.radius)) throw_invalid_argument("corner radius overrides must be finite numbers > 0");
   }
-  return SurfaceBuilder(ctx, axes, corner_overrides, settings).run();
+  return SurfaceBuilder(ctx, axes, corner_overrides, settings, output).run();
 }
 
 }  // namespace streetgen::core
