@@ -169,7 +169,7 @@ SELECT p.name, count(DISTINCT p.patch_id) FILTER (WHERE 'roundabout' = ANY (p.ta
        (SELECT count(DISTINCT (g.seed, g.origin)) FROM grown g JOIN patch q ON g.origin = 'grow_patches:' || q.patch_id
          AND q.name = g.name WHERE g.method = 'patches' AND g.name = p.name AND 'cul-de-sac' = ANY (q.tags)) AS cul_de_sac_uses
   FROM patch p GROUP BY p.name ORDER BY p.name;
-\echo where the density comes from (grow_patches, median over seeds): share of the length on main streets (example, grown), mean connector length of the library and of the patches used (weighted by their uses: edges placed over the patch's segments), junctions (degree >= 3, inside the hull shrunk by 50 m, not simplified) with a statistical street (fallback or join) among their streets
+\echo where the density comes from (grow_patches, median over seeds): share of the length on main streets (example, grown), mean connector length of the library and of the patches used (weighted by their uses: edges placed over the segments of the patch), junctions (degree >= 3, inside the hull shrunk by 50 m, not simplified) with a statistical street (fallback or join) among their streets
 WITH conn AS (SELECT name, patch_id, avg(ST_Length(geom)) FILTER (WHERE role = 'connector') AS len,
                      sum(ST_NPoints(geom) - 1) AS segments FROM patch GROUP BY 1, 2),
      used AS (SELECT name, seed, split_part(origin, ':', 2)::bigint AS patch_id, count(*) AS n FROM grown
