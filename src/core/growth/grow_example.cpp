@@ -440,16 +440,20 @@ class Grower {
   // One draw of a point in the region's box: true when it lies in the region, off obstacles and
   // water, farther than fill_gap_ from every street.
   bool draw_void_point(Point& q) {
-    GEOSContextHandle_t h = geos_.handle();
     q = Point{env_min_.x + uniform01() * (env_max_.x - env_min_.x), env_min_.y + uniform01() * (env_max_.y - env_min_.y)};
     if (crowded(q, fill_gap_, UINT32_MAX)) return false;
-    GeomPtr g = own(geos_, GEOSGeom_createPointFromXY_r(h, q.x, q.y), "reseed point");
+    return free_land(q);
+  }
+  // Whether a new seed may go at q: in the region, off every obstacle and off water.
+  bool free_land(Point q) {
+    GEOSContextHandle_t h = geos_.handle();
+    GeomPtr g = own(geos_, GEOSGeom_createPointFromXY_r(h, q.x, q.y), "seed point");
     char inside = GEOSPreparedContains_r(h, region_.get(), g.get());
-    if (inside == 2) geos_.fail("reseed in region");
+    if (inside == 2) geos_.fail("seed in region");
     if (inside == 0) return false;
     if (obstacles_prepared_) {
       char hit = GEOSPreparedIntersects_r(h, obstacles_prepared_.get(), g.get());
-      if (hit == 2) geos_.fail("reseed in obstacle");
+      if (hit == 2) geos_.fail("seed in obstacle");
       if (hit == 1) return false;
     }
     return !in_water(q);
@@ -513,7 +517,6 @@ class Grower {
   // arterial phase: every arterial), with no water or obstacle between it and the nearest street
   // (a far bank is the bridges', as for refill).
   bool draw_point_beyond(double gap, Point& q) {
-    GEOSContextHandle_t h = geos_.handle();
     q = Point{env_min_.x + uniform01() * (env_max_.x - env_min_.x),
               env_min_.y + uniform01() * (env_max_.y - env_min_.y)};
     if (crowded(q, gap, UINT32_MAX)) return false;
@@ -534,16 +537,7 @@ class Grower {
       }
     }
     if (std::isfinite(best_d) && blocked(nearest, q)) return false;
-    GeomPtr g = own(geos_, GEOSGeom_createPointFromXY_r(h, q.x, q.y), "arterial seed point");
-    char inside = GEOSPreparedContains_r(h, region_.get(), g.get());
-    if (inside == 2) geos_.fail("arterial seed in region");
-    if (inside == 0) return false;
-    if (obstacles_prepared_) {
-      char hit = GEOSPreparedIntersects_r(h, obstacles_prepared_.get(), g.get());
-      if (hit == 2) geos_.fail("arterial seed in obstacle");
-      if (hit == 1) return false;
-    }
-    return !in_water(q);
+    return free_land(q);
   }
   void arterial_refill() {
     if (examples_.empty() || !(examples_[0].hull_area > 0.0)) return;
