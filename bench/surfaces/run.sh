@@ -177,8 +177,9 @@ if [ "$peers" = 1 ] && [[ " $datasets " == *" osm "* ]]; then
   say "generate s column above times a second, whole-model recompute, not part of the job)."
   say ""
   bash "$repo/bench/peers/install-peers.sh" >/dev/null 2>&1
-  # memory: both without mapped files (the backend: VmHWM - RssFile - RssShmem; netconvert: the
-  # same, read by an exit hook), and netconvert's peak RSS with its libraries (/usr/bin/time)
+  # memory: both without mapped files or shared memory (the backend: its RssAnon sampled by
+  # bench/anon_peak.sh; netconvert: VmHWM - RssFile - RssShmem, read by an exit hook), and
+  # netconvert's peak RSS with its libraries (/usr/bin/time)
   mb() { if [ -n "$1" ]; then echo $(( $1 / 1024 )); else echo n/a; fi; }  # kB (or nothing) -> MB
   say "| file | streetgen s | netconvert s | osm2streets s | ratio | streetgen peak private MB | netconvert peak private MB | netconvert peak RSS MB |"
   say "|---|---|---|---|---|---|---|---|"
