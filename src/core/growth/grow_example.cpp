@@ -4078,13 +4078,13 @@ class Grower {
   // A new T (a join onto a node of degree 2, a split of an edge by a contact) from v, leaving it at
   // `angle`, is refused while one more junction without a crossing would leave the output short of
   // the example's crossing share (as short_of_crossings counts it) by half a crossing. The top-up at
-  // T's alone left the T's the joins make: new-york grew 54-89 T's inside the shrunk hull against the
-  // example's 26 with as many crossings (4-way share -16 %, growth18; with this rule -14 %). Not for
-  // a failed front's join onto a node (its splits are still refused), nor for a join that goes straight on
-  // (within 30 degrees) from one of v's streets: refusing those lost arms (new-york's street density
-  // -4 -> -9 %) and lowered the median less (seeds 1-30 / 31-60 / 61-90: 4.40 / 4.65 / 4.65 % ->
-  // 4.30 / 4.85 / 4.40 % refusing every new T, 4.25 / 4.60 / 4.60 % with both exceptions).
-  // bench/growth, README (growth18, growth19).
+  // T's alone left the T's the joins make: new-york grew 54-89 T's inside the shrunk hull against
+  // the example's 26 with as many crossings (4-way share -16 %, growth18; with this rule -14 %). Not
+  // for a failed front's join (close_front; its split ahead was never checked), nor for a join that
+  // goes straight on (within 30 degrees) from one of v's streets: refusing those lost arms
+  // (new-york's street density -4 -> -9 %) and lowered the median less (seeds 1-30 / 31-60 / 61-90:
+  // 4.40 / 4.65 / 4.65 % -> 4.30 / 4.85 / 4.40 % refusing every new T, 4.25 / 4.60 / 4.60 % with
+  // both exceptions). bench/growth, README (growth18, growth19).
   bool new_t_refused(std::uint32_t v, double angle, bool failed_front) {
     if (!mix_top_up_ || failed_front || goes_straight_on(v, angle)) return false;
     const double ge = 3 < at_least_.size() ? static_cast<double>(at_least_[3]) : 0.0;
