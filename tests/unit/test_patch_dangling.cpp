@@ -430,3 +430,26 @@ TEST(PatchDangling, RefillDoesNotJumpAWall) {
   EXPECT_EQ(r.stats.refill_islands, 0u);
   for (const GrownEdge& e : r.edges) EXPECT_TRUE(e.a.x < -60.0 && e.b.x < -60.0);
 }
+
+// The cropped grid's stubs, placed inside the region, are dead ends the example does not have
+// (its own dead-end share is 0); the joins reach only half a street ahead, so most stay.
+// cut_crop_ends cuts them back to their junction after the joins: no interior dead end left from
+// them, planar, deterministic.
+TEST(PatchDangling, CopiedCropDeadEndsAreCutBack) {
+  Fixture f;
+  GrowInput in = f.input(cropped_grid());
+  GrowParams p = Fixture::patch_growth();
+  p.max_edges = 3000;
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::cut_crop_ends, p);
+  EXPECT_EQ(off.stats.crop_ends_cut, 0u);
+  EXPECT_GT(interior_dead_ends(off), 50);
+  EXPECT_GT(on.stats.crop_ends_cut, 50u);
+  EXPECT_EQ(interior_dead_ends(on), 0);  // (233 without, seed 4)
+  // Only dead ends were cut: every junction the growth made is still there or one street fewer.
+  EXPECT_LT(on.edges.size(), off.edges.size());
+  EXPECT_GT(on.edges.size(), off.edges.size() / 2);
+  EXPECT_EQ(crossings_without_node(on), 0);
+  GrowParams defaults = Fixture::patch_growth();
+  defaults.max_edges = 3000;
+  expect_same_graph(grow_example(f.geos, in, defaults), on);  // (the switch on: its default)
+}

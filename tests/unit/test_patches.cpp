@@ -485,3 +485,139 @@ TEST(GrowPatches, ArterialRefillSeedsArterialsWhereThePhaseStopped) {
     EXPECT_DOUBLE_EQ(again.edges[i].b.y, on.edges[i].b.y);
   }
 }
+
+namespace {
+// An avenue from a to b (axis-parallel) in 100 m pieces (the example is noded at shared vertices)
+// with a local stub of 40 m at each piece's end, alternately on either side, but at its ends: the
+// local level a street grid example has beside its arterials, and short local streets that keep
+// the mean street short.
+void add_avenue(std::vector<PatchInputEdge>& out, std::int64_t& id, Point a, Point b) {
+  const Point dir = unit(b - a), side{-dir.y, dir.x};
+  const int pieces = static_cast<int>(std::lround(distance(a, b) / 100.0));
+  for (int k = 0; k < pieces; ++k) {
+    const Point from = a + (k * 100.0) * dir, to = k + 1 == pieces ? b : a + ((k + 1) * 100.0) * dir;
+    out.push_back({{from, to}, "avenue", ++id, false});
+    if (k + 1 < pieces) out.push_back({{to, to + (k % 2 ? 40.0 : -40.0) * side}, "street", ++id, false});
+  }
+}
+
+// A 3 x 3 grid of avenue crossings 600 m apart (avenues at 0, 600, 1200 in x and y, each running
+// on 300 m past the outer crossings to a dead end), with the local stubs above: its arterial
+// connectors (600 m) are longer than 3 mean streets of all levels (the patch streets' mean is about
+// 130 m: 100 m avenue pieces and 40 m stubs beside the arterial level's 600 m and 300 m).
+std::vector<PatchInputEdge> long_avenue_grid() {
+  std::vector<PatchInputEdge> out;
+  std::int64_t id = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double c = i * 600.0;
+    for (int j = 0; j < 4; ++j) {  // each avenue in four streets between crossings and ends
+      const double from = j == 0 ? -300.0 : (j - 1) * 600.0, to = j == 3 ? 1500.0 : j * 600.0;
+      for (auto [a, b] : {std::pair{Point{from, c}, Point{to, c}}, std::pair{Point{c, from}, Point{c, to}}}) {
+        add_avenue(out, id, a, b);
+      }
+    }
+  }
+  return out;
+}
+
+// Two avenue junctions J1 (-300, 0) and J2 (300, 0) joined by a dual carriageway whose two
+// roadways part at 13 degrees at each junction (34 m apart in between); each junction has three
+// more avenue arms (dead ends 400 m long) with local stubs. Every arterial patch with two
+// connectors has two streets 13 degrees apart at its junction, below the default min_angle (20).
+std::vector<PatchInputEdge> dual_carriageway() {
+  std::vector<PatchInputEdge> out;
+  std::int64_t id = 0;
+  const double rise = 150.0 * std::tan(6.5 * kPi / 180.0);
+  for (double s : {1.0, -1.0}) {
+    out.push_back({{{-300, 0}, {-150, s * rise}, {150, s * rise}, {300, 0}}, "avenue", ++id, false});
+  }
+  for (double x : {-300.0, 300.0}) {
+    const double out_x = x < 0 ? -700.0 : 700.0;
+    for (Point end : {Point{out_x, 0}, Point{x, 400}, Point{x, -400}}) {
+      add_avenue(out, id, {x, 0}, end);
+    }
+  }
+  return out;
+}
+}  // namespace
+
+// arterial_whole_streets: a front's street is compared whole with the arterial connectors. Cut to
+// 3 mean streets of all levels (here about 400 m against 600 m connectors) the example's own
+// neighbouring patch is out of reach and the arterial phase stops at the seed patch (seeds 1-8).
+TEST(GrowPatches, ArterialWholeStreetsReachLongConnectors) {
+  GeosContext geos;
+  GeomPtr region = wkt(geos, "POLYGON((-1000 -1000, 2200 -1000, 2200 2200, -1000 2200, -1000 -1000))");
+  GrowInput in;
+  in.patches = extract_patches(geos, long_avenue_grid(), PatchParams{}).patches;
+  in.region = region.get();
+  in.seeds = {{600.0, 600.0}};
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 4;
+  p.patch.arterial_refill = 0.0;  // the arterial phase alone
+  p.patch.refill = 0.0;
+  GrowResult on = grow_example(geos, in, p);
+  p.patch.arterial_whole_streets = false;
+  GrowResult off = grow_example(geos, in, p);
+  EXPECT_EQ(off.stats.arterial_patches_placed, 1u);  // the seed's
+  EXPECT_GT(off.stats.arterial_front_reach, 0u);
+  EXPECT_GE(on.stats.arterial_patches_placed, 9u);  // the grid copied on over the region (16-24, seeds 1-8)
+  EXPECT_EQ(on.stats.arterial_front_reach, 0u);
+  auto avenues = [](const GrowResult& r) {
+    double total = 0.0;
+    for (const GrownEdge& e : r.edges) {
+      if (e.road_class == "avenue") total += distance(e.a, e.b);
+    }
+    return total;
+  };
+  EXPECT_GT(avenues(on), 2.0 * avenues(off));
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < on.edges.size(); ++j) bad += crosses_without_node(on.edges[i], on.edges[j]);
+  }
+  EXPECT_EQ(bad, 0u);
+}
+
+// arterial_own_angles: two streets leaving one patch vertex keep the example's angle in the
+// arterial phase; min_angle (20 degrees) refused the dual carriageway parting at 13 degrees, so no
+// arterial patch was placed at all.
+TEST(GrowPatches, ArterialOwnAnglesPlaceADualCarriageway) {
+  GeosContext geos;
+  GeomPtr region = wkt(geos, "POLYGON((-1500 -1500, 1500 -1500, 1500 1500, -1500 1500, -1500 -1500))");
+  GrowInput in;
+  in.patches = extract_patches(geos, dual_carriageway(), PatchParams{}).patches;
+  in.region = region.get();
+  in.seeds = {{0.0, 0.0}};
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 1;
+  p.patch.arterial_refill = 0.0;
+  p.patch.refill = 0.0;
+  GrowResult on = grow_example(geos, in, p);
+  p.patch.arterial_own_angles = false;
+  GrowResult off = grow_example(geos, in, p);
+  EXPECT_EQ(off.stats.arterial_patches_placed, 0u);
+  EXPECT_GE(on.stats.arterial_patches_placed, 2u);  // both junctions, the carriageway between them
+  // The two roadways leave one grown node 13 degrees apart.
+  std::map<std::int64_t, std::vector<double>> out_angles;
+  for (const GrownEdge& e : on.edges) {
+    if (e.road_class != "avenue") continue;
+    out_angles[e.from_node].push_back(std::atan2(e.b.y - e.a.y, e.b.x - e.a.x));
+    out_angles[e.to_node].push_back(std::atan2(e.a.y - e.b.y, e.a.x - e.b.x));
+  }
+  bool narrow = false;
+  for (const auto& [node, angles] : out_angles) {
+    for (std::size_t a = 0; a < angles.size(); ++a) {
+      for (std::size_t b = a + 1; b < angles.size(); ++b) {
+        double d = std::abs(std::remainder(angles[a] - angles[b], 2.0 * kPi)) * 180.0 / kPi;
+        narrow = narrow || (d > 12.0 && d < 14.0);
+      }
+    }
+  }
+  EXPECT_TRUE(narrow);
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < on.edges.size(); ++j) bad += crosses_without_node(on.edges[i], on.edges[j]);
+  }
+  EXPECT_EQ(bad, 0u);
+}

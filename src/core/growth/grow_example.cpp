@@ -422,6 +422,7 @@ class Grower {
       corner_front_.clear();
       bridge_end_.clear();
       example_dead_end_.clear();
+      crop_end_.clear();
       load_existing();
       place_seeds();
     }
@@ -2648,14 +2649,23 @@ class Grower {
       }
     }
   }
-  // The corner fronts no join reached (see avoid_corners): each street is cut back to its junction
-  // (in node order, deterministic) while the network has more dead ends than the example's share
-  // of its street ends (counted as connect_dangling does).
+  // The corner fronts no join reached (see avoid_corners), and the copied crop dead ends (see
+  // PatchGrowParams::cut_crop_ends): each street is cut back to its junction (in node order,
+  // deterministic) while the network has more dead ends than the example's share of its street
+  // ends (counted as connect_dangling does).
   void cut_corner_fronts() {
     std::vector<std::uint32_t> fronts(corner_front_.begin(), corner_front_.end());
+    const double step = std::max(snap_, min_length_);
+    if (params_.patch.cut_crop_ends) {
+      for (std::uint32_t v : crop_end_) {
+        if (corner_front_.count(v) != 0 || is_pruned(v) || nodes_[v].edges.size() != 1) continue;
+        const Point p = nodes_[v].p;  // stopped by the region's edge, an obstacle or water: not counted, kept
+        if (!legal(p, p + step * unit(p - other_end(nodes_[v].edges[0], v)), false)) continue;
+        fronts.push_back(v);
+      }
+    }
     std::sort(fronts.begin(), fronts.end());
     long dead = 0, street_ends = 0;
-    const double step = std::max(snap_, min_length_);
     for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
       if (is_pruned(v)) continue;
       const std::size_t d = nodes_[v].edges.size();
@@ -2670,7 +2680,7 @@ class Grower {
       poll_interrupts();
       if (is_pruned(v) || nodes_[v].edges.size() != 1) continue;
       if (static_cast<double>(dead) <= example_dead_end_share_ * static_cast<double>(street_ends)) break;
-      ++stats_.corners_cut;
+      ++(corner_front_.count(v) != 0 ? stats_.corners_cut : stats_.crop_ends_cut);
       --dead;
       --street_ends;
       std::uint32_t cur = v;
@@ -3005,6 +3015,7 @@ class Grower {
     return true;
   }
   std::unordered_set<std::uint32_t> example_dead_end_;  // ends of patch dead-end edges
+  std::unordered_set<std::uint32_t> crop_end_;          // ends of patch dead-end edges the example's crop cut
   double example_dead_end_share_ = 0.0;  // of the library's street ends (not cut), its own dead ends
   int styles_ = 1;
   StreetStatistics style_stats_[2];
@@ -3896,7 +3907,7 @@ class Grower {
         prev = next;
         line_nodes_.push_back(next);
       }
-      if (lp.edges[pl.edge].role == PatchEdgeRole::dead_end && !lp.edges[pl.edge].cut) example_dead_end_.insert(prev);
+      if (lp.edges[pl.edge].role == PatchEdgeRole::dead_end) (lp.edges[pl.edge].cut ? crop_end_ : example_dead_end_).insert(prev);
       if (seeds_local) {  // the local junctions of the example along this arterial street
         const LibEdge& le = lp.edges[pl.edge];
         for (const auto& [vk, local] : le.local_seeds) {

@@ -98,6 +98,14 @@ struct PatchGrowParams {
   // patches met their neighbours a few metres off, and a corner between two streets of a grid reads
   // as one diagonal street (bench/patches: orientation order, README).
   bool avoid_corners = true;
+  // Crop ends (with avoid_corners): a patch's dead-end edge that ends on the example's crop (marked
+  // cut: within a quarter of the mean street of its library's hull) is no dead end of the example,
+  // but placed inside the region it is one. After the joins, those still dead-ended are cut back
+  // to their junction with the corner fronts, under the same budget (while the network has more
+  // dead ends than the example's share of its street ends); not where a step on is illegal (the
+  // region's edge, an obstacle, water). Strasbourg's grown dead ends were mostly such copies (seeds
+  // 1-3: 13-18 of 17-22 inside the hull shrunk by 50 m; bench/patches, README).
+  bool cut_crop_ends = true;
   // Stratified redraw (local phase, or one level; not for a city of cul-de-sacs): a front's first
   // draw (eq. 2's choice were every patch legal) refused for a conflict that grows with street
   // length (clearance, crossing, angle) is followed by the draws of its size class first (terciles
@@ -270,6 +278,7 @@ struct GrowStats {
   std::size_t continued_across = 0;    // continue_across: T-junctions joined to the T facing them
   std::size_t corners_avoided = 0;     // avoid_corners: fronts where a patch was refused for leaving a corner
   std::size_t corners_cut = 0;         // avoid_corners: of those, dead ends cut back after the joins
+  std::size_t crop_ends_cut = 0;       // cut_crop_ends: copied crop dead ends cut back after the joins
   std::size_t arterial_patches_placed = 0;  // levels: patches placed in the arterial phase
   // Levels: each front of the arterial phase (a node with streets) once, by what became of it.
   std::size_t arterial_fronts = 0;
