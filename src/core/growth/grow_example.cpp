@@ -681,10 +681,14 @@ class Grower {
         } else {
           ++stats_.fronts_failed;
           close_front(v);
-          // A front that could neither grow nor join stays a dead end as often as the example's
-          // street ends are dead ends; otherwise its street is cut back.
+          // A front that could neither grow nor join stays a dead end while the output is short of
+          // the example's dead ends (short_of_dead_ends); otherwise its street is cut back. In a
+          // city of cul-de-sacs, as often as the example's street ends are dead ends (the draw is
+          // made everywhere, so the random stream is the same).
           if (nodes_[v].edges.size() == 1 && !params_.use_patches && !params_.parametric) {
-            if (!(uniform01() < ex_dead_end_share(v))) {
+            const bool drawn = uniform01() < ex_dead_end_share(v);
+            const bool keep = cul_de_sac_city(ex_dead_end_share(v)) ? drawn : short_of_dead_ends(v);
+            if (!keep) {
               prune_dead_street(v);
               ++stats_.fronts_pruned;
             } else {
@@ -4113,6 +4117,33 @@ class Grower {
     }
     return false;
   }
+  // Whether the output is short of the example's dead ends if failed front v is cut back: of its
+  // street ends (nodes of degree 1 or >= 3, counted as the junction mix counts them: away from the
+  // region's boundary), fewer than the example's share are dead ends, by half a dead end. A dead end
+  // here is a finished one: open fronts (degree 1 and queued) and v itself are not counted. Copied
+  // dead ends are lost to the angle rule and turned into through streets by later joins, so the
+  // example's probability alone left barcelona with half its dead ends (-48 %, tokyo's -15..-31 %,
+  // strasbourg's -21..-29 %). Not for a city of cul-de-sacs, whose dead ends are near the
+  // example's already (canberra +4..+6 %). bench/growth, README (growth20).
+  bool short_of_dead_ends(std::uint32_t v) {
+    if (!mix_top_up_) return false;
+    const double a1 = 1 < at_least_.size() ? static_cast<double>(at_least_[1]) : 0.0;
+    const double a2 = 2 < at_least_.size() ? static_cast<double>(at_least_[2]) : 0.0;
+    const double a3 = 3 < at_least_.size() ? static_cast<double>(at_least_[3]) : 0.0;
+    // The open fronts, each once (a front can be queued twice): marked with this call's stamp, so
+    // the cost is the queue's length, not the output's size.
+    open_front_.resize(nodes_.size(), 0);
+    ++open_stamp_;
+    double open = 0.0;
+    for (std::uint32_t u : unfinished_) {
+      if (open_front_[u] == open_stamp_ || !counted_[u] || nodes_[u].edges.size() != 1 || is_pruned(u)) continue;
+      open_front_[u] = open_stamp_;
+      open += 1.0;
+    }
+    if (counted_[v] && nodes_[v].edges.size() == 1 && open_front_[v] != open_stamp_) open += 1.0;
+    const double dead = a1 - a2 - open;
+    return dead + 0.5 <= ex_dead_end_share(v) * (dead + a3);
+  }
   bool short_of_crossings() {
     const double ge = 3 < at_least_.size() ? static_cast<double>(at_least_[3]) : 0.0;
     const double gt = 4 < at_least_.size() ? static_cast<double>(at_least_[4]) : 0.0;
@@ -4345,6 +4376,8 @@ class Grower {
   // The junction mix's top-up (node_allows_one_more).
   bool mix_top_up_ = false;
   std::vector<char> counted_;           // per node: counted in at_least_
+  std::vector<std::uint32_t> open_front_;  // scratch of short_of_dead_ends: open fronts, by stamp
+  std::uint32_t open_stamp_ = 0;
   std::vector<std::size_t> at_least_;   // counted nodes by degree, at least d
   GeomPtr region_boundary_;
   PreparedPtr region_boundary_prepared_;
