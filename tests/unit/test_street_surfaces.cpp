@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <tuple>
 
 #include "core/error.hpp"
 #include "core/streets/arc_centre.hpp"
+#include "core/streets/box_pairs.hpp"
 #include "core/streets/street_surfaces.hpp"
 
 using namespace streetgen::core;
@@ -480,4 +482,43 @@ TEST(StreetSurfaces, OutputsHandedOverAsEwkbAreTheGeometriesWritten) {
   for (std::size_t i = 0; i < live.sections.size(); ++i) {
     EXPECT_EQ(static_cast<bool>(live.sections[i].surface), static_cast<bool>(handed.sections[i].surface));
   }
+}
+
+TEST(StreetSurfaces, SidewalkClaimsAreHeldOnlyRoundTheirTurn) {
+  GeosContext ctx;
+  std::vector<SurfaceAxis> axes;
+  for (int i = 0; i < 12; ++i) {  // a 12 x 12 grid of 60 m blocks with sidewalks
+    axes.push_back(axis(1 + i, {{0, 60.0 * i}, {660, 60.0 * i}}, 7, 40));
+    axes.push_back(axis(101 + i, {{60.0 * i, 0}, {60.0 * i, 660}}, 7, 40));
+  }
+  for (SurfaceAxis& a : axes) a.sidewalk_left = a.sidewalk_right = 2;
+  SurfaceResult r = street_surfaces(ctx, axes, {}, SurfaceSettings{});
+  const SurfaceRunStats& t = r.stats;
+  // 264 street sections, two sides each, and 144 junctions by corner
+  ASSERT_GE(t.sidewalk_claims, 528 + 144);
+  // In key order every street side's claim was held until the junctions, after them all
+  // (more than half of the claims); along a Hilbert curve, only those round its front.
+  EXPECT_GT(t.sidewalk_claims_held_peak, 0);
+  EXPECT_LT(t.sidewalk_claims_held_peak, t.sidewalk_claims / 5);
+  // The sidewalks still come in key order: the streets' by (axis, part, side), then the
+  // junctions' by node.
+  ASSERT_EQ(r.sidewalks.size(), 528u + 144u);
+  auto key = [](const SidewalkResult& w) { return std::make_tuple(w.node_id != 0, w.node_id, w.axis_id, w.part, w.side); };
+  for (std::size_t i = 1; i < r.sidewalks.size(); ++i) EXPECT_LT(key(r.sidewalks[i - 1]), key(r.sidewalks[i])) << i;
+  // Sidewalks never overlap each other (the grid's micrometre aside).
+  std::vector<Box> boxes;
+  for (const SidewalkResult& w : r.sidewalks) {
+    Box b{};
+    GEOSGeom_getXMin_r(ctx.handle(), w.surface.get(), &b.xmin);
+    GEOSGeom_getYMin_r(ctx.handle(), w.surface.get(), &b.ymin);
+    GEOSGeom_getXMax_r(ctx.handle(), w.surface.get(), &b.xmax);
+    GEOSGeom_getYMax_r(ctx.handle(), w.surface.get(), &b.ymax);
+    boxes.push_back(b);
+  }
+  long pairs = 0;
+  for_each_overlapping_pair(boxes, [&](std::size_t i, std::size_t j) {
+    ++pairs;
+    EXPECT_LT(overlap_area(ctx, r.sidewalks[i].surface.get(), r.sidewalks[j].surface.get()), 1e-3) << i << " " << j;
+  });
+  EXPECT_GT(pairs, 0);
 }

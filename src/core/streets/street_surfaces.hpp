@@ -149,6 +149,10 @@ struct SurfaceRunStats {
   long junction_sidewalks_by_buffer = 0;
   long junction_corners_by_buffer = 0;  // (of junctions claimed by corner: a corner without a band of its own)
   long sidewalks_without_overlay = 0;
+  // Sidewalk claims (a street side's, or a junction corner's or buffer), and the most of them
+  // whose geometry was held at once (build_sidewalks: the claims round the current one's turn).
+  long sidewalk_claims = 0;
+  long sidewalk_claims_held_peak = 0;
 };
 
 struct SurfaceResult {
