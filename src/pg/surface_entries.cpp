@@ -408,9 +408,9 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
        t.topology, t.corners, t.sections, t.lanes, t.junctions, t.sidewalks);
   elog(DEBUG1,
        "streetgen: junction sidewalks %ld by corner (%ld corners of them by buffer), %ld by buffer; %ld sidewalks "
-       "without an overlay; %ld sidewalk claims, at most %ld held at once",
+       "without an overlay; %ld sidewalk claims, at most %ld held at once; their first build %.3f CPU seconds",
        t.junction_sidewalks_by_corner, t.junction_corners_by_buffer, t.junction_sidewalks_by_buffer,
-       t.sidewalks_without_overlay, t.sidewalk_claims, t.sidewalk_claims_held_peak);
+       t.sidewalks_without_overlay, t.sidewalk_claims, t.sidewalk_claims_held_peak, t.sidewalk_claim_builds);
 
   // Phases 2 and 3 in turn, a chunk of rows at a time: rows from the result (C++), then out
   // (PostgreSQL; each row's datums in a context reset after tuplestore_putvalues has copied them).

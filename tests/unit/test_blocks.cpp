@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <string>
 #include <vector>
 
 #include "core/error.hpp"
@@ -65,6 +66,47 @@ TEST(Blocks, NothingLeftIsNullAndNoPiecesIsTheFace) {
   EXPECT_EQ(GEOSGeomTypeId_r(ctx.handle(), out[1].get()), GEOS_MULTIPOLYGON);
   EXPECT_NEAR(area(ctx, out[1].get()), 100, 1e-9);
   EXPECT_FALSE(out[2]);
+}
+
+// A face at a time: each read when its turn comes and its cut handed over before the next is
+// read, with the cuts the whole-vector call makes.
+TEST(Blocks, FacesAreReadAndCutOneAtATime) {
+  core::GeosContext ctx;
+  std::vector<core::GeomPtr> faces;
+  faces.push_back(test::wkt(ctx, "POLYGON((0 0, 100 0, 100 100, 0 100, 0 0))"));
+  faces.push_back(test::wkt(ctx, "POLYGON((100 0, 200 0, 200 100, 100 100, 100 0))"));
+  faces.push_back(test::wkt(ctx, "POLYGON((300 0, 310 0, 310 10, 300 10, 300 0))"));
+  std::vector<core::GeomPtr> pieces;
+  pieces.push_back(test::wkt(ctx, "POLYGON((96 -10, 104 -10, 104 110, 96 110, 96 -10))"));
+  pieces.push_back(test::wkt(ctx, "POLYGON((299 -1, 311 -1, 311 11, 299 11, 299 -1))"));  // covers the third
+  auto whole = core::faces_minus_pieces(ctx, raw(faces), raw(pieces), 1e-6);
+  std::vector<std::string> calls;
+  std::vector<core::GeomPtr> cuts(faces.size());
+  core::FaceCutStats stats;
+  core::faces_minus_pieces(
+      ctx, faces.size() + 1,
+      [&](std::size_t f) {
+        calls.push_back("read " + std::to_string(f));
+        if (f == faces.size()) return core::GeomPtr(nullptr, core::GeomDeleter{ctx.handle()});  // no face: a null cut
+        return core::own(ctx, GEOSGeom_clone_r(ctx.handle(), faces[f].get()), "clone");
+      },
+      raw(pieces), 1e-6,
+      [&](std::size_t f, core::GeomPtr cut) {
+        calls.push_back("cut " + std::to_string(f) + (cut ? "" : " null"));
+        if (f < cuts.size()) cuts[f] = std::move(cut);
+      },
+      &stats);
+  EXPECT_EQ(calls, (std::vector<std::string>{"read 0", "cut 0", "read 1", "cut 1", "read 2", "cut 2 null", "read 3", "cut 3 null"}));
+  EXPECT_EQ(stats.faces, 3u);
+  ASSERT_EQ(whole.size(), cuts.size());
+  for (std::size_t f = 0; f < cuts.size(); ++f) {
+    ASSERT_EQ(static_cast<bool>(whole[f]), static_cast<bool>(cuts[f])) << f;
+    if (cuts[f]) {
+      EXPECT_EQ(GEOSEqualsExact_r(ctx.handle(), whole[f].get(), cuts[f].get(), 0.0), 1) << f;
+    }
+  }
+  ASSERT_TRUE(cuts[0]);
+  EXPECT_NEAR(area(ctx, cuts[0].get()), 10000 - 400, 1e-6);
 }
 
 TEST(Blocks, RefusesABadGrid) {

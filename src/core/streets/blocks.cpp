@@ -280,13 +280,26 @@ struct IndexTree {  // an STRtree of geometries by index (items are index + 1: G
 std::vector<GeomPtr> faces_minus_pieces(GeosContext& ctx, const std::vector<const GEOSGeometry*>& faces,
                                         const std::vector<const GEOSGeometry*>& pieces, double grid_size,
                                         FaceCutStats* stats) {
+  std::vector<GeomPtr> out;
+  for (std::size_t f = 0; f < faces.size(); ++f) out.emplace_back(nullptr, GeomDeleter{ctx.handle()});
+  // (the caller keeps its faces: each lent as a clone would be copied for nothing)
+  auto face_at = [&](std::size_t f) {
+    if (faces[f] == nullptr) return GeomPtr(nullptr, GeomDeleter{ctx.handle()});
+    return own(ctx, GEOSGeom_clone_r(ctx.handle(), faces[f]), "clone");
+  };
+  faces_minus_pieces(ctx, faces.size(), face_at, pieces, grid_size, [&](std::size_t f, GeomPtr cut) { out[f] = std::move(cut); },
+                     stats);
+  return out;
+}
+
+void faces_minus_pieces(GeosContext& ctx, std::size_t face_count, const std::function<GeomPtr(std::size_t)>& face_at,
+                        const std::vector<const GEOSGeometry*>& pieces, double grid_size,
+                        const std::function<void(std::size_t, GeomPtr)>& emit, FaceCutStats* stats) {
   if (!(grid_size > 0)) throw_invalid_argument("grid size must be positive");
   GEOSContextHandle_t h = ctx.handle();
   FaceCutStats local;
   FaceCutStats& s = stats != nullptr ? *stats : local;
   std::clock_t call_start = std::clock();
-  std::vector<GeomPtr> out;
-  for (std::size_t f = 0; f < faces.size(); ++f) out.emplace_back(nullptr, GeomDeleter{h});
 
   // Every polygon of the pieces is its own item: a junction's sidewalk is one MultiPolygon with a
   // part at each corner, each part in one face, and whole it met every face around its junction
@@ -297,30 +310,29 @@ std::vector<GeomPtr> faces_minus_pieces(GeosContext& ctx, const std::vector<cons
   }
   IndexTree tree(ctx);
   for (std::size_t i = 0; i < polygons.size(); ++i) tree.insert(ctx, polygons[i], i);
-  // Each face's polygons by box, in the order of the input (not of the tree: the same pieces
-  // always unite in the same order).
-  std::vector<std::vector<std::size_t>> candidates(faces.size());
-  for (std::size_t f = 0; f < faces.size(); ++f) {
-    if (faces[f] == nullptr) continue;
-    ++s.faces;
-    if (GEOSisEmpty_r(h, faces[f]) == 0) candidates[f] = tree.query(ctx, faces[f]);
-    s.candidate_pairs += candidates[f].size();
-  }
 
-  for (std::size_t f = 0; f < faces.size(); ++f) {
+  for (std::size_t f = 0; f < face_count; ++f) {
     poll_interrupts();
-    if (faces[f] == nullptr) continue;
-    const GEOSGeometry* face = faces[f];
-    std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter> prepared(GEOSPrepare_r(h, face), PreparedDeleter{h});
-    if (!prepared) ctx.fail("prepared geometry");
-    if (wind_face(ctx, face, prepared.get(), polygons, candidates[f], grid_size, out[f], s)) continue;
-    if (!cut_face(ctx, face, prepared.get(), polygons, candidates[f], grid_size, false, out[f], s)) {
-      ++s.grid_faces;
-      cut_face(ctx, face, prepared.get(), polygons, candidates[f], grid_size, true, out[f], s);
+    GeomPtr face = face_at(f);
+    GeomPtr cut(nullptr, GeomDeleter{h});
+    if (face) {
+      ++s.faces;
+      // The face's polygons by box, in the order of the input (not of the tree: the same pieces
+      // always unite in the same order).
+      std::vector<std::size_t> candidates;
+      if (GEOSisEmpty_r(h, face.get()) == 0) candidates = tree.query(ctx, face.get());
+      s.candidate_pairs += candidates.size();
+      std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter> prepared(GEOSPrepare_r(h, face.get()), PreparedDeleter{h});
+      if (!prepared) ctx.fail("prepared geometry");
+      if (!wind_face(ctx, face.get(), prepared.get(), polygons, candidates, grid_size, cut, s) &&
+          !cut_face(ctx, face.get(), prepared.get(), polygons, candidates, grid_size, false, cut, s)) {
+        ++s.grid_faces;
+        cut_face(ctx, face.get(), prepared.get(), polygons, candidates, grid_size, true, cut, s);
+      }
     }
+    emit(f, std::move(cut));
   }
   s.total_seconds += seconds_since(call_start);
-  return out;
 }
 
 }  // namespace streetgen::core

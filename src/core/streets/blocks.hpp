@@ -7,6 +7,7 @@
 #include "core/no_postgres.hpp"
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "core/geos_context.hpp"
@@ -44,5 +45,12 @@ struct FaceCutStats {
 std::vector<GeomPtr> faces_minus_pieces(GeosContext& ctx, const std::vector<const GEOSGeometry*>& faces,
                                         const std::vector<const GEOSGeometry*>& pieces, double grid_size,
                                         FaceCutStats* stats = nullptr);
+
+// The same, a face at a time: face_at(f) gives face f (null: none), read when its turn comes and
+// freed after, and emit(f, cut) takes its cut as soon as it is made; only the pieces are held
+// for the whole call, not every face and every cut.
+void faces_minus_pieces(GeosContext& ctx, std::size_t face_count, const std::function<GeomPtr(std::size_t)>& face_at,
+                        const std::vector<const GEOSGeometry*>& pieces, double grid_size,
+                        const std::function<void(std::size_t, GeomPtr)>& emit, FaceCutStats* stats = nullptr);
 
 }  // namespace streetgen::core

@@ -1521,6 +1521,7 @@ class SurfaceBuilder {
     claims.reserve(expected);
     boxes.reserve(first_claim + expected);
     std::vector<Item> built;
+    std::clock_t first_builds = std::clock();
     for (std::size_t s = 0; s < sources.size(); ++s) {
       poller.tick();
       built.clear();
@@ -1533,6 +1534,7 @@ class SurfaceBuilder {
         claims.push_back({it.meta, s, it.piece});
       }
     }
+    result_.stats.sidewalk_claim_builds = static_cast<double>(std::clock() - first_builds) / CLOCKS_PER_SEC;
     // Key order: sections' (axis, part, left before right), then junctions' by node id (a
     // junction's corners in turn). The boxes and layers follow their claims.
     {

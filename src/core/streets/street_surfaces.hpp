@@ -153,6 +153,7 @@ struct SurfaceRunStats {
   // whose geometry was held at once (build_sidewalks: the claims round the current one's turn).
   long sidewalk_claims = 0;
   long sidewalk_claims_held_peak = 0;
+  double sidewalk_claim_builds = 0;  // CPU seconds of the claims' first build, for their boxes (of `sidewalks`)
 };
 
 struct SurfaceResult {
