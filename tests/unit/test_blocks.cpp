@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/ewkb.hpp"
 #include "core/streets/blocks.hpp"
 #include "test_support.hpp"
 
@@ -68,8 +69,9 @@ TEST(Blocks, NothingLeftIsNullAndNoPiecesIsTheFace) {
   EXPECT_FALSE(out[2]);
 }
 
-// A face at a time: each read when its turn comes and its cut handed over before the next is
-// read, with the cuts the whole-vector call makes.
+// A face at a time, the pieces as EWKB: each face read for its box, then again when its turn
+// comes, its cut handed over before the next is read, with the cuts the whole-vector call makes;
+// a piece read only while the faces that need it are cut.
 TEST(Blocks, FacesAreReadAndCutOneAtATime) {
   core::GeosContext ctx;
   std::vector<core::GeomPtr> faces;
@@ -80,6 +82,10 @@ TEST(Blocks, FacesAreReadAndCutOneAtATime) {
   pieces.push_back(test::wkt(ctx, "POLYGON((96 -10, 104 -10, 104 110, 96 110, 96 -10))"));
   pieces.push_back(test::wkt(ctx, "POLYGON((299 -1, 311 -1, 311 11, 299 11, 299 -1))"));  // covers the third
   auto whole = core::faces_minus_pieces(ctx, raw(faces), raw(pieces), 1e-6);
+  std::vector<core::Bytes> ewkb;
+  for (const auto& p : pieces) ewkb.push_back(core::write_ewkb(ctx, p.get(), 2154));
+  std::vector<core::WkbView> views;
+  for (const auto& b : ewkb) views.push_back({b.data(), b.size()});
   std::vector<std::string> calls;
   std::vector<core::GeomPtr> cuts(faces.size());
   core::FaceCutStats stats;
@@ -90,14 +96,26 @@ TEST(Blocks, FacesAreReadAndCutOneAtATime) {
         if (f == faces.size()) return core::GeomPtr(nullptr, core::GeomDeleter{ctx.handle()});  // no face: a null cut
         return core::own(ctx, GEOSGeom_clone_r(ctx.handle(), faces[f].get()), "clone");
       },
-      raw(pieces), 1e-6,
+      views, 1e-6,
       [&](std::size_t f, core::GeomPtr cut) {
         calls.push_back("cut " + std::to_string(f) + (cut ? "" : " null"));
         if (f < cuts.size()) cuts[f] = std::move(cut);
       },
       &stats);
-  EXPECT_EQ(calls, (std::vector<std::string>{"read 0", "cut 0", "read 1", "cut 1", "read 2", "cut 2 null", "read 3", "cut 3 null"}));
+  // every face once for its box, then a face at a time (along the curve); the missing one, read
+  // once, cut as null at the end
+  ASSERT_EQ(calls.size(), 4u + 2 * 3u + 1u);
+  EXPECT_EQ(std::vector<std::string>(calls.begin(), calls.begin() + 4),
+            (std::vector<std::string>{"read 0", "read 1", "read 2", "read 3"}));
+  for (std::size_t k = 4; k + 1 < calls.size(); k += 2) {
+    std::string f = calls[k].substr(5);
+    EXPECT_EQ(calls[k], "read " + f);
+    EXPECT_EQ(calls[k + 1].rfind("cut " + f, 0), 0u) << calls[k + 1];
+  }
+  EXPECT_EQ(calls.back(), "cut 3 null");
   EXPECT_EQ(stats.faces, 3u);
+  EXPECT_EQ(stats.pieces, 2u);
+  EXPECT_EQ(stats.pieces_held_at_most, 1u);  // the street for the first two faces, then the cover of the third
   ASSERT_EQ(whole.size(), cuts.size());
   for (std::size_t f = 0; f < cuts.size(); ++f) {
     ASSERT_EQ(static_cast<bool>(whole[f]), static_cast<bool>(cuts[f])) << f;

@@ -8,35 +8,20 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/ewkb.hpp"
 #include "core/interrupts.hpp"
+#include "core/streets/box_pairs.hpp"
 
 namespace streetgen::core {
 namespace {
 
 constexpr double kMinBlockPartArea = 0.01;  // m², as sidewalks' (kMinSidewalkArea): smaller parts are slivers
 
-struct TreeDeleter {
-  GEOSContextHandle_t handle;
-  void operator()(GEOSSTRtree* tree) const noexcept { GEOSSTRtree_destroy_r(handle, tree); }
-};
 struct PreparedDeleter {
   GEOSContextHandle_t handle;
   void operator()(const GEOSPreparedGeometry* prepared) const noexcept { GEOSPreparedGeom_destroy_r(handle, prepared); }
 };
 
-// What the tree query collects; GEOS calls the callback from C, so it must not throw.
-struct Candidates {
-  std::vector<std::size_t> indices;
-  bool out_of_memory = false;
-};
-void collect(void* item, void* userdata) {
-  auto* c = static_cast<Candidates*>(userdata);
-  try {
-    c->indices.push_back(reinterpret_cast<std::uintptr_t>(item) - 1);
-  } catch (...) {
-    c->out_of_memory = true;
-  }
-}
 
 // CPU seconds, not wall: the figures are for profiling, and must add up on a busy machine too.
 double seconds_since(std::clock_t start) { return static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC; }
@@ -256,83 +241,197 @@ bool cut_face(GeosContext& ctx, const GEOSGeometry* face, const GEOSPreparedGeom
   return true;
 }
 
-struct IndexTree {  // an STRtree of geometries by index (items are index + 1: GEOS may treat a null item as none)
-  IndexTree(GeosContext& ctx) : tree(GEOSSTRtree_create_r(ctx.handle(), 10), TreeDeleter{ctx.handle()}) {
-    if (!tree) ctx.fail("STRtree creation");
+
+
+// The pieces, as polygons numbered in input order (a piece's parts in turn), each piece held as
+// a GEOS geometry only while the faces that need it are cut.
+class PieceStore {
+ public:
+  // Pieces given as GEOS geometries: all held by the caller.
+  PieceStore(GeosContext& ctx, const std::vector<const GEOSGeometry*>& pieces) : ctx_(ctx) {
+    for (const GEOSGeometry* piece : pieces) add(piece);
+    polygons_ = parts_;  // (every piece is there from the start)
+    held_at_most_ = pieces.size();
   }
-  void insert(GeosContext& ctx, const GEOSGeometry* g, std::size_t i) {
-    GEOSSTRtree_insert_r(ctx.handle(), tree.get(), g, reinterpret_cast<void*>(static_cast<std::uintptr_t>(i + 1)));
+  // Pieces given as EWKB: each read once for the boxes of its polygons, and again when a face needs it.
+  PieceStore(GeosContext& ctx, const std::vector<WkbView>& pieces) : ctx_(ctx), wkb_(&pieces) {
+    for (const WkbView& piece : pieces) {
+      if (piece.data == nullptr) {
+        add(nullptr);
+        continue;
+      }
+      GeomPtr g = read_ewkb(ctx_, piece.data, piece.size, "piece").geom;
+      add(g.get());
+    }
+    std::fill(parts_.begin(), parts_.end(), nullptr);  // (pointers into the geometries just freed)
+    polygons_ = parts_;
+    held_.resize(pieces.size());
   }
-  // The indices whose boxes meet g's, sorted.
-  const std::vector<std::size_t>& query(GeosContext& ctx, const GEOSGeometry* g) {
-    found.indices.clear();
-    GEOSSTRtree_query_r(ctx.handle(), tree.get(), g, &collect, &found);
-    if (found.out_of_memory) throw std::bad_alloc();
-    std::sort(found.indices.begin(), found.indices.end());
-    return found.indices;
+
+  const std::vector<Box>& boxes() const { return boxes_; }
+  std::size_t held_at_most() const { return held_at_most_; }
+  std::size_t piece_count() const { return first_part_.size(); }
+  std::size_t piece_of(std::size_t polygon) const { return piece_of_[polygon]; }
+  // Every polygon by its number; a piece's are null until need() reads it.
+  const std::vector<const GEOSGeometry*>& polygons() const { return polygons_; }
+
+  void need(std::size_t piece) {
+    if (wkb_ == nullptr || held_[piece]) return;
+    const WkbView& v = (*wkb_)[piece];
+    held_[piece] = read_ewkb(ctx_, v.data, v.size, "piece").geom;
+    held_at_most_ = std::max(held_at_most_, ++held_count_);
+    std::vector<const GEOSGeometry*> parts;
+    append_polygon_parts(ctx_.handle(), held_[piece].get(), parts);
+    if (parts.size() != part_count_[piece]) ctx_.fail("piece read again");  // (cannot happen: the same bytes)
+    std::copy(parts.begin(), parts.end(), polygons_.begin() + static_cast<std::ptrdiff_t>(first_part_[piece]));
   }
-  std::unique_ptr<GEOSSTRtree, TreeDeleter> tree;
-  Candidates found;
+  void release(std::size_t piece) {
+    if (wkb_ == nullptr || !held_[piece]) return;
+    std::fill_n(polygons_.begin() + static_cast<std::ptrdiff_t>(first_part_[piece]), part_count_[piece], nullptr);
+    held_[piece].reset();
+    --held_count_;
+  }
+
+ private:
+  void add(const GEOSGeometry* piece) {
+    std::size_t first = parts_.size();
+    if (piece != nullptr) append_polygon_parts(ctx_.handle(), piece, parts_);
+    first_part_.push_back(first);
+    part_count_.push_back(parts_.size() - first);
+    boxes_.resize(parts_.size());
+    for (std::size_t k = first; k < parts_.size(); ++k) {
+      Box& b = boxes_[k];
+      if (GEOSGeom_getXMin_r(ctx_.handle(), parts_[k], &b.xmin) == 0 || GEOSGeom_getYMin_r(ctx_.handle(), parts_[k], &b.ymin) == 0 ||
+          GEOSGeom_getXMax_r(ctx_.handle(), parts_[k], &b.xmax) == 0 || GEOSGeom_getYMax_r(ctx_.handle(), parts_[k], &b.ymax) == 0) {
+        ctx_.fail("envelope");
+      }
+      piece_of_.push_back(first_part_.size() - 1);
+    }
+  }
+
+  GeosContext& ctx_;
+  const std::vector<WkbView>* wkb_ = nullptr;
+  std::vector<const GEOSGeometry*> parts_;     // while adding
+  std::vector<const GEOSGeometry*> polygons_;
+  std::vector<Box> boxes_;                     // per polygon
+  std::vector<std::size_t> piece_of_;          // per polygon
+  std::vector<std::size_t> first_part_, part_count_;  // per piece
+  std::vector<GeomPtr> held_;                  // per piece (EWKB pieces only)
+  std::size_t held_count_ = 0, held_at_most_ = 0;
 };
+
+}  // namespace
+
+namespace {
+
+// Cuts the faces (see faces_minus_pieces) with the pieces of `store`, along a Hilbert curve
+// through the faces' boxes.
+void cut_faces(GeosContext& ctx, std::size_t face_count, const std::function<GeomPtr(std::size_t)>& face_at,
+               PieceStore& store, double grid_size, const std::function<void(std::size_t, GeomPtr)>& emit,
+               FaceCutStats& s) {
+  if (!(grid_size > 0)) throw_invalid_argument("grid size must be positive");
+  GEOSContextHandle_t h = ctx.handle();
+  std::clock_t call_start = std::clock();
+  // Each face's polygons by box (faces first, then polygons, in one box sweep), in the order of
+  // the input: the same pieces always unite in the same order.
+  std::vector<Box> boxes;
+  std::vector<std::size_t> face_of_box;
+  std::vector<bool> present(face_count, false);
+  for (std::size_t f = 0; f < face_count; ++f) {
+    poll_interrupts();
+    GeomPtr face = face_at(f);
+    if (!face) continue;
+    present[f] = true;
+    ++s.faces;
+    if (GEOSisEmpty_r(h, face.get()) != 0) continue;
+    Box b;
+    if (GEOSGeom_getXMin_r(h, face.get(), &b.xmin) == 0 || GEOSGeom_getYMin_r(h, face.get(), &b.ymin) == 0 ||
+        GEOSGeom_getXMax_r(h, face.get(), &b.xmax) == 0 || GEOSGeom_getYMax_r(h, face.get(), &b.ymax) == 0) {
+      ctx.fail("envelope");
+    }
+    boxes.push_back(b);
+    face_of_box.push_back(f);
+  }
+  const std::size_t face_boxes = boxes.size();
+  std::vector<std::size_t> order;  // the faces, along the curve
+  for (std::size_t k : hilbert_order(boxes)) order.push_back(face_of_box[k]);
+  boxes.insert(boxes.end(), store.boxes().begin(), store.boxes().end());
+  std::vector<std::vector<std::size_t>> candidates(face_count);
+  for_each_overlapping_pair(boxes, [&](std::size_t i, std::size_t j) {
+    if (i < face_boxes && j >= face_boxes) candidates[face_of_box[i]].push_back(j - face_boxes);
+  });
+  std::vector<Box>().swap(boxes);
+  // A piece is held from the first face that needs it until its last is cut.
+  std::vector<std::size_t> uses(store.piece_count(), 0);
+  for (auto& c : candidates) {
+    std::sort(c.begin(), c.end());
+    s.candidate_pairs += c.size();
+    for (std::size_t polygon : c) ++uses[store.piece_of(polygon)];
+  }
+  // (empty faces, which have no box, come last: nothing is cut from them)
+  std::vector<bool> ordered(face_count, false);
+  for (std::size_t f : order) ordered[f] = true;
+  for (std::size_t f = 0; f < face_count; ++f) {
+    if (present[f] && !ordered[f]) order.push_back(f);
+  }
+  std::vector<bool> emitted(face_count, false);
+  for (std::size_t f : order) {
+    poll_interrupts();
+    GeomPtr face = face_at(f);
+    GeomPtr cut(nullptr, GeomDeleter{h});
+    for (std::size_t polygon : candidates[f]) store.need(store.piece_of(polygon));
+    std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter> prepared(GEOSPrepare_r(h, face.get()), PreparedDeleter{h});
+    if (!prepared) ctx.fail("prepared geometry");
+    const std::vector<const GEOSGeometry*>& polygons = store.polygons();
+    if (!wind_face(ctx, face.get(), prepared.get(), polygons, candidates[f], grid_size, cut, s) &&
+        !cut_face(ctx, face.get(), prepared.get(), polygons, candidates[f], grid_size, false, cut, s)) {
+      ++s.grid_faces;
+      cut_face(ctx, face.get(), prepared.get(), polygons, candidates[f], grid_size, true, cut, s);
+    }
+    prepared.reset();
+    face.reset();
+    for (std::size_t polygon : candidates[f]) {
+      std::size_t piece = store.piece_of(polygon);
+      if (--uses[piece] == 0) store.release(piece);
+    }
+    std::vector<std::size_t>().swap(candidates[f]);
+    emitted[f] = true;
+    emit(f, std::move(cut));
+  }
+  for (std::size_t f = 0; f < face_count; ++f) {  // no face: a null cut
+    if (!emitted[f]) emit(f, GeomPtr(nullptr, GeomDeleter{h}));
+  }
+  s.pieces = store.piece_count();
+  s.pieces_held_at_most = store.held_at_most();
+  s.total_seconds += seconds_since(call_start);
+}
 
 }  // namespace
 
 std::vector<GeomPtr> faces_minus_pieces(GeosContext& ctx, const std::vector<const GEOSGeometry*>& faces,
                                         const std::vector<const GEOSGeometry*>& pieces, double grid_size,
                                         FaceCutStats* stats) {
+  FaceCutStats local;
+  PieceStore store(ctx, pieces);
   std::vector<GeomPtr> out;
   for (std::size_t f = 0; f < faces.size(); ++f) out.emplace_back(nullptr, GeomDeleter{ctx.handle()});
-  // (the caller keeps its faces: each lent as a clone would be copied for nothing)
+  // (the caller keeps its faces: each is lent as a clone)
   auto face_at = [&](std::size_t f) {
     if (faces[f] == nullptr) return GeomPtr(nullptr, GeomDeleter{ctx.handle()});
     return own(ctx, GEOSGeom_clone_r(ctx.handle(), faces[f]), "clone");
   };
-  faces_minus_pieces(ctx, faces.size(), face_at, pieces, grid_size, [&](std::size_t f, GeomPtr cut) { out[f] = std::move(cut); },
-                     stats);
+  cut_faces(ctx, faces.size(), face_at, store, grid_size, [&](std::size_t f, GeomPtr cut) { out[f] = std::move(cut); },
+            stats != nullptr ? *stats : local);
   return out;
 }
 
 void faces_minus_pieces(GeosContext& ctx, std::size_t face_count, const std::function<GeomPtr(std::size_t)>& face_at,
-                        const std::vector<const GEOSGeometry*>& pieces, double grid_size,
+                        const std::vector<WkbView>& pieces, double grid_size,
                         const std::function<void(std::size_t, GeomPtr)>& emit, FaceCutStats* stats) {
   if (!(grid_size > 0)) throw_invalid_argument("grid size must be positive");
-  GEOSContextHandle_t h = ctx.handle();
   FaceCutStats local;
-  FaceCutStats& s = stats != nullptr ? *stats : local;
-  std::clock_t call_start = std::clock();
-
-  // Every polygon of the pieces is its own item: a junction's sidewalk is one MultiPolygon with a
-  // part at each corner, each part in one face, and whole it met every face around its junction
-  // (on Paris a third of the pieces the old clip cut were such parts lying inside their face).
-  std::vector<const GEOSGeometry*> polygons;
-  for (const GEOSGeometry* piece : pieces) {
-    if (piece != nullptr) append_polygon_parts(h, piece, polygons);
-  }
-  IndexTree tree(ctx);
-  for (std::size_t i = 0; i < polygons.size(); ++i) tree.insert(ctx, polygons[i], i);
-
-  for (std::size_t f = 0; f < face_count; ++f) {
-    poll_interrupts();
-    GeomPtr face = face_at(f);
-    GeomPtr cut(nullptr, GeomDeleter{h});
-    if (face) {
-      ++s.faces;
-      // The face's polygons by box, in the order of the input (not of the tree: the same pieces
-      // always unite in the same order).
-      std::vector<std::size_t> candidates;
-      if (GEOSisEmpty_r(h, face.get()) == 0) candidates = tree.query(ctx, face.get());
-      s.candidate_pairs += candidates.size();
-      std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter> prepared(GEOSPrepare_r(h, face.get()), PreparedDeleter{h});
-      if (!prepared) ctx.fail("prepared geometry");
-      if (!wind_face(ctx, face.get(), prepared.get(), polygons, candidates, grid_size, cut, s) &&
-          !cut_face(ctx, face.get(), prepared.get(), polygons, candidates, grid_size, false, cut, s)) {
-        ++s.grid_faces;
-        cut_face(ctx, face.get(), prepared.get(), polygons, candidates, grid_size, true, cut, s);
-      }
-    }
-    emit(f, std::move(cut));
-  }
-  s.total_seconds += seconds_since(call_start);
+  PieceStore store(ctx, pieces);
+  cut_faces(ctx, face_count, face_at, store, grid_size, emit, stats != nullptr ? *stats : local);
 }
 
 }  // namespace streetgen::core

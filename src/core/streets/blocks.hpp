@@ -7,6 +7,7 @@
 #include "core/no_postgres.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -20,6 +21,8 @@ struct FaceCutStats {
   std::size_t clipped_pairs = 0;    // pairs that needed an overlay (the piece crosses the face's boundary)
   std::size_t winding_faces = 0;    // faces done in one pass by a winding count (the others are clipped and united)
   std::size_t grid_faces = 0;       // faces that fell back to the micrometre grid
+  std::size_t pieces = 0;
+  std::size_t pieces_held_at_most = 0;  // as GEOS geometries at once (EWKB pieces; given as geometries: all of them)
   // CPU seconds
   double winding_seconds = 0;       // in the winding passes, with the predicates that pick the pieces
   double clip_seconds = 0;          // in the pieces' intersections with the faces, with the predicates that pick them
@@ -27,6 +30,12 @@ struct FaceCutStats {
   double difference_seconds = 0;
   double rounding_seconds = 0;      // the floating differences rounded to the grid
   double total_seconds = 0;         // the whole call (the index, the predicates, the retries too)
+};
+
+// Serialised geometry held by the caller (EWKB or WKB).
+struct WkbView {
+  const std::uint8_t* data = nullptr;  // null: no piece
+  std::size_t size = 0;
 };
 
 // For each face: the face minus the union of the polygons of `pieces`, as a MultiPolygon of the
@@ -46,11 +55,13 @@ std::vector<GeomPtr> faces_minus_pieces(GeosContext& ctx, const std::vector<cons
                                         const std::vector<const GEOSGeometry*>& pieces, double grid_size,
                                         FaceCutStats* stats = nullptr);
 
-// The same, a face at a time: face_at(f) gives face f (null: none), read when its turn comes and
-// freed after, and emit(f, cut) takes its cut as soon as it is made; only the pieces are held
-// for the whole call, not every face and every cut.
+// The same, a face at a time and the pieces as EWKB: face_at(f) gives face f (null: none; called
+// twice, once for its box), emit(f, cut) takes its cut as soon as it is made, and a piece is read
+// into GEOS before the first face that needs it and freed after the last. The faces go along a
+// Hilbert curve (a face's cut does not depend on the order), so only the faces' and pieces'
+// round the curve's front are held, not a city's.
 void faces_minus_pieces(GeosContext& ctx, std::size_t face_count, const std::function<GeomPtr(std::size_t)>& face_at,
-                        const std::vector<const GEOSGeometry*>& pieces, double grid_size,
+                        const std::vector<WkbView>& pieces, double grid_size,
                         const std::function<void(std::size_t, GeomPtr)>& emit, FaceCutStats* stats = nullptr);
 
 }  // namespace streetgen::core
