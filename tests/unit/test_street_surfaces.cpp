@@ -522,3 +522,48 @@ TEST(StreetSurfaces, SidewalkClaimsAreHeldOnlyRoundTheirTurn) {
   });
   EXPECT_GT(pairs, 0);
 }
+
+TEST(StreetSurfaces, ARunInTwoStepsHandsOverTheLanesFirstAndMakesTheSameResult) {
+  GeosContext ctx;
+  std::vector<SurfaceAxis> axes;
+  for (int i = 0; i < 3; ++i) {  // a 3 x 3 grid of 80 m blocks with sidewalks, two lanes a street
+    axes.push_back(axis(1 + i, {{0, 80.0 * i}, {160, 80.0 * i}}, 7, 40));
+    axes.push_back(axis(11 + i, {{80.0 * i, 0}, {80.0 * i, 160}}, 7, 40));
+  }
+  for (SurfaceAxis& a : axes) {
+    a.sidewalk_left = a.sidewalk_right = 2.5;
+    a.lane_input.lanes = 2;
+  }
+  SurfaceOutput output;
+  output.ewkb_srid = 2154;
+  SurfaceResult whole = street_surfaces(ctx, axes, {}, SurfaceSettings{}, output);
+  SurfaceRun run(ctx, axes, {}, SurfaceSettings{}, output);
+  run.through_lanes();
+  std::vector<LaneResult> lanes = std::move(run.lanes());
+  std::vector<MarkingResult> markings = std::move(run.markings());
+  SurfaceResult rest = run.finish();
+  // The lanes and markings are complete after the first step, and the second does not need them.
+  ASSERT_FALSE(whole.lanes.empty());
+  ASSERT_EQ(lanes.size(), whole.lanes.size());
+  for (std::size_t i = 0; i < lanes.size(); ++i) EXPECT_EQ(lanes[i].ewkb, whole.lanes[i].ewkb) << i;
+  ASSERT_EQ(markings.size(), whole.markings.size());
+  for (std::size_t i = 0; i < markings.size(); ++i) EXPECT_EQ(markings[i].ewkb, whole.markings[i].ewkb) << i;
+  EXPECT_TRUE(rest.lanes.empty());
+  EXPECT_TRUE(rest.markings.empty());
+  // Everything else as one call makes it.
+  ASSERT_EQ(rest.sections.size(), whole.sections.size());
+  for (std::size_t i = 0; i < rest.sections.size(); ++i) {
+    EXPECT_EQ(write_ewkb(ctx, rest.sections[i].surface.get(), 2154), write_ewkb(ctx, whole.sections[i].surface.get(), 2154));
+  }
+  ASSERT_EQ(rest.intersections.size(), whole.intersections.size());
+  ASSERT_EQ(rest.corners.size(), whole.corners.size());
+  ASSERT_FALSE(whole.sidewalks.empty());
+  ASSERT_EQ(rest.sidewalks.size(), whole.sidewalks.size());
+  for (std::size_t i = 0; i < rest.sidewalks.size(); ++i) EXPECT_EQ(rest.sidewalks[i].ewkb, whole.sidewalks[i].ewkb) << i;
+  ASSERT_EQ(rest.crossings.size(), whole.crossings.size());
+  for (std::size_t i = 0; i < rest.crossings.size(); ++i) EXPECT_EQ(rest.crossings[i].ewkb, whole.crossings[i].ewkb) << i;
+  // The inputs are checked as street_surfaces checks them.
+  std::vector<SurfaceAxis> bad = axes;
+  bad[0].roadway_width = -1;
+  EXPECT_THROW(SurfaceRun(ctx, bad, {}, SurfaceSettings{}, output), Error);
+}

@@ -261,7 +261,13 @@ class SurfaceBuilder {
       : ctx_(ctx), axes_(axes), overrides_(overrides), s_(settings), output_(output) {}
 
   SurfaceResult run() {
-    PhaseClock clock;
+    through_lanes();
+    return finish();
+  }
+
+  // Topology, corners, sections, lanes and markings (lanes() and markings() complete after it).
+  void through_lanes() {
+    PhaseClock& clock = clock_;
     std::vector<TopologyAxis> topo_axes;
     topo_axes.reserve(axes_.size());
     for (const SurfaceAxis& a : axes_) topo_axes.push_back({a.id, a.line, a.layer});
@@ -305,6 +311,17 @@ class SurfaceBuilder {
     result_.lanes.shrink_to_fit();
     result_.markings.shrink_to_fit();
     result_.stats.lanes = clock.lap();
+  }
+
+  std::vector<LaneResult>& lanes() { return result_.lanes; }
+  std::vector<MarkingResult>& markings() { return result_.markings; }
+
+  // Junctions, sidewalks and crossings; the whole result (no later phase reads the lanes and
+  // markings: the caller may have taken them).
+  SurfaceResult finish() {
+    PhaseClock& clock = clock_;
+    clock.lap();  // (not the caller's time between the steps)
+    InterruptPoller poller(64);
     for (SectionResult& sec : result_.sections) {
       if (sec.surface) section_surface_[{sec.axis_id, sec.part}] = sec.surface.get();
     }
@@ -2014,6 +2031,7 @@ class SurfaceBuilder {
   const std::vector<CornerOverride>& overrides_;
   const SurfaceSettings& s_;
   const SurfaceOutput& output_;
+  PhaseClock clock_;
   Topology topo_;
   std::vector<std::vector<End>> ends_of_node_;
   std::vector<std::pair<double, double>> border_;  // per edge: border abscissa at its start, at its end
@@ -2035,9 +2053,10 @@ double radius_for_speed(const SurfaceSettings& settings, double speed_kmh) {
   return std::clamp(r, settings.min_radius, std::max(settings.min_radius, settings.max_radius));
 }
 
-SurfaceResult street_surfaces(GeosContext& ctx, const std::vector<SurfaceAxis>& axes,
-                              const std::vector<CornerOverride>& corner_overrides, const SurfaceSettings& settings,
-                              const SurfaceOutput& output) {
+namespace {
+
+void check_inputs(const std::vector<SurfaceAxis>& axes, const std::vector<CornerOverride>& corner_overrides,
+                  const SurfaceSettings& settings) {
   auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   if (!(std::isfinite(settings.snap_tolerance) && settings.snap_tolerance >= 0.0) || !positive(settings.min_radius) ||
       !positive(settings.max_radius) || !positive(settings.turn_speed_ratio) || !positive(settings.lateral_acceleration) ||
@@ -2051,7 +2070,39 @@ SurfaceResult street_surfaces(GeosContext& ctx, const std::vector<SurfaceAxis>& 
   for (const CornerOverride& o : corner_overrides) {
     if (!positive(o.radius)) throw_invalid_argument("corner radius overrides must be finite numbers > 0");
   }
+}
+
+}  // namespace
+
+SurfaceResult street_surfaces(GeosContext& ctx, const std::vector<SurfaceAxis>& axes,
+                              const std::vector<CornerOverride>& corner_overrides, const SurfaceSettings& settings,
+                              const SurfaceOutput& output) {
+  check_inputs(axes, corner_overrides, settings);
   return SurfaceBuilder(ctx, axes, corner_overrides, settings, output).run();
 }
+
+struct SurfaceRun::State {
+  State(GeosContext& ctx, std::vector<SurfaceAxis> a, std::vector<CornerOverride> o, const SurfaceSettings& s,
+        const SurfaceOutput& out)
+      : axes(std::move(a)), overrides(std::move(o)), settings(s), output(out), builder(ctx, axes, overrides, settings, output) {}
+  std::vector<SurfaceAxis> axes;
+  std::vector<CornerOverride> overrides;
+  SurfaceSettings settings;
+  SurfaceOutput output;
+  SurfaceBuilder builder;  // (last: it refers to the members above)
+};
+
+SurfaceRun::SurfaceRun(GeosContext& ctx, std::vector<SurfaceAxis> axes, std::vector<CornerOverride> corner_overrides,
+                       const SurfaceSettings& settings, const SurfaceOutput& output) {
+  check_inputs(axes, corner_overrides, settings);
+  state_ = std::make_unique<State>(ctx, std::move(axes), std::move(corner_overrides), settings, output);
+}
+
+SurfaceRun::~SurfaceRun() = default;
+
+void SurfaceRun::through_lanes() { state_->builder.through_lanes(); }
+std::vector<LaneResult>& SurfaceRun::lanes() { return state_->builder.lanes(); }
+std::vector<MarkingResult>& SurfaceRun::markings() { return state_->builder.markings(); }
+SurfaceResult SurfaceRun::finish() { return state_->builder.finish(); }
 
 }  // namespace streetgen::core

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -184,5 +185,29 @@ struct SurfaceOutput {
 SurfaceResult street_surfaces(GeosContext& ctx, const std::vector<SurfaceAxis>& axes,
                               const std::vector<CornerOverride>& corner_overrides, const SurfaceSettings& settings,
                               const SurfaceOutput& output = {});
+
+// street_surfaces in two steps, for a caller that writes the lanes and markings out and frees
+// them before the junctions, sidewalks and crossings are built: they are then not held beside
+// the sidewalks' claims (the engine's memory peak). The constructor checks the inputs as
+// street_surfaces does; through_lanes() runs topology, corners, sections, lanes and markings,
+// after which lanes() and markings() are complete and the caller may take them; finish() runs
+// the rest and returns the result, with whatever lanes and markings were left.
+class SurfaceRun {
+ public:
+  SurfaceRun(GeosContext& ctx, std::vector<SurfaceAxis> axes, std::vector<CornerOverride> corner_overrides,
+             const SurfaceSettings& settings, const SurfaceOutput& output = {});
+  ~SurfaceRun();
+  SurfaceRun(const SurfaceRun&) = delete;
+  SurfaceRun& operator=(const SurfaceRun&) = delete;
+
+  void through_lanes();
+  std::vector<LaneResult>& lanes();
+  std::vector<MarkingResult>& markings();
+  SurfaceResult finish();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace streetgen::core
