@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -266,4 +267,71 @@ TEST(Blocks, AFacesHoleStaysOutOfItsBlock) {
   EXPECT_NEAR(area(ctx, out[0].get()), 10000 - 400 - 50, 1e-6);
   EXPECT_EQ(GEOSisValid_r(ctx.handle(), out[0].get()), 1);
   EXPECT_EQ(stats.winding_faces, 1u);
+}
+
+// The polygons' boxes read from the bytes are GEOS's envelopes of the same polygons, in the same
+// order, whatever the byte order, dimensions and SRID flag; bytes it does not know are refused.
+TEST(Blocks, PolygonBoxesReadFromWkbAreGeosEnvelopes) {
+  core::GeosContext ctx;
+  GEOSContextHandle_t h = ctx.handle();
+  const char* cases[] = {
+      "POLYGON((0 0, 10 0, 10 5, 0 5, 0 0), (1 1, 2 1, 2 2, 1 1))",
+      "MULTIPOLYGON(((0 0, 1 0, 1 1, 0 0)), EMPTY, ((5 5, 9 5, 9 7, 5 5)))",
+      "GEOMETRYCOLLECTION(POINT(100 100), LINESTRING(-50 0, 50 0), POLYGON((3 3, 4 3, 4 8, 3 3)),"
+      " GEOMETRYCOLLECTION(MULTIPOLYGON(((-7 -7, -6 -7, -6 -6, -7 -7)))))",
+      "POLYGON Z((0 0 1, 10 0 2, 10 5 3, 0 0 1))",
+      "POLYGON EMPTY",
+  };
+  std::function<void(const GEOSGeometry*, std::vector<core::Box>&)> envelopes = [&](const GEOSGeometry* g,
+                                                                                   std::vector<core::Box>& out) {
+    int type = GEOSGeomTypeId_r(h, g);
+    if (type == GEOS_POLYGON) {
+      if (GEOSisEmpty_r(h, g) != 0) return;
+      core::Box b{};
+      GEOSGeom_getXMin_r(h, g, &b.xmin);
+      GEOSGeom_getYMin_r(h, g, &b.ymin);
+      GEOSGeom_getXMax_r(h, g, &b.xmax);
+      GEOSGeom_getYMax_r(h, g, &b.ymax);
+      out.push_back(b);
+    } else if (type == GEOS_MULTIPOLYGON || type == GEOS_GEOMETRYCOLLECTION) {
+      for (int i = 0; i < GEOSGetNumGeometries_r(h, g); ++i) envelopes(GEOSGetGeometryN_r(h, g, i), out);
+    }
+  };
+  int polygons = 0;
+  for (const char* wkt : cases) {
+    core::GeomPtr g = test::wkt(ctx, wkt);
+    GEOSSetSRID_r(h, g.get(), 2154);
+    std::vector<core::Box> expected;
+    envelopes(g.get(), expected);
+    polygons += static_cast<int>(expected.size());
+    for (int order : {GEOS_WKB_NDR, GEOS_WKB_XDR}) {
+      for (bool with_srid : {false, true}) {
+        GEOSWKBWriter* writer = GEOSWKBWriter_create_r(h);
+        GEOSWKBWriter_setByteOrder_r(h, writer, order);
+        GEOSWKBWriter_setOutputDimension_r(h, writer, 3);
+        GEOSWKBWriter_setIncludeSRID_r(h, writer, with_srid ? 1 : 0);
+        std::size_t size = 0;
+        unsigned char* bytes = GEOSWKBWriter_write_r(h, writer, g.get(), &size);
+        GEOSWKBWriter_destroy_r(h, writer);
+        ASSERT_NE(bytes, nullptr);
+        std::vector<core::Box> boxes, short_boxes;
+        bool read = core::wkb_polygon_boxes({bytes, size}, boxes);
+        bool cut_short = core::wkb_polygon_boxes({bytes, size - 1}, short_boxes);
+        GEOSFree_r(h, bytes);
+        ASSERT_TRUE(read) << wkt << " " << order << " " << with_srid;
+        EXPECT_FALSE(cut_short) << wkt;
+        ASSERT_EQ(boxes.size(), expected.size()) << wkt;
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+          EXPECT_EQ(boxes[i].xmin, expected[i].xmin) << wkt << " " << i;
+          EXPECT_EQ(boxes[i].ymin, expected[i].ymin) << wkt << " " << i;
+          EXPECT_EQ(boxes[i].xmax, expected[i].xmax) << wkt << " " << i;
+          EXPECT_EQ(boxes[i].ymax, expected[i].ymax) << wkt << " " << i;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(polygons, 1 + 2 + 2 + 1 + 0);
+  const std::uint8_t unknown[] = {1, 99, 0, 0, 0};
+  std::vector<core::Box> boxes;
+  EXPECT_FALSE(core::wkb_polygon_boxes({unknown, sizeof unknown}, boxes));
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <ctime>
 #include <memory>
 #include <new>
@@ -243,6 +244,108 @@ bool cut_face(GeosContext& ctx, const GEOSGeometry* face, const GEOSPreparedGeom
 
 
 
+// See wkb_polygon_boxes.
+class WkbBoxReader {
+ public:
+  WkbBoxReader(const std::uint8_t* data, std::size_t size) : p_(data), end_(data + size) {}
+  bool read(std::vector<Box>& boxes) { return geometry(boxes, 0) && p_ == end_; }
+
+ private:
+  bool geometry(std::vector<Box>& boxes, int depth) {
+    if (depth > 32 || end_ - p_ < 5) return false;
+    little_ = *p_++ == 1;
+    std::uint32_t type = 0;
+    if (!u32(type)) return false;
+    bool z = (type & 0x80000000u) != 0, m = (type & 0x40000000u) != 0;
+    bool srid = (type & 0x20000000u) != 0;
+    type &= 0x0fffffffu;
+    if (type >= 1000 && type < 4000) {  // ISO: 1000s Z, 2000s M, 3000s ZM
+      z = z || type / 1000 != 2;
+      m = m || type / 1000 != 1;
+      type %= 1000;
+    }
+    std::size_t dims = 2 + (z ? 1 : 0) + (m ? 1 : 0);
+    std::uint32_t n = 0;
+    if (srid && !u32(n)) return false;
+    switch (type) {
+      case 1:  // point
+        return skip(dims);
+      case 2:  // line string
+        return u32(n) && skip(std::size_t{n} * dims);
+      case 3:  // polygon
+        return polygon(boxes, dims);
+      case 4:  // multi point, multi line string, multi polygon, collection: each part with its own header
+      case 5:
+      case 6:
+      case 7:
+        if (!u32(n)) return false;
+        for (std::uint32_t i = 0; i < n; ++i) {
+          if (!geometry(boxes, depth + 1)) return false;
+        }
+        return true;
+      default:
+        return false;
+    }
+  }
+  bool polygon(std::vector<Box>& boxes, std::size_t dims) {
+    std::uint32_t rings = 0;
+    if (!u32(rings)) return false;
+    for (std::uint32_t r = 0; r < rings; ++r) {
+      std::uint32_t points = 0;
+      if (!u32(points)) return false;
+      if (r > 0 || points == 0) {
+        if (!skip(std::size_t{points} * dims)) return false;
+        continue;
+      }
+      Box b{};
+      for (std::uint32_t i = 0; i < points; ++i) {
+        double x = 0, y = 0;
+        if (!f64(x) || !f64(y) || !skip(dims - 2)) return false;
+        if (i == 0) {
+          b = {x, y, x, y};
+        } else {
+          b = {std::min(b.xmin, x), std::min(b.ymin, y), std::max(b.xmax, x), std::max(b.ymax, y)};
+        }
+      }
+      boxes.push_back(b);
+    }
+    return true;
+  }
+  bool u32(std::uint32_t& v) {
+    if (end_ - p_ < 4) return false;
+    std::uint8_t b[4];
+    std::memcpy(b, p_, 4);
+    if (!little_) std::reverse(b, b + 4);
+    v = static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 | static_cast<std::uint32_t>(b[2]) << 16 |
+        static_cast<std::uint32_t>(b[3]) << 24;
+    p_ += 4;
+    return true;
+  }
+  bool f64(double& v) {
+    if (end_ - p_ < 8) return false;
+    std::uint8_t b[8];
+    std::memcpy(b, p_, 8);
+    if (little_ != host_little()) std::reverse(b, b + 8);
+    std::memcpy(&v, b, 8);
+    p_ += 8;
+    return true;
+  }
+  bool skip(std::size_t doubles) {
+    if (static_cast<std::size_t>(end_ - p_) / 8 < doubles) return false;
+    p_ += doubles * 8;
+    return true;
+  }
+  static bool host_little() {
+    const std::uint16_t one = 1;
+    std::uint8_t first = 0;
+    std::memcpy(&first, &one, 1);
+    return first == 1;
+  }
+  const std::uint8_t* p_;
+  const std::uint8_t* end_;
+  bool little_ = true;
+};
+
 // The pieces, as polygons numbered in input order (a piece's parts in turn), each piece held as
 // a GEOS geometry only while the faces that need it are cut.
 class PieceStore {
@@ -253,18 +356,24 @@ class PieceStore {
     polygons_ = parts_;  // (every piece is there from the start)
     held_at_most_ = pieces.size();
   }
-  // Pieces given as EWKB: each read once for the boxes of its polygons, and again when a face needs it.
+  // Pieces given as EWKB: the boxes of each piece's polygons read from its bytes
+  // (wkb_polygon_boxes), the piece read into GEOS when a face first needs it.
   PieceStore(GeosContext& ctx, const std::vector<WkbView>& pieces) : ctx_(ctx), wkb_(&pieces) {
     for (const WkbView& piece : pieces) {
       if (piece.data == nullptr) {
         add(nullptr);
         continue;
       }
+      std::vector<Box> boxes;
+      if (wkb_polygon_boxes(piece, boxes)) {
+        add_boxes(boxes);
+        continue;
+      }
       GeomPtr g = read_ewkb(ctx_, piece.data, piece.size, "piece").geom;
       add(g.get());
     }
-    std::fill(parts_.begin(), parts_.end(), nullptr);  // (pointers into the geometries just freed)
-    polygons_ = parts_;
+    std::vector<const GEOSGeometry*>().swap(parts_);  // (pointers into the geometries just freed)
+    polygons_.assign(boxes_.size(), nullptr);
     held_.resize(pieces.size());
   }
 
@@ -309,6 +418,17 @@ class PieceStore {
     }
   }
 
+  // A piece's polygons by their boxes alone (read from its bytes: held as none).
+  void add_boxes(const std::vector<Box>& boxes) {
+    first_part_.push_back(boxes_.size());
+    part_count_.push_back(boxes.size());
+    for (const Box& b : boxes) {
+      boxes_.push_back(b);
+      parts_.push_back(nullptr);
+      piece_of_.push_back(first_part_.size() - 1);
+    }
+  }
+
   GeosContext& ctx_;
   const std::vector<WkbView>* wkb_ = nullptr;
   std::vector<const GEOSGeometry*> parts_;     // while adding
@@ -321,6 +441,12 @@ class PieceStore {
 };
 
 }  // namespace
+
+bool wkb_polygon_boxes(const WkbView& wkb, std::vector<Box>& boxes) {
+  boxes.clear();
+  if (wkb.data == nullptr) return false;
+  return WkbBoxReader(wkb.data, wkb.size).read(boxes);
+}
 
 namespace {
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/geos_context.hpp"
+#include "core/streets/box_pairs.hpp"
 
 namespace streetgen::core {
 
@@ -37,6 +38,15 @@ struct WkbView {
   const std::uint8_t* data = nullptr;  // null: no piece
   std::size_t size = 0;
 };
+
+// The boxes of the polygons of an (E)WKB geometry, in the order the overlay numbers them (a
+// collection's or multipolygon's parts in turn, nested ones too; a polygon's box is its shell's,
+// as in GEOS; empty polygons skipped), read straight from the bytes: the boxes are all the
+// overlay needs of the pieces up front, and reading every piece into GEOS only for them was a
+// whole parse more. False when the bytes hold anything it does not know or are cut short (the
+// caller then reads the geometry with GEOS, which reports bad bytes). Hand-written: GEOS and
+// PostGIS give a geometry's box, not its parts', without building the geometry.
+bool wkb_polygon_boxes(const WkbView& wkb, std::vector<Box>& boxes);
 
 // For each face: the face minus the union of the polygons of `pieces`, as a MultiPolygon of the
 // parts of at least 0.01 m² (smaller ones are slivers between surfaces that meet up to
