@@ -442,13 +442,11 @@ TEST(StreetDetails, ACornerWithoutABandClaimsItsOwnCurbsBuffer) {
   EXPECT_LT(area(ctx, gap.get()), 0.05);
 }
 
-// Asked for EWKB, the engine hands lanes, markings, crossings and sidewalks over as soon as they
-// are built (their geometries null), and the bytes are those of the geometries it builds by
-// default: the memory saving changes no output.
-TEST(StreetSurfaces, OutputsHandedOverAsEwkbAreTheGeometriesWritten) {
-  GeosContext ctx;
+namespace {
+// A 3 x 3 grid of 80 m blocks with sidewalks, two lanes a street.
+std::vector<SurfaceAxis> grid_with_lanes_and_sidewalks() {
   std::vector<SurfaceAxis> axes;
-  for (int i = 0; i < 3; ++i) {  // a 3 x 3 grid of 80 m blocks with sidewalks, two lanes a street
+  for (int i = 0; i < 3; ++i) {
     axes.push_back(axis(1 + i, {{0, 80.0 * i}, {160, 80.0 * i}}, 7, 40));
     axes.push_back(axis(11 + i, {{80.0 * i, 0}, {80.0 * i, 160}}, 7, 40));
   }
@@ -456,6 +454,16 @@ TEST(StreetSurfaces, OutputsHandedOverAsEwkbAreTheGeometriesWritten) {
     a.sidewalk_left = a.sidewalk_right = 2.5;
     a.lane_input.lanes = 2;
   }
+  return axes;
+}
+}  // namespace
+
+// Asked for EWKB, the engine hands lanes, markings, crossings and sidewalks over as soon as they
+// are built (their geometries null), and the bytes are those of the geometries it builds by
+// default: the memory saving changes no output.
+TEST(StreetSurfaces, OutputsHandedOverAsEwkbAreTheGeometriesWritten) {
+  GeosContext ctx;
+  std::vector<SurfaceAxis> axes = grid_with_lanes_and_sidewalks();
   SurfaceResult live = street_surfaces(ctx, axes, {}, SurfaceSettings{});
   SurfaceOutput output;
   output.ewkb_srid = 2154;
@@ -525,15 +533,7 @@ TEST(StreetSurfaces, SidewalkClaimsAreHeldOnlyRoundTheirTurn) {
 
 TEST(StreetSurfaces, ARunInTwoStepsHandsOverTheLanesFirstAndMakesTheSameResult) {
   GeosContext ctx;
-  std::vector<SurfaceAxis> axes;
-  for (int i = 0; i < 3; ++i) {  // a 3 x 3 grid of 80 m blocks with sidewalks, two lanes a street
-    axes.push_back(axis(1 + i, {{0, 80.0 * i}, {160, 80.0 * i}}, 7, 40));
-    axes.push_back(axis(11 + i, {{80.0 * i, 0}, {80.0 * i, 160}}, 7, 40));
-  }
-  for (SurfaceAxis& a : axes) {
-    a.sidewalk_left = a.sidewalk_right = 2.5;
-    a.lane_input.lanes = 2;
-  }
+  std::vector<SurfaceAxis> axes = grid_with_lanes_and_sidewalks();
   SurfaceOutput output;
   output.ewkb_srid = 2154;
   SurfaceResult whole = street_surfaces(ctx, axes, {}, SurfaceSettings{}, output);
