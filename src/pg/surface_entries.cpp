@@ -99,11 +99,19 @@ core::Polyline read_axis_line(core::GeosContext& geos, const AxisArg& arg, int& 
 // ~450 bytes) beside the GEOS result they come from raised the backend's peak by half again
 // (Reisterstown, 4,560 axes: +55 MB over the engine's own peak).
 struct SurfaceEmission {
+  // The engine between its two steps: the lanes and markings are written out after the first
+  // and freed before the sidewalks are built (SurfaceRun).
+  std::unique_ptr<core::SurfaceRun> run;
   core::SurfaceResult result;
-  std::size_t kind = 0, next = 0;  // the list being emitted (in kEmissionOrder), its next item
+  std::size_t kind = 0, next = 0;  // the list being emitted (case of next_rows), its next item
+  std::size_t last_kind = 0;       // the last list of this pass
   std::vector<OutRow> chunk;
   int srid = 0;  // of the axes, for the rows' EWKB
 };
+// The lists, by their case in next_rows: the first pass writes the lanes (5) and markings (6)
+// the engine's first step made, the second everything else.
+constexpr std::size_t kFirstPassKinds[2] = {5, 6};
+constexpr std::size_t kSecondPassKinds[2] = {0, 8};
 constexpr std::size_t kChunkRows = 2048;
 
 // Fills emission.chunk with the next rows (empty at the end), releasing what they were made from.
@@ -135,6 +143,7 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
   };
   for (;;) {
     bool more = true;
+    if (emission.kind > emission.last_kind) return;  // this pass emitted
     switch (emission.kind) {
       case 0:
         more = take(r.nodes, [&](core::NodeResult& n) {
@@ -225,7 +234,7 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
           rows.push_back(std::move(row));
         });
         break;
-      case 6:
+      case 7:
         more = take(r.sidewalks, [&](core::SidewalkResult& w) {
           OutRow row{"sidewalk"};
           if (w.node_id != 0) {
@@ -240,7 +249,7 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
           rows.push_back(std::move(row));
         });
         break;
-      case 7:
+      case 8:
         more = take(r.crossings, [&](core::CrossingResult& c) {
           OutRow row{"crossing"};
           row.axis_id = c.axis_id;
@@ -252,7 +261,7 @@ void next_rows(core::GeosContext& geos, SurfaceEmission& emission) {
           rows.push_back(std::move(row));
         });
         break;
-      case 8:
+      case 6:
         more = take(r.markings, [&](core::MarkingResult& m) {
           OutRow row{"marking"};
           row.axis_id = m.axis_id;
@@ -397,8 +406,97 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
     SurfaceEmission& out = emission.emplace();
     core::SurfaceOutput output;
     output.ewkb_srid = srid;  // (the rows are EWKB anyway: the engine writes lanes to sidewalks as it goes)
-    out.result = core::street_surfaces(geos, input, corner_overrides, settings, output);
+    out.run = std::make_unique<core::SurfaceRun>(geos, std::move(input), std::move(corner_overrides), settings, output);
+    out.run->through_lanes();
+    out.result.lanes = std::move(out.run->lanes());
+    out.result.markings = std::move(out.run->markings());
     out.srid = srid;
+  });
+  pg::raise_if_failed(error);
+
+  // Phases 2 and 3 in turn, a chunk of rows at a time: rows from the result (C++), then out
+  // (PostgreSQL; each row's datums in a context reset after tuplestore_putvalues has copied them).
+  auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
+  MemoryContext row_context = AllocSetContextCreate(CurrentMemoryContext, "streetgen surface row", ALLOCSET_DEFAULT_SIZES);
+  // Writes the rows of kinds [first, last] (cases of next_rows), a chunk at a time.
+  auto emit_rows = [&](std::size_t first, std::size_t last) {
+    emission->kind = first;
+    emission->last_kind = last;
+    emission->next = 0;
+    for (;;) {
+      pg::guarded_call(error, [&] { next_rows(pg::backend_geos(), *emission); });
+      pg::raise_if_failed(error);
+      if (emission->chunk.empty()) break;
+      for (const OutRow& row : emission->chunk) {
+        MemoryContext caller_context = MemoryContextSwitchTo(row_context);
+        Datum v[kColumns];
+        bool null[kColumns];
+        auto put_i64 = [&](int c, const std::optional<std::int64_t>& x) {
+          null[c] = !x;
+          v[c] = x ? Int64GetDatum(*x) : Datum(0);
+        };
+        auto put_i32 = [&](int c, const std::optional<int>& x) {
+          null[c] = !x;
+          v[c] = x ? Int32GetDatum(*x) : Datum(0);
+        };
+        auto put_bool = [&](int c, const std::optional<bool>& x) {
+          null[c] = !x;
+          v[c] = x ? BoolGetDatum(*x) : Datum(0);
+        };
+        auto put_f8 = [&](int c, const std::optional<double>& x) {
+          null[c] = !x;
+          v[c] = x ? Float8GetDatum(*x) : Datum(0);
+        };
+        auto put_text = [&](int c, const std::string& s) {
+          null[c] = s.empty();
+          v[c] = s.empty() ? Datum(0) : CStringGetTextDatum(s.c_str());
+        };
+        v[0] = CStringGetTextDatum(row.kind);
+        null[0] = false;
+        put_i64(1, row.node_id);
+        put_i64(2, row.to_node);
+        put_i64(3, row.axis_id);
+        put_i64(4, row.part);
+        put_bool(5, row.end_a);
+        put_i64(6, row.axis_b);
+        put_i64(7, row.part_b);
+        put_bool(8, row.end_b);
+        put_text(9, row.status);
+        put_text(10, row.detail);
+        put_i32(11, row.degree);
+        put_i32(12, row.layer);
+        put_f8(13, row.radius);
+        put_f8(14, row.radius_wanted);
+        put_f8(15, row.start_border);
+        put_f8(16, row.end_border);
+        if (row.axis_ids) {
+          int n = static_cast<int>(row.axis_ids->size());
+          auto* elems = static_cast<Datum*>(palloc(sizeof(Datum) * std::max(n, 1)));
+          for (int k = 0; k < n; ++k) elems[k] = Int64GetDatum((*row.axis_ids)[k]);
+          v[17] = PointerGetDatum(construct_array(elems, n, INT8OID, 8, FLOAT8PASSBYVAL, TYPALIGN_DOUBLE));
+          null[17] = false;
+        } else {
+          v[17] = Datum(0);
+          null[17] = true;
+        }
+        v[18] = bytes_or_null(row.geom, null[18]);
+        v[19] = bytes_or_null(row.geom2, null[19]);
+        v[20] = bytes_or_null(row.geom3, null[20]);
+        put_i32(21, row.item);
+        put_f8(22, row.width);
+        put_text(23, row.direction);
+        MemoryContextSwitchTo(caller_context);
+        tuplestore_putvalues(rsinfo->setResult, rsinfo->setDesc, v, null);
+        MemoryContextReset(row_context);
+      }
+    }
+  };
+  // The lanes and markings, then the rest of the engine, then everything else.
+  emit_rows(kFirstPassKinds[0], kFirstPassKinds[1]);
+  pg::guarded_call(error, [&] {
+    core::SurfaceResult rest = emission->run->finish();
+    emission->run.reset();
+    emission->result = std::move(rest);
   });
   pg::raise_if_failed(error);
   const core::SurfaceRunStats& t = emission->result.stats;
@@ -408,81 +506,10 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
        t.topology, t.corners, t.sections, t.lanes, t.junctions, t.sidewalks);
   elog(DEBUG1,
        "streetgen: junction sidewalks %ld by corner (%ld corners of them by buffer), %ld by buffer; %ld sidewalks "
-       "without an overlay",
+       "without an overlay; %ld sidewalk claims, at most %ld held at once; their first build %.3f CPU seconds",
        t.junction_sidewalks_by_corner, t.junction_corners_by_buffer, t.junction_sidewalks_by_buffer,
-       t.sidewalks_without_overlay);
-
-  // Phases 2 and 3 in turn, a chunk of rows at a time: rows from the result (C++), then out
-  // (PostgreSQL; each row's datums in a context reset after tuplestore_putvalues has copied them).
-  auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
-  MemoryContext row_context = AllocSetContextCreate(CurrentMemoryContext, "streetgen surface row", ALLOCSET_DEFAULT_SIZES);
-  for (;;) {
-    pg::guarded_call(error, [&] { next_rows(pg::backend_geos(), *emission); });
-    pg::raise_if_failed(error);
-    if (emission->chunk.empty()) break;
-    for (const OutRow& row : emission->chunk) {
-      MemoryContext caller_context = MemoryContextSwitchTo(row_context);
-      Datum v[kColumns];
-      bool null[kColumns];
-      auto put_i64 = [&](int c, const std::optional<std::int64_t>& x) {
-        null[c] = !x;
-        v[c] = x ? Int64GetDatum(*x) : Datum(0);
-      };
-      auto put_i32 = [&](int c, const std::optional<int>& x) {
-        null[c] = !x;
-        v[c] = x ? Int32GetDatum(*x) : Datum(0);
-      };
-      auto put_bool = [&](int c, const std::optional<bool>& x) {
-        null[c] = !x;
-        v[c] = x ? BoolGetDatum(*x) : Datum(0);
-      };
-      auto put_f8 = [&](int c, const std::optional<double>& x) {
-        null[c] = !x;
-        v[c] = x ? Float8GetDatum(*x) : Datum(0);
-      };
-      auto put_text = [&](int c, const std::string& s) {
-        null[c] = s.empty();
-        v[c] = s.empty() ? Datum(0) : CStringGetTextDatum(s.c_str());
-      };
-      v[0] = CStringGetTextDatum(row.kind);
-      null[0] = false;
-      put_i64(1, row.node_id);
-      put_i64(2, row.to_node);
-      put_i64(3, row.axis_id);
-      put_i64(4, row.part);
-      put_bool(5, row.end_a);
-      put_i64(6, row.axis_b);
-      put_i64(7, row.part_b);
-      put_bool(8, row.end_b);
-      put_text(9, row.status);
-      put_text(10, row.detail);
-      put_i32(11, row.degree);
-      put_i32(12, row.layer);
-      put_f8(13, row.radius);
-      put_f8(14, row.radius_wanted);
-      put_f8(15, row.start_border);
-      put_f8(16, row.end_border);
-      if (row.axis_ids) {
-        int n = static_cast<int>(row.axis_ids->size());
-        auto* elems = static_cast<Datum*>(palloc(sizeof(Datum) * std::max(n, 1)));
-        for (int k = 0; k < n; ++k) elems[k] = Int64GetDatum((*row.axis_ids)[k]);
-        v[17] = PointerGetDatum(construct_array(elems, n, INT8OID, 8, FLOAT8PASSBYVAL, TYPALIGN_DOUBLE));
-        null[17] = false;
-      } else {
-        v[17] = Datum(0);
-        null[17] = true;
-      }
-      v[18] = bytes_or_null(row.geom, null[18]);
-      v[19] = bytes_or_null(row.geom2, null[19]);
-      v[20] = bytes_or_null(row.geom3, null[20]);
-      put_i32(21, row.item);
-      put_f8(22, row.width);
-      put_text(23, row.direction);
-      MemoryContextSwitchTo(caller_context);
-      tuplestore_putvalues(rsinfo->setResult, rsinfo->setDesc, v, null);
-      MemoryContextReset(row_context);
-    }
-  }
+       t.sidewalks_without_overlay, t.sidewalk_claims, t.sidewalk_claims_held_peak, t.sidewalk_claim_builds);
+  emit_rows(kSecondPassKinds[0], kSecondPassKinds[1]);
   emission.release();
   MemoryContextDelete(row_context);
   // The engine's heap is free now, but glibc keeps it mapped (freed as many small chunks, most

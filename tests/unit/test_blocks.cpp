@@ -1,8 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/ewkb.hpp"
 #include "core/streets/blocks.hpp"
 #include "test_support.hpp"
 
@@ -65,6 +68,64 @@ TEST(Blocks, NothingLeftIsNullAndNoPiecesIsTheFace) {
   EXPECT_EQ(GEOSGeomTypeId_r(ctx.handle(), out[1].get()), GEOS_MULTIPOLYGON);
   EXPECT_NEAR(area(ctx, out[1].get()), 100, 1e-9);
   EXPECT_FALSE(out[2]);
+}
+
+// A face at a time, the pieces as EWKB: each face read for its box, then again when its turn
+// comes, its cut handed over before the next is read, with the cuts the whole-vector call makes;
+// a piece read only while the faces that need it are cut.
+TEST(Blocks, FacesAreReadAndCutOneAtATime) {
+  core::GeosContext ctx;
+  std::vector<core::GeomPtr> faces;
+  faces.push_back(test::wkt(ctx, "POLYGON((0 0, 100 0, 100 100, 0 100, 0 0))"));
+  faces.push_back(test::wkt(ctx, "POLYGON((100 0, 200 0, 200 100, 100 100, 100 0))"));
+  faces.push_back(test::wkt(ctx, "POLYGON((300 0, 310 0, 310 10, 300 10, 300 0))"));
+  std::vector<core::GeomPtr> pieces;
+  pieces.push_back(test::wkt(ctx, "POLYGON((96 -10, 104 -10, 104 110, 96 110, 96 -10))"));
+  pieces.push_back(test::wkt(ctx, "POLYGON((299 -1, 311 -1, 311 11, 299 11, 299 -1))"));  // covers the third
+  auto whole = core::faces_minus_pieces(ctx, raw(faces), raw(pieces), 1e-6);
+  std::vector<core::Bytes> ewkb;
+  for (const auto& p : pieces) ewkb.push_back(core::write_ewkb(ctx, p.get(), 2154));
+  std::vector<core::WkbView> views;
+  for (const auto& b : ewkb) views.push_back({b.data(), b.size()});
+  std::vector<std::string> calls;
+  std::vector<core::GeomPtr> cuts(faces.size());
+  core::FaceCutStats stats;
+  core::faces_minus_pieces(
+      ctx, faces.size() + 1,
+      [&](std::size_t f) {
+        calls.push_back("read " + std::to_string(f));
+        if (f == faces.size()) return core::GeomPtr(nullptr, core::GeomDeleter{ctx.handle()});  // no face: a null cut
+        return core::own(ctx, GEOSGeom_clone_r(ctx.handle(), faces[f].get()), "clone");
+      },
+      views, 1e-6,
+      [&](std::size_t f, core::GeomPtr cut) {
+        calls.push_back("cut " + std::to_string(f) + (cut ? "" : " null"));
+        if (f < cuts.size()) cuts[f] = std::move(cut);
+      },
+      &stats);
+  // every face once for its box, then a face at a time (along the curve); the missing one, read
+  // once, cut as null at the end
+  ASSERT_EQ(calls.size(), 4u + 2 * 3u + 1u);
+  EXPECT_EQ(std::vector<std::string>(calls.begin(), calls.begin() + 4),
+            (std::vector<std::string>{"read 0", "read 1", "read 2", "read 3"}));
+  for (std::size_t k = 4; k + 1 < calls.size(); k += 2) {
+    std::string f = calls[k].substr(5);
+    EXPECT_EQ(calls[k], "read " + f);
+    EXPECT_EQ(calls[k + 1].rfind("cut " + f, 0), 0u) << calls[k + 1];
+  }
+  EXPECT_EQ(calls.back(), "cut 3 null");
+  EXPECT_EQ(stats.faces, 3u);
+  EXPECT_EQ(stats.pieces, 2u);
+  EXPECT_EQ(stats.pieces_held_at_most, 1u);  // the street for the first two faces, then the cover of the third
+  ASSERT_EQ(whole.size(), cuts.size());
+  for (std::size_t f = 0; f < cuts.size(); ++f) {
+    ASSERT_EQ(static_cast<bool>(whole[f]), static_cast<bool>(cuts[f])) << f;
+    if (cuts[f]) {
+      EXPECT_EQ(GEOSEqualsExact_r(ctx.handle(), whole[f].get(), cuts[f].get(), 0.0), 1) << f;
+    }
+  }
+  ASSERT_TRUE(cuts[0]);
+  EXPECT_NEAR(area(ctx, cuts[0].get()), 10000 - 400, 1e-6);
 }
 
 TEST(Blocks, RefusesABadGrid) {
@@ -206,4 +267,71 @@ TEST(Blocks, AFacesHoleStaysOutOfItsBlock) {
   EXPECT_NEAR(area(ctx, out[0].get()), 10000 - 400 - 50, 1e-6);
   EXPECT_EQ(GEOSisValid_r(ctx.handle(), out[0].get()), 1);
   EXPECT_EQ(stats.winding_faces, 1u);
+}
+
+// The polygons' boxes read from the bytes are GEOS's envelopes of the same polygons, in the same
+// order, whatever the byte order, dimensions and SRID flag; bytes it does not know are refused.
+TEST(Blocks, PolygonBoxesReadFromWkbAreGeosEnvelopes) {
+  core::GeosContext ctx;
+  GEOSContextHandle_t h = ctx.handle();
+  const char* cases[] = {
+      "POLYGON((0 0, 10 0, 10 5, 0 5, 0 0), (1 1, 2 1, 2 2, 1 1))",
+      "MULTIPOLYGON(((0 0, 1 0, 1 1, 0 0)), EMPTY, ((5 5, 9 5, 9 7, 5 5)))",
+      "GEOMETRYCOLLECTION(POINT(100 100), LINESTRING(-50 0, 50 0), POLYGON((3 3, 4 3, 4 8, 3 3)),"
+      " GEOMETRYCOLLECTION(MULTIPOLYGON(((-7 -7, -6 -7, -6 -6, -7 -7)))))",
+      "POLYGON Z((0 0 1, 10 0 2, 10 5 3, 0 0 1))",
+      "POLYGON EMPTY",
+  };
+  std::function<void(const GEOSGeometry*, std::vector<core::Box>&)> envelopes = [&](const GEOSGeometry* g,
+                                                                                   std::vector<core::Box>& out) {
+    int type = GEOSGeomTypeId_r(h, g);
+    if (type == GEOS_POLYGON) {
+      if (GEOSisEmpty_r(h, g) != 0) return;
+      core::Box b{};
+      GEOSGeom_getXMin_r(h, g, &b.xmin);
+      GEOSGeom_getYMin_r(h, g, &b.ymin);
+      GEOSGeom_getXMax_r(h, g, &b.xmax);
+      GEOSGeom_getYMax_r(h, g, &b.ymax);
+      out.push_back(b);
+    } else if (type == GEOS_MULTIPOLYGON || type == GEOS_GEOMETRYCOLLECTION) {
+      for (int i = 0; i < GEOSGetNumGeometries_r(h, g); ++i) envelopes(GEOSGetGeometryN_r(h, g, i), out);
+    }
+  };
+  int polygons = 0;
+  for (const char* wkt : cases) {
+    core::GeomPtr g = test::wkt(ctx, wkt);
+    GEOSSetSRID_r(h, g.get(), 2154);
+    std::vector<core::Box> expected;
+    envelopes(g.get(), expected);
+    polygons += static_cast<int>(expected.size());
+    for (int order : {GEOS_WKB_NDR, GEOS_WKB_XDR}) {
+      for (bool with_srid : {false, true}) {
+        GEOSWKBWriter* writer = GEOSWKBWriter_create_r(h);
+        GEOSWKBWriter_setByteOrder_r(h, writer, order);
+        GEOSWKBWriter_setOutputDimension_r(h, writer, 3);
+        GEOSWKBWriter_setIncludeSRID_r(h, writer, with_srid ? 1 : 0);
+        std::size_t size = 0;
+        unsigned char* bytes = GEOSWKBWriter_write_r(h, writer, g.get(), &size);
+        GEOSWKBWriter_destroy_r(h, writer);
+        ASSERT_NE(bytes, nullptr);
+        std::vector<core::Box> boxes, short_boxes;
+        bool read = core::wkb_polygon_boxes({bytes, size}, boxes);
+        bool cut_short = core::wkb_polygon_boxes({bytes, size - 1}, short_boxes);
+        GEOSFree_r(h, bytes);
+        ASSERT_TRUE(read) << wkt << " " << order << " " << with_srid;
+        EXPECT_FALSE(cut_short) << wkt;
+        ASSERT_EQ(boxes.size(), expected.size()) << wkt;
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+          EXPECT_EQ(boxes[i].xmin, expected[i].xmin) << wkt << " " << i;
+          EXPECT_EQ(boxes[i].ymin, expected[i].ymin) << wkt << " " << i;
+          EXPECT_EQ(boxes[i].xmax, expected[i].xmax) << wkt << " " << i;
+          EXPECT_EQ(boxes[i].ymax, expected[i].ymax) << wkt << " " << i;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(polygons, 1 + 2 + 2 + 1 + 0);
+  const std::uint8_t unknown[] = {1, 99, 0, 0, 0};
+  std::vector<core::Box> boxes;
+  EXPECT_FALSE(core::wkb_polygon_boxes({unknown, sizeof unknown}, boxes));
 }

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <tuple>
 
 #include "core/error.hpp"
 #include "core/streets/arc_centre.hpp"
+#include "core/streets/box_pairs.hpp"
 #include "core/streets/street_surfaces.hpp"
 
 using namespace streetgen::core;
@@ -440,13 +442,11 @@ TEST(StreetDetails, ACornerWithoutABandClaimsItsOwnCurbsBuffer) {
   EXPECT_LT(area(ctx, gap.get()), 0.05);
 }
 
-// Asked for EWKB, the engine hands lanes, markings, crossings and sidewalks over as soon as they
-// are built (their geometries null), and the bytes are those of the geometries it builds by
-// default: the memory saving changes no output.
-TEST(StreetSurfaces, OutputsHandedOverAsEwkbAreTheGeometriesWritten) {
-  GeosContext ctx;
+namespace {
+// A 3 x 3 grid of 80 m blocks with sidewalks, two lanes a street.
+std::vector<SurfaceAxis> grid_with_lanes_and_sidewalks() {
   std::vector<SurfaceAxis> axes;
-  for (int i = 0; i < 3; ++i) {  // a 3 x 3 grid of 80 m blocks with sidewalks, two lanes a street
+  for (int i = 0; i < 3; ++i) {
     axes.push_back(axis(1 + i, {{0, 80.0 * i}, {160, 80.0 * i}}, 7, 40));
     axes.push_back(axis(11 + i, {{80.0 * i, 0}, {80.0 * i, 160}}, 7, 40));
   }
@@ -454,6 +454,16 @@ TEST(StreetSurfaces, OutputsHandedOverAsEwkbAreTheGeometriesWritten) {
     a.sidewalk_left = a.sidewalk_right = 2.5;
     a.lane_input.lanes = 2;
   }
+  return axes;
+}
+}  // namespace
+
+// Asked for EWKB, the engine hands lanes, markings, crossings and sidewalks over as soon as they
+// are built (their geometries null), and the bytes are those of the geometries it builds by
+// default: the memory saving changes no output.
+TEST(StreetSurfaces, OutputsHandedOverAsEwkbAreTheGeometriesWritten) {
+  GeosContext ctx;
+  std::vector<SurfaceAxis> axes = grid_with_lanes_and_sidewalks();
   SurfaceResult live = street_surfaces(ctx, axes, {}, SurfaceSettings{});
   SurfaceOutput output;
   output.ewkb_srid = 2154;
@@ -480,4 +490,80 @@ TEST(StreetSurfaces, OutputsHandedOverAsEwkbAreTheGeometriesWritten) {
   for (std::size_t i = 0; i < live.sections.size(); ++i) {
     EXPECT_EQ(static_cast<bool>(live.sections[i].surface), static_cast<bool>(handed.sections[i].surface));
   }
+}
+
+TEST(StreetSurfaces, SidewalkClaimsAreHeldOnlyRoundTheirTurn) {
+  GeosContext ctx;
+  std::vector<SurfaceAxis> axes;
+  for (int i = 0; i < 12; ++i) {  // a 12 x 12 grid of 60 m blocks with sidewalks
+    axes.push_back(axis(1 + i, {{0, 60.0 * i}, {660, 60.0 * i}}, 7, 40));
+    axes.push_back(axis(101 + i, {{60.0 * i, 0}, {60.0 * i, 660}}, 7, 40));
+  }
+  for (SurfaceAxis& a : axes) a.sidewalk_left = a.sidewalk_right = 2;
+  SurfaceResult r = street_surfaces(ctx, axes, {}, SurfaceSettings{});
+  const SurfaceRunStats& t = r.stats;
+  // 264 street sections, two sides each, and 144 junctions by corner
+  ASSERT_GE(t.sidewalk_claims, 528 + 144);
+  // In key order every street side's claim was held until the junctions, after them all
+  // (more than half of the claims); along a Hilbert curve, only those round its front.
+  EXPECT_GT(t.sidewalk_claims_held_peak, 0);
+  EXPECT_LT(t.sidewalk_claims_held_peak, t.sidewalk_claims / 5);
+  // The sidewalks still come in key order: the streets' by (axis, part, side), then the
+  // junctions' by node.
+  ASSERT_EQ(r.sidewalks.size(), 528u + 144u);
+  auto key = [](const SidewalkResult& w) { return std::make_tuple(w.node_id != 0, w.node_id, w.axis_id, w.part, w.side); };
+  for (std::size_t i = 1; i < r.sidewalks.size(); ++i) EXPECT_LT(key(r.sidewalks[i - 1]), key(r.sidewalks[i])) << i;
+  // Sidewalks never overlap each other (the grid's micrometre aside).
+  std::vector<Box> boxes;
+  for (const SidewalkResult& w : r.sidewalks) {
+    Box b{};
+    GEOSGeom_getXMin_r(ctx.handle(), w.surface.get(), &b.xmin);
+    GEOSGeom_getYMin_r(ctx.handle(), w.surface.get(), &b.ymin);
+    GEOSGeom_getXMax_r(ctx.handle(), w.surface.get(), &b.xmax);
+    GEOSGeom_getYMax_r(ctx.handle(), w.surface.get(), &b.ymax);
+    boxes.push_back(b);
+  }
+  long pairs = 0;
+  for_each_overlapping_pair(boxes, [&](std::size_t i, std::size_t j) {
+    ++pairs;
+    EXPECT_LT(overlap_area(ctx, r.sidewalks[i].surface.get(), r.sidewalks[j].surface.get()), 1e-3) << i << " " << j;
+  });
+  EXPECT_GT(pairs, 0);
+}
+
+TEST(StreetSurfaces, ARunInTwoStepsHandsOverTheLanesFirstAndMakesTheSameResult) {
+  GeosContext ctx;
+  std::vector<SurfaceAxis> axes = grid_with_lanes_and_sidewalks();
+  SurfaceOutput output;
+  output.ewkb_srid = 2154;
+  SurfaceResult whole = street_surfaces(ctx, axes, {}, SurfaceSettings{}, output);
+  SurfaceRun run(ctx, axes, {}, SurfaceSettings{}, output);
+  run.through_lanes();
+  std::vector<LaneResult> lanes = std::move(run.lanes());
+  std::vector<MarkingResult> markings = std::move(run.markings());
+  SurfaceResult rest = run.finish();
+  // The lanes and markings are complete after the first step, and the second does not need them.
+  ASSERT_FALSE(whole.lanes.empty());
+  ASSERT_EQ(lanes.size(), whole.lanes.size());
+  for (std::size_t i = 0; i < lanes.size(); ++i) EXPECT_EQ(lanes[i].ewkb, whole.lanes[i].ewkb) << i;
+  ASSERT_EQ(markings.size(), whole.markings.size());
+  for (std::size_t i = 0; i < markings.size(); ++i) EXPECT_EQ(markings[i].ewkb, whole.markings[i].ewkb) << i;
+  EXPECT_TRUE(rest.lanes.empty());
+  EXPECT_TRUE(rest.markings.empty());
+  // Everything else as one call makes it.
+  ASSERT_EQ(rest.sections.size(), whole.sections.size());
+  for (std::size_t i = 0; i < rest.sections.size(); ++i) {
+    EXPECT_EQ(write_ewkb(ctx, rest.sections[i].surface.get(), 2154), write_ewkb(ctx, whole.sections[i].surface.get(), 2154));
+  }
+  ASSERT_EQ(rest.intersections.size(), whole.intersections.size());
+  ASSERT_EQ(rest.corners.size(), whole.corners.size());
+  ASSERT_FALSE(whole.sidewalks.empty());
+  ASSERT_EQ(rest.sidewalks.size(), whole.sidewalks.size());
+  for (std::size_t i = 0; i < rest.sidewalks.size(); ++i) EXPECT_EQ(rest.sidewalks[i].ewkb, whole.sidewalks[i].ewkb) << i;
+  ASSERT_EQ(rest.crossings.size(), whole.crossings.size());
+  for (std::size_t i = 0; i < rest.crossings.size(); ++i) EXPECT_EQ(rest.crossings[i].ewkb, whole.crossings[i].ewkb) << i;
+  // The inputs are checked as street_surfaces checks them.
+  std::vector<SurfaceAxis> bad = axes;
+  bad[0].roadway_width = -1;
+  EXPECT_THROW(SurfaceRun(ctx, bad, {}, SurfaceSettings{}, output), Error);
 }

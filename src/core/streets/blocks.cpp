@@ -2,41 +2,27 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <ctime>
 #include <memory>
 #include <new>
 #include <string>
 
 #include "core/error.hpp"
+#include "core/ewkb.hpp"
 #include "core/interrupts.hpp"
+#include "core/streets/box_pairs.hpp"
 
 namespace streetgen::core {
 namespace {
 
 constexpr double kMinBlockPartArea = 0.01;  // m², as sidewalks' (kMinSidewalkArea): smaller parts are slivers
 
-struct TreeDeleter {
-  GEOSContextHandle_t handle;
-  void operator()(GEOSSTRtree* tree) const noexcept { GEOSSTRtree_destroy_r(handle, tree); }
-};
 struct PreparedDeleter {
   GEOSContextHandle_t handle;
   void operator()(const GEOSPreparedGeometry* prepared) const noexcept { GEOSPreparedGeom_destroy_r(handle, prepared); }
 };
 
-// What the tree query collects; GEOS calls the callback from C, so it must not throw.
-struct Candidates {
-  std::vector<std::size_t> indices;
-  bool out_of_memory = false;
-};
-void collect(void* item, void* userdata) {
-  auto* c = static_cast<Candidates*>(userdata);
-  try {
-    c->indices.push_back(reinterpret_cast<std::uintptr_t>(item) - 1);
-  } catch (...) {
-    c->out_of_memory = true;
-  }
-}
 
 // CPU seconds, not wall: the figures are for profiling, and must add up on a busy machine too.
 double seconds_since(std::clock_t start) { return static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC; }
@@ -256,71 +242,322 @@ bool cut_face(GeosContext& ctx, const GEOSGeometry* face, const GEOSPreparedGeom
   return true;
 }
 
-struct IndexTree {  // an STRtree of geometries by index (items are index + 1: GEOS may treat a null item as none)
-  IndexTree(GeosContext& ctx) : tree(GEOSSTRtree_create_r(ctx.handle(), 10), TreeDeleter{ctx.handle()}) {
-    if (!tree) ctx.fail("STRtree creation");
+
+
+// See wkb_polygon_boxes.
+class WkbBoxReader {
+ public:
+  WkbBoxReader(const std::uint8_t* data, std::size_t size) : p_(data), end_(data + size) {}
+  bool read(std::vector<Box>& boxes) { return geometry(boxes, 0) && p_ == end_; }
+
+ private:
+  bool geometry(std::vector<Box>& boxes, int depth) {
+    if (depth > 32 || end_ - p_ < 5) return false;
+    little_ = *p_++ == 1;
+    std::uint32_t type = 0;
+    if (!u32(type)) return false;
+    bool z = (type & 0x80000000u) != 0, m = (type & 0x40000000u) != 0;
+    bool srid = (type & 0x20000000u) != 0;
+    type &= 0x0fffffffu;
+    if (type >= 1000 && type < 4000) {  // ISO: 1000s Z, 2000s M, 3000s ZM
+      z = z || type / 1000 != 2;
+      m = m || type / 1000 != 1;
+      type %= 1000;
+    }
+    std::size_t dims = 2 + (z ? 1 : 0) + (m ? 1 : 0);
+    std::uint32_t n = 0;
+    if (srid && !u32(n)) return false;
+    switch (type) {
+      case 1:  // point
+        return skip(dims);
+      case 2:  // line string
+        return u32(n) && skip(std::size_t{n} * dims);
+      case 3:  // polygon
+        return polygon(boxes, dims);
+      case 4:  // multi point, multi line string, multi polygon, collection: each part with its own header
+      case 5:
+      case 6:
+      case 7:
+        if (!u32(n)) return false;
+        for (std::uint32_t i = 0; i < n; ++i) {
+          if (!geometry(boxes, depth + 1)) return false;
+        }
+        return true;
+      default:
+        return false;
+    }
   }
-  void insert(GeosContext& ctx, const GEOSGeometry* g, std::size_t i) {
-    GEOSSTRtree_insert_r(ctx.handle(), tree.get(), g, reinterpret_cast<void*>(static_cast<std::uintptr_t>(i + 1)));
+  bool polygon(std::vector<Box>& boxes, std::size_t dims) {
+    std::uint32_t rings = 0;
+    if (!u32(rings)) return false;
+    for (std::uint32_t r = 0; r < rings; ++r) {
+      std::uint32_t points = 0;
+      if (!u32(points)) return false;
+      if (r > 0 || points == 0) {
+        if (!skip(std::size_t{points} * dims)) return false;
+        continue;
+      }
+      Box b{};
+      for (std::uint32_t i = 0; i < points; ++i) {
+        double x = 0, y = 0;
+        if (!f64(x) || !f64(y) || !skip(dims - 2)) return false;
+        if (i == 0) {
+          b = {x, y, x, y};
+        } else {
+          b = {std::min(b.xmin, x), std::min(b.ymin, y), std::max(b.xmax, x), std::max(b.ymax, y)};
+        }
+      }
+      boxes.push_back(b);
+    }
+    return true;
   }
-  // The indices whose boxes meet g's, sorted.
-  const std::vector<std::size_t>& query(GeosContext& ctx, const GEOSGeometry* g) {
-    found.indices.clear();
-    GEOSSTRtree_query_r(ctx.handle(), tree.get(), g, &collect, &found);
-    if (found.out_of_memory) throw std::bad_alloc();
-    std::sort(found.indices.begin(), found.indices.end());
-    return found.indices;
+  bool u32(std::uint32_t& v) {
+    if (end_ - p_ < 4) return false;
+    std::uint8_t b[4];
+    std::memcpy(b, p_, 4);
+    if (!little_) std::reverse(b, b + 4);
+    v = static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 | static_cast<std::uint32_t>(b[2]) << 16 |
+        static_cast<std::uint32_t>(b[3]) << 24;
+    p_ += 4;
+    return true;
   }
-  std::unique_ptr<GEOSSTRtree, TreeDeleter> tree;
-  Candidates found;
+  bool f64(double& v) {
+    if (end_ - p_ < 8) return false;
+    std::uint8_t b[8];
+    std::memcpy(b, p_, 8);
+    if (little_ != host_little()) std::reverse(b, b + 8);
+    std::memcpy(&v, b, 8);
+    p_ += 8;
+    return true;
+  }
+  bool skip(std::size_t doubles) {
+    if (static_cast<std::size_t>(end_ - p_) / 8 < doubles) return false;
+    p_ += doubles * 8;
+    return true;
+  }
+  static bool host_little() {
+    const std::uint16_t one = 1;
+    std::uint8_t first = 0;
+    std::memcpy(&first, &one, 1);
+    return first == 1;
+  }
+  const std::uint8_t* p_;
+  const std::uint8_t* end_;
+  bool little_ = true;
 };
+
+// The pieces, as polygons numbered in input order (a piece's parts in turn), each piece held as
+// a GEOS geometry only while the faces that need it are cut.
+class PieceStore {
+ public:
+  // Pieces given as GEOS geometries: all held by the caller.
+  PieceStore(GeosContext& ctx, const std::vector<const GEOSGeometry*>& pieces) : ctx_(ctx) {
+    for (const GEOSGeometry* piece : pieces) add(piece);
+    polygons_ = parts_;  // (every piece is there from the start)
+    held_at_most_ = pieces.size();
+  }
+  // Pieces given as EWKB: the boxes of each piece's polygons read from its bytes
+  // (wkb_polygon_boxes), the piece read into GEOS when a face first needs it.
+  PieceStore(GeosContext& ctx, const std::vector<WkbView>& pieces) : ctx_(ctx), wkb_(&pieces) {
+    for (const WkbView& piece : pieces) {
+      if (piece.data == nullptr) {
+        add(nullptr);
+        continue;
+      }
+      std::vector<Box> boxes;
+      if (wkb_polygon_boxes(piece, boxes)) {
+        add_boxes(boxes);
+        continue;
+      }
+      GeomPtr g = read_ewkb(ctx_, piece.data, piece.size, "piece").geom;
+      add(g.get());
+    }
+    std::vector<const GEOSGeometry*>().swap(parts_);  // (pointers into the geometries just freed)
+    polygons_.assign(boxes_.size(), nullptr);
+    held_.resize(pieces.size());
+  }
+
+  const std::vector<Box>& boxes() const { return boxes_; }
+  std::size_t held_at_most() const { return held_at_most_; }
+  std::size_t piece_count() const { return first_part_.size(); }
+  std::size_t piece_of(std::size_t polygon) const { return piece_of_[polygon]; }
+  // Every polygon by its number; a piece's are null until need() reads it.
+  const std::vector<const GEOSGeometry*>& polygons() const { return polygons_; }
+
+  void need(std::size_t piece) {
+    if (wkb_ == nullptr || held_[piece]) return;
+    const WkbView& v = (*wkb_)[piece];
+    held_[piece] = read_ewkb(ctx_, v.data, v.size, "piece").geom;
+    held_at_most_ = std::max(held_at_most_, ++held_count_);
+    std::vector<const GEOSGeometry*> parts;
+    append_polygon_parts(ctx_.handle(), held_[piece].get(), parts);
+    if (parts.size() != part_count_[piece]) ctx_.fail("piece read again");  // (cannot happen: the same bytes)
+    std::copy(parts.begin(), parts.end(), polygons_.begin() + static_cast<std::ptrdiff_t>(first_part_[piece]));
+  }
+  void release(std::size_t piece) {
+    if (wkb_ == nullptr || !held_[piece]) return;
+    std::fill_n(polygons_.begin() + static_cast<std::ptrdiff_t>(first_part_[piece]), part_count_[piece], nullptr);
+    held_[piece].reset();
+    --held_count_;
+  }
+
+ private:
+  void add(const GEOSGeometry* piece) {
+    std::size_t first = parts_.size();
+    if (piece != nullptr) append_polygon_parts(ctx_.handle(), piece, parts_);
+    first_part_.push_back(first);
+    part_count_.push_back(parts_.size() - first);
+    boxes_.resize(parts_.size());
+    for (std::size_t k = first; k < parts_.size(); ++k) {
+      Box& b = boxes_[k];
+      if (GEOSGeom_getXMin_r(ctx_.handle(), parts_[k], &b.xmin) == 0 || GEOSGeom_getYMin_r(ctx_.handle(), parts_[k], &b.ymin) == 0 ||
+          GEOSGeom_getXMax_r(ctx_.handle(), parts_[k], &b.xmax) == 0 || GEOSGeom_getYMax_r(ctx_.handle(), parts_[k], &b.ymax) == 0) {
+        ctx_.fail("envelope");
+      }
+      piece_of_.push_back(first_part_.size() - 1);
+    }
+  }
+
+  // A piece's polygons by their boxes alone (read from its bytes: held as none).
+  void add_boxes(const std::vector<Box>& boxes) {
+    first_part_.push_back(boxes_.size());
+    part_count_.push_back(boxes.size());
+    for (const Box& b : boxes) {
+      boxes_.push_back(b);
+      parts_.push_back(nullptr);
+      piece_of_.push_back(first_part_.size() - 1);
+    }
+  }
+
+  GeosContext& ctx_;
+  const std::vector<WkbView>* wkb_ = nullptr;
+  std::vector<const GEOSGeometry*> parts_;     // while adding
+  std::vector<const GEOSGeometry*> polygons_;
+  std::vector<Box> boxes_;                     // per polygon
+  std::vector<std::size_t> piece_of_;          // per polygon
+  std::vector<std::size_t> first_part_, part_count_;  // per piece
+  std::vector<GeomPtr> held_;                  // per piece (EWKB pieces only)
+  std::size_t held_count_ = 0, held_at_most_ = 0;
+};
+
+}  // namespace
+
+bool wkb_polygon_boxes(const WkbView& wkb, std::vector<Box>& boxes) {
+  boxes.clear();
+  if (wkb.data == nullptr) return false;
+  return WkbBoxReader(wkb.data, wkb.size).read(boxes);
+}
+
+namespace {
+
+// Cuts the faces (see faces_minus_pieces) with the pieces of `store`, along a Hilbert curve
+// through the faces' boxes.
+void cut_faces(GeosContext& ctx, std::size_t face_count, const std::function<GeomPtr(std::size_t)>& face_at,
+               PieceStore& store, double grid_size, const std::function<void(std::size_t, GeomPtr)>& emit,
+               FaceCutStats& s) {
+  if (!(grid_size > 0)) throw_invalid_argument("grid size must be positive");
+  GEOSContextHandle_t h = ctx.handle();
+  std::clock_t call_start = std::clock();
+  // Each face's polygons by box (faces first, then polygons, in one box sweep), in the order of
+  // the input: the same pieces always unite in the same order.
+  std::vector<Box> boxes;
+  std::vector<std::size_t> face_of_box;
+  std::vector<bool> present(face_count, false);
+  for (std::size_t f = 0; f < face_count; ++f) {
+    poll_interrupts();
+    GeomPtr face = face_at(f);
+    if (!face) continue;
+    present[f] = true;
+    ++s.faces;
+    if (GEOSisEmpty_r(h, face.get()) != 0) continue;
+    Box b;
+    if (GEOSGeom_getXMin_r(h, face.get(), &b.xmin) == 0 || GEOSGeom_getYMin_r(h, face.get(), &b.ymin) == 0 ||
+        GEOSGeom_getXMax_r(h, face.get(), &b.xmax) == 0 || GEOSGeom_getYMax_r(h, face.get(), &b.ymax) == 0) {
+      ctx.fail("envelope");
+    }
+    boxes.push_back(b);
+    face_of_box.push_back(f);
+  }
+  const std::size_t face_boxes = boxes.size();
+  std::vector<std::size_t> order;  // the faces, along the curve
+  for (std::size_t k : hilbert_order(boxes)) order.push_back(face_of_box[k]);
+  boxes.insert(boxes.end(), store.boxes().begin(), store.boxes().end());
+  std::vector<std::vector<std::size_t>> candidates(face_count);
+  for_each_overlapping_pair(boxes, [&](std::size_t i, std::size_t j) {
+    if (i < face_boxes && j >= face_boxes) candidates[face_of_box[i]].push_back(j - face_boxes);
+  });
+  std::vector<Box>().swap(boxes);
+  // A piece is held from the first face that needs it until its last is cut.
+  std::vector<std::size_t> uses(store.piece_count(), 0);
+  for (auto& c : candidates) {
+    std::sort(c.begin(), c.end());
+    s.candidate_pairs += c.size();
+    for (std::size_t polygon : c) ++uses[store.piece_of(polygon)];
+  }
+  // (empty faces, which have no box, come last: nothing is cut from them)
+  std::vector<bool> ordered(face_count, false);
+  for (std::size_t f : order) ordered[f] = true;
+  for (std::size_t f = 0; f < face_count; ++f) {
+    if (present[f] && !ordered[f]) order.push_back(f);
+  }
+  std::vector<bool> emitted(face_count, false);
+  for (std::size_t f : order) {
+    poll_interrupts();
+    GeomPtr face = face_at(f);
+    GeomPtr cut(nullptr, GeomDeleter{h});
+    for (std::size_t polygon : candidates[f]) store.need(store.piece_of(polygon));
+    std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter> prepared(GEOSPrepare_r(h, face.get()), PreparedDeleter{h});
+    if (!prepared) ctx.fail("prepared geometry");
+    const std::vector<const GEOSGeometry*>& polygons = store.polygons();
+    if (!wind_face(ctx, face.get(), prepared.get(), polygons, candidates[f], grid_size, cut, s) &&
+        !cut_face(ctx, face.get(), prepared.get(), polygons, candidates[f], grid_size, false, cut, s)) {
+      ++s.grid_faces;
+      cut_face(ctx, face.get(), prepared.get(), polygons, candidates[f], grid_size, true, cut, s);
+    }
+    prepared.reset();
+    face.reset();
+    for (std::size_t polygon : candidates[f]) {
+      std::size_t piece = store.piece_of(polygon);
+      if (--uses[piece] == 0) store.release(piece);
+    }
+    std::vector<std::size_t>().swap(candidates[f]);
+    emitted[f] = true;
+    emit(f, std::move(cut));
+  }
+  for (std::size_t f = 0; f < face_count; ++f) {  // no face: a null cut
+    if (!emitted[f]) emit(f, GeomPtr(nullptr, GeomDeleter{h}));
+  }
+  s.pieces = store.piece_count();
+  s.pieces_held_at_most = store.held_at_most();
+  s.total_seconds += seconds_since(call_start);
+}
 
 }  // namespace
 
 std::vector<GeomPtr> faces_minus_pieces(GeosContext& ctx, const std::vector<const GEOSGeometry*>& faces,
                                         const std::vector<const GEOSGeometry*>& pieces, double grid_size,
                                         FaceCutStats* stats) {
-  if (!(grid_size > 0)) throw_invalid_argument("grid size must be positive");
-  GEOSContextHandle_t h = ctx.handle();
   FaceCutStats local;
-  FaceCutStats& s = stats != nullptr ? *stats : local;
-  std::clock_t call_start = std::clock();
+  PieceStore store(ctx, pieces);
   std::vector<GeomPtr> out;
-  for (std::size_t f = 0; f < faces.size(); ++f) out.emplace_back(nullptr, GeomDeleter{h});
-
-  // Every polygon of the pieces is its own item: a junction's sidewalk is one MultiPolygon with a
-  // part at each corner, each part in one face, and whole it met every face around its junction
-  // (on Paris a third of the pieces the old clip cut were such parts lying inside their face).
-  std::vector<const GEOSGeometry*> polygons;
-  for (const GEOSGeometry* piece : pieces) {
-    if (piece != nullptr) append_polygon_parts(h, piece, polygons);
-  }
-  IndexTree tree(ctx);
-  for (std::size_t i = 0; i < polygons.size(); ++i) tree.insert(ctx, polygons[i], i);
-  // Each face's polygons by box, in the order of the input (not of the tree: the same pieces
-  // always unite in the same order).
-  std::vector<std::vector<std::size_t>> candidates(faces.size());
-  for (std::size_t f = 0; f < faces.size(); ++f) {
-    if (faces[f] == nullptr) continue;
-    ++s.faces;
-    if (GEOSisEmpty_r(h, faces[f]) == 0) candidates[f] = tree.query(ctx, faces[f]);
-    s.candidate_pairs += candidates[f].size();
-  }
-
-  for (std::size_t f = 0; f < faces.size(); ++f) {
-    poll_interrupts();
-    if (faces[f] == nullptr) continue;
-    const GEOSGeometry* face = faces[f];
-    std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter> prepared(GEOSPrepare_r(h, face), PreparedDeleter{h});
-    if (!prepared) ctx.fail("prepared geometry");
-    if (wind_face(ctx, face, prepared.get(), polygons, candidates[f], grid_size, out[f], s)) continue;
-    if (!cut_face(ctx, face, prepared.get(), polygons, candidates[f], grid_size, false, out[f], s)) {
-      ++s.grid_faces;
-      cut_face(ctx, face, prepared.get(), polygons, candidates[f], grid_size, true, out[f], s);
-    }
-  }
-  s.total_seconds += seconds_since(call_start);
+  for (std::size_t f = 0; f < faces.size(); ++f) out.emplace_back(nullptr, GeomDeleter{ctx.handle()});
+  // (the caller keeps its faces: each is lent as a clone)
+  auto face_at = [&](std::size_t f) {
+    if (faces[f] == nullptr) return GeomPtr(nullptr, GeomDeleter{ctx.handle()});
+    return own(ctx, GEOSGeom_clone_r(ctx.handle(), faces[f]), "clone");
+  };
+  cut_faces(ctx, faces.size(), face_at, store, grid_size, [&](std::size_t f, GeomPtr cut) { out[f] = std::move(cut); },
+            stats != nullptr ? *stats : local);
   return out;
+}
+
+void faces_minus_pieces(GeosContext& ctx, std::size_t face_count, const std::function<GeomPtr(std::size_t)>& face_at,
+                        const std::vector<WkbView>& pieces, double grid_size,
+                        const std::function<void(std::size_t, GeomPtr)>& emit, FaceCutStats* stats) {
+  if (!(grid_size > 0)) throw_invalid_argument("grid size must be positive");
+  FaceCutStats local;
+  PieceStore store(ctx, pieces);
+  cut_faces(ctx, face_count, face_at, store, grid_size, emit, stats != nullptr ? *stats : local);
 }
 
 }  // namespace streetgen::core

@@ -3,6 +3,10 @@
 
 #include <CGAL/Box_intersection_d/Box_with_info_d.h>
 #include <CGAL/box_intersection_d.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
+#include <CGAL/hilbert_sort.h>
+#include <CGAL/property_map.h>
 
 #include <algorithm>
 #include <utility>
@@ -31,6 +35,18 @@ void for_each_overlapping_pair(const std::vector<Box>& boxes, const std::functio
         visit(std::min(i, j), std::max(i, j));
       },
       std::ptrdiff_t(10), CGAL::Box_intersection_d::CLOSED);
+}
+
+std::vector<std::size_t> hilbert_order(const std::vector<Box>& boxes) {
+  using Kernel = CGAL::Simple_cartesian<double>;
+  std::vector<Kernel::Point_2> centres;
+  centres.reserve(boxes.size());
+  for (const Box& b : boxes) centres.emplace_back((b.xmin + b.xmax) / 2, (b.ymin + b.ymax) / 2);
+  std::vector<std::size_t> order(boxes.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  using Traits = CGAL::Spatial_sort_traits_adapter_2<Kernel, CGAL::Pointer_property_map<Kernel::Point_2>::type>;
+  CGAL::hilbert_sort(order.begin(), order.end(), Traits(CGAL::make_property_map(centres)));
+  return order;
 }
 
 }  // namespace streetgen::core

@@ -261,7 +261,13 @@ class SurfaceBuilder {
       : ctx_(ctx), axes_(axes), overrides_(overrides), s_(settings), output_(output) {}
 
   SurfaceResult run() {
-    PhaseClock clock;
+    through_lanes();
+    return finish();
+  }
+
+  // Topology, corners, sections, lanes and markings (lanes() and markings() complete after it).
+  void through_lanes() {
+    PhaseClock& clock = clock_;
     std::vector<TopologyAxis> topo_axes;
     topo_axes.reserve(axes_.size());
     for (const SurfaceAxis& a : axes_) topo_axes.push_back({a.id, a.line, a.layer});
@@ -305,6 +311,17 @@ class SurfaceBuilder {
     result_.lanes.shrink_to_fit();
     result_.markings.shrink_to_fit();
     result_.stats.lanes = clock.lap();
+  }
+
+  std::vector<LaneResult>& lanes() { return result_.lanes; }
+  std::vector<MarkingResult>& markings() { return result_.markings; }
+
+  // Junctions, sidewalks and crossings; the whole result (no later phase reads the lanes and
+  // markings: the caller may have taken them).
+  SurfaceResult finish() {
+    PhaseClock& clock = clock_;
+    clock.lap();  // (not the caller's time between the steps)
+    InterruptPoller poller(64);
     for (SectionResult& sec : result_.sections) {
       if (sec.surface) section_surface_[{sec.axis_id, sec.part}] = sec.surface.get();
     }
@@ -1209,7 +1226,7 @@ class SurfaceBuilder {
   }
 
   // What a claim's sidewalk will be: a SidewalkResult without its geometry (a city has tens of
-  // thousands of claims, held at once).
+  // thousands of claims).
   struct ClaimKey {
     std::int64_t axis_id = 0;
     std::int64_t part = 0;
@@ -1227,13 +1244,12 @@ class SurfaceBuilder {
     }
   };
 
-  // A roadway, or a sidewalk's claim, in build_sidewalks.
+  // A sidewalk's claim, as build_sidewalks holds it during its turn.
   struct SidewalkItem {
-    const GEOSGeometry* geom = nullptr;
-    GeomPtr owned;        // claims
+    const GEOSGeometry* geom = nullptr;  // owned's
+    GeomPtr owned;
     int layer = 0;
-    bool roadway = false;
-    ClaimKey meta;        // claims
+    ClaimKey meta;
     // A street side's claim ends on the normals at its section's border points, and a junction
     // corner's on its two streets' border lines: the lines through cut_point[k] across
     // cut_direction[k] (pointing into the claim), when the whole claim lies on their inner side
@@ -1266,8 +1282,8 @@ class SurfaceBuilder {
   // buffer of its own curb instead, which gives way to the roadways and earlier claims by
   // overlays, as a junction's buffer would, but only there. Adds nothing and returns false when
   // the junction has no curb per corner or two corners' bands overlap: the caller then claims
-  // the buffer of the whole junction.
-  bool add_corner_claims(std::size_t n, std::int64_t node_id, std::vector<SidewalkItem>& claims) {
+  // the buffer of the whole junction. `buffered`: how many corners claim their curb's buffer.
+  bool add_corner_claims(std::size_t n, std::int64_t node_id, std::vector<SidewalkItem>& claims, long& buffered) {
     const std::vector<End>& ends = ends_of_node_[n];
     // (a street taken whole by the junction has no claim beyond its border line to end on)
     for (const End& e : ends) {
@@ -1275,7 +1291,7 @@ class SurfaceBuilder {
     }
     std::vector<SidewalkItem> pieces;
     std::vector<Polyline> rings;  // (the bands', by piece; empty for a buffered corner)
-    long buffered = 0;
+    buffered = 0;
     for (std::size_t i = 0; i < ends.size(); ++i) {
       const End& a = ends[i];
       const End& b = ends[(i + 1) % ends.size()];
@@ -1318,7 +1334,6 @@ class SurfaceBuilder {
         if (!rings[i].empty() && !rings[j].empty() && interiors_may_meet(rings[i], rings[j])) return false;
       }
     }
-    result_.stats.junction_corners_by_buffer += buffered;
     for (SidewalkItem& it : pieces) claims.push_back(std::move(it));
     return true;
   }
@@ -1473,238 +1488,352 @@ class SurfaceBuilder {
   // every roadway of its layer and the claims that come before it (sections' in key order, then
   // junctions' by node id), so that sidewalks never overlap a roadway or each other, and a
   // sidewalk depends only on what lies within its reach, whatever else the engine was given.
+  //
+  // Since a sidewalk depends only on the claims themselves (never on an earlier sidewalk), the
+  // claims are taken in any order: along a Hilbert curve, each built when first needed and freed
+  // once every claim it blocks is done, so that only the claims round the curve's front are held.
+  // Taken in key order, every street side's claim was held until the junctions (all after the
+  // street sides) were done: a third of the engine's peak memory on Reisterstown. A claim is
+  // built twice: once for its box (the boxes set what blocks what) and once for its turn.
   void build_sidewalks(InterruptPoller& poller) {
     using Item = SidewalkItem;
-    std::vector<Item> items;
     std::map<std::int64_t, std::size_t> node_index;
     for (std::size_t n = 0; n < topo_.nodes.size(); ++n) node_index[topo_.nodes[n].id] = n;
-    // Roadways, then the claims in one vector, sized up front: an item is a few hundred bytes,
-    // and a city's claims grown by doubling, then moved behind the roadways, were held up to three
-    // times over at the phase's peak (7 MB on Reisterstown). A street side or a junction corner
-    // makes one claim each.
-    std::size_t expected = 0;
-    for (const SectionResult& sec : result_.sections) expected += sec.surface ? 3 : 0;
-    for (const IntersectionResult& ir : result_.intersections) {
-      expected += 1 + ends_of_node_[node_index.at(ir.node_id)].size();
-    }
-    items.reserve(expected);
+    // By index: the roadways, then the claims. What blocks what is found by boxes over both.
+    std::vector<const GEOSGeometry*> geoms;  // a claim's while it is held, else null
+    std::vector<int> layers;
     for (const SectionResult& sec : result_.sections) {
       if (!sec.surface) continue;
-      Item it;
-      it.geom = sec.surface.get();
-      it.layer = axis_layer_.at(sec.axis_id);
-      it.roadway = true;
-      items.push_back(std::move(it));
+      geoms.push_back(sec.surface.get());
+      layers.push_back(axis_layer_.at(sec.axis_id));
     }
     for (const IntersectionResult& ir : result_.intersections) {
       if (!ir.surface) continue;
-      Item it;
-      it.geom = ir.surface.get();
-      it.layer = topo_.nodes[node_index.at(ir.node_id)].layer;
-      it.roadway = true;
-      it.meta.node_id = ir.node_id;
-      items.push_back(std::move(it));
+      geoms.push_back(ir.surface.get());
+      layers.push_back(topo_.nodes[node_index.at(ir.node_id)].layer);
     }
-    std::size_t first_claim = items.size();
-    std::vector<Item>& claims = items;  // (from first_claim on)
+    std::size_t first_claim = geoms.size();
+    std::vector<Box> boxes(first_claim);
+    for (std::size_t i = 0; i < first_claim; ++i) envelope_box(ctx_, geoms[i], boxes[i]);
+    // Every claim built once for its box and its key, then dropped. A street side or a junction
+    // corner makes one claim each.
+    std::vector<ClaimSource> sources;
+    std::size_t expected = 0;
     for (std::size_t e = 0; e < result_.sections.size(); ++e) {
-      const SectionResult& sec = result_.sections[e];
-      if (!sec.surface) continue;
+      if (!result_.sections[e].surface) continue;
+      for (int side = 0; side < 2; ++side) sources.push_back({e, side, kNoIntersection});
+      expected += 2;
+    }
+    for (std::size_t j = 0; j < result_.intersections.size(); ++j) {
+      if (!result_.intersections[j].surface) continue;
+      sources.push_back({0, 0, j});
+      expected += ends_of_node_[node_index.at(result_.intersections[j].node_id)].size();
+    }
+    struct Claim {
+      ClaimKey meta;
+      std::size_t source;
+      int piece;
+    };
+    std::vector<Claim> claims;
+    claims.reserve(expected);
+    boxes.reserve(first_claim + expected);
+    std::vector<Item> built;
+    std::clock_t first_builds = std::clock();
+    for (std::size_t s = 0; s < sources.size(); ++s) {
       poller.tick();
-      const SurfaceAxis& axis = axes_[topo_.edges[e].axis_index];
-      for (int side = 0; side < 2; ++side) {
-        double w = side == 0 ? axis.sidewalk_left : axis.sidewalk_right;
-        if (!(w > 0.0)) continue;
-        try {
-          Polyline between = substring(sec.centre_line, sec.start_border, sec.end_border);
-          GeomPtr line = make_line(ctx_, between);
-          // The roadway's side extent (street parking shifts it off the axis), then the sidewalk.
-          double shift = plans_[topo_.edges[e].axis_index].centre_offset;
-          double d = axis.roadway_width / 2 + (side == 0 ? shift : -shift) + w;
-          Item it;
-          // (a section as built: outside its roadway's side, a band of its own; else the
-          // buffer from the axis, which loses the roadway by an overlay)
-          if (sec.status == "ok") {
-            Polyline edge = roadway_side(sec.surface.get(), between, side == 0 ? +1 : -1);
-            if (edge.size() >= 2) it.owned = side_band(edge, side == 0 ? w : -w);
-            it.own_ring = it.owned != nullptr;
-          }
-          if (!it.owned) it.owned = single_sided_buffer(ctx_, line.get(), side == 0 ? d : -d);
-          if (GEOSisValid_r(ctx_.handle(), it.owned.get()) != 1) {
-            it.own_ring = false;
-            // (its polygons only: a made-valid buffer can hold lines, and an overlay refuses
-            // input of mixed dimension)
-            GeomPtr fixed = own(ctx_, GEOSMakeValid_r(ctx_.handle(), it.owned.get()), "make valid");
-            it.owned = polygons_of(ctx_, fixed.get(), 0.0);
-            if (!it.owned) continue;
-          }
-          it.geom = it.owned.get();
-          it.layer = axis.layer;
-          it.cut_point[0] = between.front();
-          it.cut_direction[0] = unit(between[1] - between[0]);
-          it.cut_point[1] = between.back();
-          it.cut_direction[1] = unit(between[between.size() - 2] - between.back());
-          for (int k = 0; k < 2; ++k) {  // (a zero direction, from repeated points, would pass any test)
-            it.cuts[k] = norm(it.cut_direction[k]) > 0.5 && beyond_line(it.geom, it.cut_point[k], it.cut_direction[k]);
-          }
-          it.meta.axis_id = sec.axis_id;
-          it.meta.part = sec.part;
-          it.meta.side = side == 0 ? "left" : "right";
-          it.meta.width = w;
-          claims.push_back(std::move(it));
-        } catch (const Error& err) {
-          if (err.kind() != ErrorKind::geometry_engine) throw;
-          result_.issues.push_back({sec.axis_id, "sidewalk_failed", err.what() + std::string(": ") + err.detail(), sec.part});
-        }
+      built.clear();
+      build_claims(sources[s], node_index, built, true);
+      for (const Item& it : built) {
+        Box box;
+        envelope_box(ctx_, it.geom, box);
+        boxes.push_back(box);
+        layers.push_back(it.layer);
+        claims.push_back({it.meta, s, it.piece});
       }
     }
-    for (const IntersectionResult& ir : result_.intersections) {
-      if (!ir.surface) continue;
-      poller.tick();
-      std::size_t n = node_index.at(ir.node_id);
-      // (a junction as built, not narrowed, repaired or a transition: its curb is its ring)
-      if (ir.status == "ok" && add_corner_claims(n, ir.node_id, claims)) {
-        ++result_.stats.junction_sidewalks_by_corner;
-        continue;
-      }
-      double w = 0.0;
-      for (const End& e : ends_of_node_[n]) {
-        const SurfaceAxis& axis = axes_[topo_.edges[e.edge].axis_index];
-        w = std::max({w, axis.sidewalk_left, axis.sidewalk_right});
-      }
-      if (!(w > 0.0)) continue;
-      ++result_.stats.junction_sidewalks_by_buffer;
-      Item it;
-      it.owned = own(ctx_, GEOSBufferWithStyle_r(ctx_.handle(), ir.surface.get(), w, kQuadrantSegments, GEOSBUF_CAP_ROUND,
-                                                 GEOSBUF_JOIN_ROUND, 5.0),
-                     "junction sidewalk buffer");
-      it.geom = it.owned.get();
-      it.layer = topo_.nodes[n].layer;
-      it.meta.node_id = ir.node_id;
-      it.meta.side = "around";
-      it.meta.width = w;
-      claims.push_back(std::move(it));
-    }
+    result_.stats.sidewalk_claim_builds = static_cast<double>(std::clock() - first_builds) / CLOCKS_PER_SEC;
     // Key order: sections' (axis, part, left before right), then junctions' by node id (a
-    // junction's corners in turn).
-    std::sort(items.begin() + static_cast<std::ptrdiff_t>(first_claim), items.end(), [](const Item& a, const Item& b) {
-      bool ja = a.meta.node_id != 0, jb = b.meta.node_id != 0;
-      return std::make_tuple(ja, a.meta.node_id, a.piece, a.meta.axis_id, a.meta.part, a.meta.side) <
-             std::make_tuple(jb, b.meta.node_id, b.piece, b.meta.axis_id, b.meta.part, b.meta.side);
-    });
-
-    std::vector<Box> boxes(items.size());
-    for (std::size_t i = 0; i < items.size(); ++i) envelope_box(ctx_, items[i].geom, boxes[i]);
-    // What each claim must give way to: roadways, and claims before it, on its layer.
-    // One sidewalk per street side's claim and per junction (whose corners' claims follow each
-    // other in this order): sized up front, as the items.
-    std::size_t sidewalk_count = 0;
-    for (std::size_t i = first_claim; i < items.size(); ++i) {
-      bool next_corner = items[i].piece > 0 && i > first_claim && items[i - 1].piece > 0 &&
-                         items[i - 1].meta.node_id == items[i].meta.node_id;
-      if (!next_corner) ++sidewalk_count;
+    // junction's corners in turn). The boxes and layers follow their claims.
+    {
+      std::vector<std::size_t> key_order(claims.size());
+      for (std::size_t c = 0; c < key_order.size(); ++c) key_order[c] = c;
+      std::sort(key_order.begin(), key_order.end(), [&](std::size_t i, std::size_t j) {
+        const Claim& a = claims[i];
+        const Claim& b = claims[j];
+        bool ja = a.meta.node_id != 0, jb = b.meta.node_id != 0;
+        return std::make_tuple(ja, a.meta.node_id, a.piece, a.meta.axis_id, a.meta.part, a.meta.side) <
+               std::make_tuple(jb, b.meta.node_id, b.piece, b.meta.axis_id, b.meta.part, b.meta.side);
+      });
+      std::vector<Claim> sorted;
+      sorted.reserve(claims.size());
+      std::vector<Box> claim_boxes(boxes.begin() + static_cast<std::ptrdiff_t>(first_claim), boxes.end());
+      std::vector<int> claim_layers(layers.begin() + static_cast<std::ptrdiff_t>(first_claim), layers.end());
+      for (std::size_t c = 0; c < key_order.size(); ++c) {
+        sorted.push_back(claims[key_order[c]]);
+        boxes[first_claim + c] = claim_boxes[key_order[c]];
+        layers[first_claim + c] = claim_layers[key_order[c]];
+      }
+      claims.swap(sorted);
     }
-    result_.sidewalks.reserve(sidewalk_count);
-    std::vector<std::vector<std::size_t>> blockers(items.size());
+    geoms.resize(first_claim + claims.size(), nullptr);
+    // A source's claims lie together in key order (a junction's corners follow each other):
+    // the groups, each one sidewalk, in key order.
+    struct Group {
+      std::size_t first, last;  // claims [first, last) by index
+      bool built = false;
+    };
+    std::vector<Group> groups;
+    std::vector<std::size_t> group_of(claims.size(), 0);
+    for (std::size_t c = 0; c < claims.size(); ++c) {
+      std::size_t i = first_claim + c;
+      if (c == 0 || claims[c].source != claims[c - 1].source) groups.push_back({i, i});
+      groups.back().last = i + 1;
+      group_of[c] = groups.size() - 1;
+    }
+    // What each claim must give way to: roadways, and claims before it, on its layer.
+    std::vector<std::vector<std::size_t>> blockers(geoms.size());
     for_each_overlapping_pair(boxes, [&](std::size_t i, std::size_t j) {
-      if (items[i].layer != items[j].layer) return;
+      if (layers[i] != layers[j]) return;
       std::size_t lo = std::min(i, j), hi = std::max(i, j);
       if (hi < first_claim) return;  // two roadways
       blockers[hi].push_back(lo);     // a roadway (lo < first_claim) or an earlier claim
     });
-    // A claim's geometry is freed once the last claim it blocks (or itself) is done: the claims
-    // of a whole city held at once were a tenth of the backend's peak memory (Reisterstown). The
-    // claims whose last use is claim j are j itself and some of j's blockers.
-    std::vector<std::size_t> last_use(items.size());
-    for (std::size_t i = first_claim; i < items.size(); ++i) last_use[i] = i;
-    for (std::size_t i = first_claim; i < items.size(); ++i) {
-      for (std::size_t b : blockers[i]) {
-        if (b >= first_claim) last_use[b] = std::max(last_use[b], i);
+    std::vector<Box> group_boxes(groups.size());
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      Box& box = group_boxes[g];
+      box = boxes[groups[g].first];
+      for (std::size_t i = groups[g].first + 1; i < groups[g].last; ++i) {
+        box = {std::min(box.xmin, boxes[i].xmin), std::min(box.ymin, boxes[i].ymin), std::max(box.xmax, boxes[i].xmax),
+               std::max(box.ymax, boxes[i].ymax)};
       }
     }
-    auto free_if_done = [&](std::size_t k, std::size_t done) {
-      if (k >= first_claim && last_use[k] == done) {
-        items[k].owned.reset();
-        items[k].geom = nullptr;
+    std::vector<Box>().swap(boxes);
+    std::vector<int>().swap(layers);
+    // A claim is held (built again, in `held`) from the first turn that needs it until its own
+    // turn and the turns of the claims it blocks are done.
+    std::vector<std::size_t> uses(geoms.size(), 0);
+    for (std::size_t i = first_claim; i < geoms.size(); ++i) {
+      ++uses[i];
+      for (std::size_t b : blockers[i]) {
+        if (b >= first_claim) ++uses[b];
+      }
+    }
+    std::vector<std::unique_ptr<Item>> held(claims.size());
+    long held_count = 0;
+    result_.stats.sidewalk_claims = static_cast<long>(claims.size());
+    auto release = [&](std::size_t i) {
+      if (i >= first_claim && --uses[i] == 0 && held[i - first_claim]) {
+        held[i - first_claim].reset();
+        geoms[i] = nullptr;
+        --held_count;
       }
     };
-    // A junction's corner claims make one sidewalk: their polygons gather here until the next
-    // claim is not one of them.
-    SidewalkResult junction;
+    auto ensure_built = [&](Group& g) {
+      if (g.built) return;
+      g.built = true;
+      built.clear();
+      build_claims(sources[claims[g.first - first_claim].source], node_index, built, false);
+      // (the same inputs build the same claims: anything else is a bug, not bad input)
+      if (built.size() != g.last - g.first) {
+        throw Error(ErrorKind::internal, "sidewalk claim built again differs from its first build");
+      }
+      for (std::size_t k = 0; k < built.size(); ++k) {
+        std::size_t i = g.first + k;
+        if (built[k].piece != claims[i - first_claim].piece) {
+          throw Error(ErrorKind::internal, "sidewalk claim built again differs from its first build");
+        }
+        held[i - first_claim] = std::make_unique<Item>(std::move(built[k]));
+        geoms[i] = held[i - first_claim]->geom;
+      }
+      held_count += static_cast<long>(built.size());
+      result_.stats.sidewalk_claims_held_peak = std::max(result_.stats.sidewalk_claims_held_peak, held_count);
+    };
+    // Sidewalks and failures as they come, each with its claim's index: put back in key order
+    // at the end, as the rows have always come.
+    std::vector<std::pair<std::size_t, SidewalkResult>> sidewalks;
+    std::vector<std::pair<std::size_t, TopologyIssue>> failures;
+    sidewalks.reserve(groups.size());
     std::vector<GeomPtr> junction_parts;
-    auto emit_junction = [&] {
-      if (junction_parts.empty()) return;
-      GeomPtr surface = make_collection(ctx_, GEOS_MULTIPOLYGON, junction_parts);
-      junction_parts.clear();
-      // (corner bands do not overlap and lie apart, the streets between them; a difference
-      // could still leave two touching along an edge, which one multipolygon may not)
-      if (GEOSisValid_r(ctx_.handle(), surface.get()) != 1) {
-        GeomPtr united = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), surface.get()), "union");
-        surface = polygons_of(ctx_, united.get(), kMinSidewalkArea);
-        if (!surface) return;
-      }
-      junction.surface = std::move(surface);
-      hand_over(junction.surface, junction.ewkb);
-      result_.sidewalks.push_back(std::move(junction));
-      junction = SidewalkResult{};
-    };
-    for (std::size_t i = first_claim; i < items.size(); ++i) {
+    for (std::size_t g : hilbert_order(group_boxes)) {
       poller.tick();
-      if (i > first_claim) {  // (at the top: every path through the claim before ends in `continue`)
-        for (std::size_t k : blockers[i - 1]) free_if_done(k, i - 1);
-        free_if_done(i - 1, i - 1);
-        std::vector<std::size_t>().swap(blockers[i - 1]);
+      Group& group = groups[g];
+      ensure_built(group);
+      for (std::size_t i = group.first; i < group.last; ++i) {
+        for (std::size_t b : blockers[i]) {
+          if (b >= first_claim) ensure_built(groups[group_of[b - first_claim]]);
+        }
       }
-      Item& it = items[i];
-      if (!junction_parts.empty() && !(it.piece > 0 && it.meta.node_id == junction.node_id)) {
+      bool junction = claims[group.first - first_claim].piece > 0;
+      SidewalkResult junction_sidewalk;
+      junction_parts.clear();
+      for (std::size_t i = group.first; i < group.last; ++i) {
+        const Item& it = *held[i - first_claim];
         try {
-          emit_junction();
+          GeomPtr surface = sidewalk_of(it, blockers[i], geoms);
+          if (!surface) continue;
+          if (junction) {
+            junction_sidewalk.node_id = it.meta.node_id;
+            junction_sidewalk.side = std::string(it.meta.side);
+            junction_sidewalk.width = std::max(junction_sidewalk.width, it.meta.width);
+            append_polygons(ctx_, surface.get(), junction_parts);
+            continue;
+          }
+          SidewalkResult sidewalk = it.meta.result();
+          sidewalk.surface = std::move(surface);
+          hand_over(sidewalk.surface, sidewalk.ewkb);
+          sidewalks.emplace_back(group.first, std::move(sidewalk));
         } catch (const Error& err) {
           if (err.kind() != ErrorKind::geometry_engine) throw;
-          report_sidewalk_failure(junction, err, node_index);
-          junction = SidewalkResult{};
+          failures.emplace_back(i, sidewalk_failure(it.meta.result(), err, node_index));
         }
       }
-      try {
-        GeomPtr surface = sidewalk_of(it, blockers[i], items);
-        if (!surface) continue;
-        if (it.piece > 0) {
-          junction.node_id = it.meta.node_id;
-          junction.side = std::string(it.meta.side);
-          junction.width = std::max(junction.width, it.meta.width);
-          append_polygons(ctx_, surface.get(), junction_parts);
-          continue;
+      if (!junction_parts.empty()) {
+        try {
+          if (GeomPtr surface = junction_surface(junction_parts)) {
+            junction_sidewalk.surface = std::move(surface);
+            hand_over(junction_sidewalk.surface, junction_sidewalk.ewkb);
+            sidewalks.emplace_back(group.first, std::move(junction_sidewalk));
+          }
+        } catch (const Error& err) {
+          if (err.kind() != ErrorKind::geometry_engine) throw;
+          // (after its pieces' failures, as when the junction was emitted at the next claim)
+          failures.emplace_back(group.last - 1, sidewalk_failure(junction_sidewalk, err, node_index));
         }
-        SidewalkResult sidewalk = it.meta.result();
-        sidewalk.surface = std::move(surface);
-        hand_over(sidewalk.surface, sidewalk.ewkb);
-        result_.sidewalks.push_back(std::move(sidewalk));
-      } catch (const Error& err) {
-        if (err.kind() != ErrorKind::geometry_engine) throw;
-        report_sidewalk_failure(it.meta.result(), err, node_index);
+      }
+      for (std::size_t i = group.first; i < group.last; ++i) {
+        for (std::size_t b : blockers[i]) release(b);
+        release(i);
+        std::vector<std::size_t>().swap(blockers[i]);
       }
     }
-    try {
-      emit_junction();
-    } catch (const Error& err) {
-      if (err.kind() != ErrorKind::geometry_engine) throw;
-      report_sidewalk_failure(junction, err, node_index);
-    }
+    auto by_index = [](const auto& a, const auto& b) { return a.first < b.first; };
+    std::stable_sort(sidewalks.begin(), sidewalks.end(), by_index);
+    std::stable_sort(failures.begin(), failures.end(), by_index);
+    result_.sidewalks.reserve(sidewalks.size());
+    for (auto& s : sidewalks) result_.sidewalks.push_back(std::move(s.second));
+    for (auto& f : failures) result_.issues.push_back(std::move(f.second));
   }
 
-  void report_sidewalk_failure(const SidewalkResult& meta, const Error& err, const std::map<std::int64_t, std::size_t>& node_index) {
-    std::string detail = err.what() + std::string(": ") + err.detail();
-    if (meta.node_id == 0) {
-      result_.issues.push_back({meta.axis_id, "sidewalk_failed", detail, meta.part});
-    } else {  // a junction's: about the node, under its first axis
-      const TopologyNode& node = topo_.nodes[node_index.at(meta.node_id)];
-      result_.issues.push_back({node.axis_ids.front(), "sidewalk_failed", detail, std::nullopt, node.id});
+  // Where a group of sidewalk claims comes from: a street side (section index, side) or a
+  // junction (intersection index).
+  static constexpr std::size_t kNoIntersection = static_cast<std::size_t>(-1);
+  struct ClaimSource {
+    std::size_t section;
+    int side;
+    std::size_t intersection;  // kNoIntersection for a street side
+  };
+
+  // Appends the claims of `source` to `out`: a street side's band, a junction's corner pieces or
+  // its buffer. `first_build` counts them and reports failures; a build again does neither.
+  void build_claims(const ClaimSource& source, const std::map<std::int64_t, std::size_t>& node_index,
+                    std::vector<SidewalkItem>& out, bool first_build) {
+    using Item = SidewalkItem;
+    if (source.intersection == kNoIntersection) {
+      std::size_t e = source.section;
+      const SectionResult& sec = result_.sections[e];
+      const SurfaceAxis& axis = axes_[topo_.edges[e].axis_index];
+      int side = source.side;
+      double w = side == 0 ? axis.sidewalk_left : axis.sidewalk_right;
+      if (!(w > 0.0)) return;
+      try {
+        Polyline between = substring(sec.centre_line, sec.start_border, sec.end_border);
+        GeomPtr line = make_line(ctx_, between);
+        // The roadway's side extent (street parking shifts it off the axis), then the sidewalk.
+        double shift = plans_[topo_.edges[e].axis_index].centre_offset;
+        double d = axis.roadway_width / 2 + (side == 0 ? shift : -shift) + w;
+        Item it;
+        // (a section as built: outside its roadway's side, a band of its own; else the
+        // buffer from the axis, which loses the roadway by an overlay)
+        if (sec.status == "ok") {
+          Polyline edge = roadway_side(sec.surface.get(), between, side == 0 ? +1 : -1);
+          if (edge.size() >= 2) it.owned = side_band(edge, side == 0 ? w : -w);
+          it.own_ring = it.owned != nullptr;
+        }
+        if (!it.owned) it.owned = single_sided_buffer(ctx_, line.get(), side == 0 ? d : -d);
+        if (GEOSisValid_r(ctx_.handle(), it.owned.get()) != 1) {
+          it.own_ring = false;
+          // (its polygons only: a made-valid buffer can hold lines, and an overlay refuses
+          // input of mixed dimension)
+          GeomPtr fixed = own(ctx_, GEOSMakeValid_r(ctx_.handle(), it.owned.get()), "make valid");
+          it.owned = polygons_of(ctx_, fixed.get(), 0.0);
+          if (!it.owned) return;
+        }
+        it.geom = it.owned.get();
+        it.layer = axis.layer;
+        it.cut_point[0] = between.front();
+        it.cut_direction[0] = unit(between[1] - between[0]);
+        it.cut_point[1] = between.back();
+        it.cut_direction[1] = unit(between[between.size() - 2] - between.back());
+        for (int k = 0; k < 2; ++k) {  // (a zero direction, from repeated points, would pass any test)
+          it.cuts[k] = norm(it.cut_direction[k]) > 0.5 && beyond_line(it.geom, it.cut_point[k], it.cut_direction[k]);
+        }
+        it.meta.axis_id = sec.axis_id;
+        it.meta.part = sec.part;
+        it.meta.side = side == 0 ? "left" : "right";
+        it.meta.width = w;
+        out.push_back(std::move(it));
+      } catch (const Error& err) {
+        if (err.kind() != ErrorKind::geometry_engine) throw;
+        if (first_build) {
+          result_.issues.push_back({sec.axis_id, "sidewalk_failed", err.what() + std::string(": ") + err.detail(), sec.part});
+        }
+      }
+      return;
     }
+    const IntersectionResult& ir = result_.intersections[source.intersection];
+    std::size_t n = node_index.at(ir.node_id);
+    // (a junction as built, not narrowed, repaired or a transition: its curb is its ring)
+    long buffered_corners = 0;
+    if (ir.status == "ok" && add_corner_claims(n, ir.node_id, out, buffered_corners)) {
+      if (first_build) {
+        ++result_.stats.junction_sidewalks_by_corner;
+        result_.stats.junction_corners_by_buffer += buffered_corners;
+      }
+      return;
+    }
+    double w = 0.0;
+    for (const End& e : ends_of_node_[n]) {
+      const SurfaceAxis& axis = axes_[topo_.edges[e.edge].axis_index];
+      w = std::max({w, axis.sidewalk_left, axis.sidewalk_right});
+    }
+    if (!(w > 0.0)) return;
+    if (first_build) ++result_.stats.junction_sidewalks_by_buffer;
+    Item it;
+    it.owned = own(ctx_, GEOSBufferWithStyle_r(ctx_.handle(), ir.surface.get(), w, kQuadrantSegments, GEOSBUF_CAP_ROUND,
+                                               GEOSBUF_JOIN_ROUND, 5.0),
+                   "junction sidewalk buffer");
+    it.geom = it.owned.get();
+    it.layer = topo_.nodes[n].layer;
+    it.meta.node_id = ir.node_id;
+    it.meta.side = "around";
+    it.meta.width = w;
+    out.push_back(std::move(it));
+  }
+
+  // A junction's sidewalk from its corners' pieces: one multipolygon.
+  GeomPtr junction_surface(std::vector<GeomPtr>& parts) {
+    GeomPtr surface = make_collection(ctx_, GEOS_MULTIPOLYGON, parts);
+    parts.clear();
+    // (corner bands do not overlap and lie apart, the streets between them; a difference
+    // could still leave two touching along an edge, which one multipolygon may not)
+    if (GEOSisValid_r(ctx_.handle(), surface.get()) != 1) {
+      GeomPtr united = own(ctx_, GEOSUnaryUnion_r(ctx_.handle(), surface.get()), "union");
+      surface = polygons_of(ctx_, united.get(), kMinSidewalkArea);
+    }
+    return surface;
+  }
+
+  TopologyIssue sidewalk_failure(const SidewalkResult& meta, const Error& err, const std::map<std::int64_t, std::size_t>& node_index) {
+    std::string detail = err.what() + std::string(": ") + err.detail();
+    if (meta.node_id == 0) return {meta.axis_id, "sidewalk_failed", detail, meta.part};
+    // a junction's: about the node, under its first axis
+    const TopologyNode& node = topo_.nodes[node_index.at(meta.node_id)];
+    return {node.axis_ids.front(), "sidewalk_failed", detail, std::nullopt, node.id};
   }
 
   // What is left of claim `it` once every roadway of its layer and every claim before it that
   // it meets (of `blockers`, by box) are taken away: its sidewalk, or null.
-  GeomPtr sidewalk_of(const SidewalkItem& it, std::vector<std::size_t>& blockers, const std::vector<SidewalkItem>& items) {
+  GeomPtr sidewalk_of(const SidewalkItem& it, std::vector<std::size_t>& blockers, const std::vector<const GEOSGeometry*>& geoms) {
     // Boxes overlap far more often than shapes (long diagonal streets): only what the claim
     // really meets is taken away (a predicate that fails counts as meeting).
     std::vector<const GEOSGeometry*> meeting;
@@ -1722,17 +1851,17 @@ class SurfaceBuilder {
         // a difference with it took nothing away: 89,000 of the street sides' 170,000
         // floating differences on Paris. A line with the claim on one side and the blocker
         // on the other shows that without an overlay.)
-        if ((it.cuts[0] && beyond_line(items[b].geom, it.cut_point[0], -1.0 * it.cut_direction[0])) ||
-            (it.cuts[1] && beyond_line(items[b].geom, it.cut_point[1], -1.0 * it.cut_direction[1]))) {
+        if ((it.cuts[0] && beyond_line(geoms[b], it.cut_point[0], -1.0 * it.cut_direction[0])) ||
+            (it.cuts[1] && beyond_line(geoms[b], it.cut_point[1], -1.0 * it.cut_direction[1]))) {
           continue;
         }
         if (prepared == nullptr) {  // a band of its own shape: exactly, against the blocker's rings
-          if (claim_may_meet(ring, items[b].geom)) meeting.push_back(items[b].geom);
+          if (claim_may_meet(ring, geoms[b])) meeting.push_back(geoms[b]);
           continue;
         }
-        char meets = GEOSPreparedIntersects_r(ctx_.handle(), prepared, items[b].geom);
+        char meets = GEOSPreparedIntersects_r(ctx_.handle(), prepared, geoms[b]);
         if (meets == 2) ctx_.clear_error();
-        if (meets != 0) meeting.push_back(items[b].geom);
+        if (meets != 0) meeting.push_back(geoms[b]);
       }
       if (prepared != nullptr) GEOSPreparedGeom_destroy_r(ctx_.handle(), prepared);
     }
@@ -1902,6 +2031,7 @@ class SurfaceBuilder {
   const std::vector<CornerOverride>& overrides_;
   const SurfaceSettings& s_;
   const SurfaceOutput& output_;
+  PhaseClock clock_;
   Topology topo_;
   std::vector<std::vector<End>> ends_of_node_;
   std::vector<std::pair<double, double>> border_;  // per edge: border abscissa at its start, at its end
@@ -1923,9 +2053,10 @@ double radius_for_speed(const SurfaceSettings& settings, double speed_kmh) {
   return std::clamp(r, settings.min_radius, std::max(settings.min_radius, settings.max_radius));
 }
 
-SurfaceResult street_surfaces(GeosContext& ctx, const std::vector<SurfaceAxis>& axes,
-                              const std::vector<CornerOverride>& corner_overrides, const SurfaceSettings& settings,
-                              const SurfaceOutput& output) {
+namespace {
+
+void check_inputs(const std::vector<SurfaceAxis>& axes, const std::vector<CornerOverride>& corner_overrides,
+                  const SurfaceSettings& settings) {
   auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   if (!(std::isfinite(settings.snap_tolerance) && settings.snap_tolerance >= 0.0) || !positive(settings.min_radius) ||
       !positive(settings.max_radius) || !positive(settings.turn_speed_ratio) || !positive(settings.lateral_acceleration) ||
@@ -1939,7 +2070,39 @@ SurfaceResult street_surfaces(GeosContext& ctx, const std::vector<SurfaceAxis>& 
   for (const CornerOverride& o : corner_overrides) {
     if (!positive(o.radius)) throw_invalid_argument("corner radius overrides must be finite numbers > 0");
   }
+}
+
+}  // namespace
+
+SurfaceResult street_surfaces(GeosContext& ctx, const std::vector<SurfaceAxis>& axes,
+                              const std::vector<CornerOverride>& corner_overrides, const SurfaceSettings& settings,
+                              const SurfaceOutput& output) {
+  check_inputs(axes, corner_overrides, settings);
   return SurfaceBuilder(ctx, axes, corner_overrides, settings, output).run();
 }
+
+struct SurfaceRun::State {
+  State(GeosContext& ctx, std::vector<SurfaceAxis> a, std::vector<CornerOverride> o, const SurfaceSettings& s,
+        const SurfaceOutput& out)
+      : axes(std::move(a)), overrides(std::move(o)), settings(s), output(out), builder(ctx, axes, overrides, settings, output) {}
+  std::vector<SurfaceAxis> axes;
+  std::vector<CornerOverride> overrides;
+  SurfaceSettings settings;
+  SurfaceOutput output;
+  SurfaceBuilder builder;  // (last: it refers to the members above)
+};
+
+SurfaceRun::SurfaceRun(GeosContext& ctx, std::vector<SurfaceAxis> axes, std::vector<CornerOverride> corner_overrides,
+                       const SurfaceSettings& settings, const SurfaceOutput& output) {
+  check_inputs(axes, corner_overrides, settings);
+  state_ = std::make_unique<State>(ctx, std::move(axes), std::move(corner_overrides), settings, output);
+}
+
+SurfaceRun::~SurfaceRun() = default;
+
+void SurfaceRun::through_lanes() { state_->builder.through_lanes(); }
+std::vector<LaneResult>& SurfaceRun::lanes() { return state_->builder.lanes(); }
+std::vector<MarkingResult>& SurfaceRun::markings() { return state_->builder.markings(); }
+SurfaceResult SurfaceRun::finish() { return state_->builder.finish(); }
 
 }  // namespace streetgen::core

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -149,6 +150,11 @@ struct SurfaceRunStats {
   long junction_sidewalks_by_buffer = 0;
   long junction_corners_by_buffer = 0;  // (of junctions claimed by corner: a corner without a band of its own)
   long sidewalks_without_overlay = 0;
+  // Sidewalk claims (a street side's, or a junction corner's or buffer), and the most of them
+  // whose geometry was held at once (build_sidewalks: the claims round the current one's turn).
+  long sidewalk_claims = 0;
+  long sidewalk_claims_held_peak = 0;
+  double sidewalk_claim_builds = 0;  // CPU seconds of the claims' first build, for their boxes (of `sidewalks`)
 };
 
 struct SurfaceResult {
@@ -179,5 +185,29 @@ struct SurfaceOutput {
 SurfaceResult street_surfaces(GeosContext& ctx, const std::vector<SurfaceAxis>& axes,
                               const std::vector<CornerOverride>& corner_overrides, const SurfaceSettings& settings,
                               const SurfaceOutput& output = {});
+
+// street_surfaces in two steps, for a caller that writes the lanes and markings out and frees
+// them before the junctions, sidewalks and crossings are built: they are then not held beside
+// the sidewalks' claims (the engine's memory peak). The constructor checks the inputs as
+// street_surfaces does; through_lanes() runs topology, corners, sections, lanes and markings,
+// after which lanes() and markings() are complete and the caller may take them; finish() runs
+// the rest and returns the result, with whatever lanes and markings were left.
+class SurfaceRun {
+ public:
+  SurfaceRun(GeosContext& ctx, std::vector<SurfaceAxis> axes, std::vector<CornerOverride> corner_overrides,
+             const SurfaceSettings& settings, const SurfaceOutput& output = {});
+  ~SurfaceRun();
+  SurfaceRun(const SurfaceRun&) = delete;
+  SurfaceRun& operator=(const SurfaceRun&) = delete;
+
+  void through_lanes();
+  std::vector<LaneResult>& lanes();
+  std::vector<MarkingResult>& markings();
+  SurfaceResult finish();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace streetgen::core
