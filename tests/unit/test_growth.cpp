@@ -391,6 +391,34 @@ TEST(GrowExample, DeadEndsOnTheCropEdgeGrowOn) {
   EXPECT_LT(dead_share(-1.0), 0.5 * dead_share(0.0));
 }
 
+namespace {
+// A 9 x 9 grid of 80 m blocks with its junctions moved by up to 20 m and T junctions on every
+// third column (the top-up does not join every failed front); with `spurs`, a 5 m dead-end spur
+// at every other T (under the minimum edge: no copy makes one).
+std::vector<ExampleEdge> skewed_t_grid(bool spurs) {
+  auto at = [](int i, int j) {
+    unsigned h = static_cast<unsigned>(i * 7919 + j * 104729) * 2654435761u;
+    return Point{i * 80.0 + static_cast<double>(h % 41) - 20.0, j * 80.0 + static_cast<double>((h >> 8) % 41) - 20.0};
+  };
+  std::vector<ExampleEdge> example;
+  std::int64_t id = 0;
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      example.push_back({{at(j, i), at(j + 1, i)}, "street", ++id});
+      if (j % 3 == 0 && i > 0 && i < 8) {
+        if (spurs && (i + j) % 2 == 0) {
+          const Point a = at(i, j), b = at(i, j + 1);
+          example.push_back({{a, a + (5.0 / distance(a, b)) * (b - a)}, "street", ++id});
+        }
+        continue;
+      }
+      example.push_back({{at(i, j), at(i, j + 1)}, "street", ++id});
+    }
+  }
+  return example;
+}
+}  // namespace
+
 TEST(GrowExample, FrontsThatCanNeitherGrowNorJoinAreCutBack) {
   // A grid with its junctions moved by up to 20 m has no dead ends (its crop-edge ends grow on),
   // so every dead end in the output is a front that failed (its skewed copies crowd each other):
@@ -399,19 +427,7 @@ TEST(GrowExample, FrontsThatCanNeitherGrowNorJoinAreCutBack) {
   Fixture f;
   GrowInput in = f.input();
   in.obstacles = {f.lake.get()};
-  in.example.clear();
-  auto at = [](int i, int j) {
-    unsigned h = static_cast<unsigned>(i * 7919 + j * 104729) * 2654435761u;
-    return Point{i * 80.0 + static_cast<double>(h % 41) - 20.0, j * 80.0 + static_cast<double>((h >> 8) % 41) - 20.0};
-  };
-  std::int64_t id = 0;
-  for (int i = 0; i <= 8; ++i) {
-    for (int j = 0; j < 8; ++j) {
-      in.example.push_back({{at(j, i), at(j + 1, i)}, "street", ++id});
-      if (j % 3 == 0 && i > 0 && i < 8) continue;  // T junctions: the top-up does not join every failed front
-      in.example.push_back({{at(i, j), at(i, j + 1)}, "street", ++id});
-    }
-  }
+  in.example = skewed_t_grid(false);
   std::size_t pruned = 0;
   for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u}) {
     GrowParams p;
@@ -1427,25 +1443,7 @@ TEST(GrowExample, FailedFrontsKeepTheExamplesDeadEndShare) {
   Fixture f;
   GrowInput in = f.input();
   in.obstacles = {f.lake.get()};
-  in.example.clear();
-  auto at = [](int i, int j) {
-    unsigned h = static_cast<unsigned>(i * 7919 + j * 104729) * 2654435761u;
-    return Point{i * 80.0 + static_cast<double>(h % 41) - 20.0, j * 80.0 + static_cast<double>((h >> 8) % 41) - 20.0};
-  };
-  std::int64_t id = 0;
-  for (int i = 0; i <= 8; ++i) {
-    for (int j = 0; j < 8; ++j) {
-      in.example.push_back({{at(j, i), at(j + 1, i)}, "street", ++id});
-      if (j % 3 == 0 && i > 0 && i < 8) {
-        if ((i + j) % 2 == 0) {
-          const Point a = at(i, j), b = at(i, j + 1);
-          in.example.push_back({{a, a + (5.0 / distance(a, b)) * (b - a)}, "street", ++id});
-        }
-        continue;
-      }
-      in.example.push_back({{at(i, j), at(i, j + 1)}, "street", ++id});
-    }
-  }
+  in.example = skewed_t_grid(true);
   std::size_t kept = 0, cut = 0;
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     GrowParams p;
