@@ -1368,6 +1368,23 @@ TEST(GrowExample, ACityOfCulDeSacsKeepsItsCrossingsThroughJoins) {
   EXPECT_GT(share, 0.11) << crossings << " crossings, " << tees << " T junctions";
 }
 
+namespace {
+// A 9 x 9 grid of 80 m blocks whose crossings each start their northern arm with a 3 m segment
+// to a shape point (under the minimum edge: a copy of a crossing loses that arm).
+std::vector<ExampleEdge> grid_with_short_northern_arms() {
+  std::vector<ExampleEdge> example;
+  std::int64_t id = 0;
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      const double x = j * 80.0;
+      example.push_back({{{i * 80.0, x}, {i * 80.0, x + 3.0}, {i * 80.0, x + 80.0}}, "street", ++id});
+      example.push_back({{{x, i * 80.0}, {x + 80.0, i * 80.0}}, "street", ++id});
+    }
+  }
+  return example;
+}
+}  // namespace
+
 TEST(GrowExample, CrossingsLostByCopiesAreToppedUpByJoins) {
   // A grid (not a city of cul-de-sacs) whose crossings each start their northern arm with a 3 m
   // segment to a shape point, under the minimum edge: a copy of a crossing loses that arm and makes
@@ -1377,15 +1394,7 @@ TEST(GrowExample, CrossingsLostByCopiesAreToppedUpByJoins) {
   // -27 -> -4 %). Away from the region's edge (100 m), over seeds 1-6.
   Fixture f;
   GrowInput in = f.input();
-  in.example.clear();
-  std::int64_t id = 0;
-  for (int i = 0; i <= 8; ++i) {
-    for (int j = 0; j < 8; ++j) {
-      const double x = j * 80.0;
-      in.example.push_back({{{i * 80.0, x}, {i * 80.0, x + 3.0}, {i * 80.0, x + 80.0}}, "street", ++id});
-      in.example.push_back({{{x, i * 80.0}, {x + 80.0, i * 80.0}}, "street", ++id});
-    }
-  }
+  in.example = grid_with_short_northern_arms();
   std::size_t tees = 0, crossings = 0;
   count_junctions_away_from_edge(f, in, false, tees, crossings);  // not a city of cul-de-sacs
   ASSERT_GT(tees + crossings, 150u);
@@ -1403,15 +1412,7 @@ TEST(GrowExample, NoNewTWhileShortOfCrossings) {
   // Seeds 1-6, no rotation, 3,000 edges, fill on.
   Fixture f;
   GrowInput in = f.input();
-  in.example.clear();
-  std::int64_t id = 0;
-  for (int i = 0; i <= 8; ++i) {
-    for (int j = 0; j < 8; ++j) {
-      const double x = j * 80.0;
-      in.example.push_back({{{i * 80.0, x}, {i * 80.0, x + 3.0}, {i * 80.0, x + 80.0}}, "street", ++id});
-      in.example.push_back({{{x, i * 80.0}, {x + 80.0, i * 80.0}}, "street", ++id});
-    }
-  }
+  in.example = grid_with_short_northern_arms();
   std::size_t new_ts = 0, refused = 0;
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     GrowParams p;
