@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <memory>
 
 #include "core/streets/bisector.hpp"
 #include "core/streets/polygon_contact.hpp"
@@ -37,6 +39,41 @@ TEST(Bisector, ParallelLinesSplitOnTheirMidline) {
     EXPECT_LE(std::max(s.from.x, s.to.x), 80.0 + 1e-9);
   }
   EXPECT_NEAR(covered_length(split), 60.0, 1e-6);
+}
+
+// The same sites give the same segments to the last bit, whatever order they come in and
+// wherever the triangulation's faces land in memory: the split line is noded with an overlap's
+// boundary, where a last-bit change can change the faces (two Paris junctions changed shape from
+// run to run). Sites as a junction's skeleton gives them: two bent polylines, sampled at
+// uneven steps, so that faces are cocircular and circumcentres inexact.
+TEST(Bisector, TheSameSitesGiveTheSameSegmentsInAnyOrder) {
+  std::vector<Point> a, b;
+  for (int k = 0; k <= 120; ++k) {
+    double t = k / 120.0;
+    a.push_back({-3727.0 + 31.7 * t, -936.8 + 13.1 * t + 2.0 * t * t});
+    b.push_back({-3725.9 + 29.3 * t, -943.6 + 9.7 * t - 1.5 * t * t});
+  }
+  const Box clip{-3740, -960, -3680, -910};
+  const std::vector<BisectorSegment> first = bisector_segments(a, b, clip);
+  ASSERT_GT(first.size(), 50u);
+  for (int round = 1; round <= 12; ++round) {
+    std::vector<Point> ra = a, rb = b;
+    std::rotate(ra.begin(), ra.begin() + (round * 17) % ra.size(), ra.end());
+    if (round % 2 == 0) std::reverse(rb.begin(), rb.end());
+    // Holes of assorted sizes in the heap, so that the triangulation's blocks of faces land
+    // in another order in memory than they are allocated in.
+    std::vector<std::unique_ptr<char[]>> ballast;
+    for (int k = 0; k < 400; ++k) ballast.emplace_back(new char[1024 + static_cast<std::size_t>((k * 7919 + round * 104729) % 9000)]);
+    for (std::size_t k = round % 3; k < ballast.size(); k += 2 + round % 3) ballast[k].reset();
+    const std::vector<BisectorSegment> again = bisector_segments(ra, rb, clip);
+    ASSERT_EQ(again.size(), first.size()) << "round " << round;
+    for (std::size_t i = 0; i < first.size(); ++i) {
+      EXPECT_EQ(std::memcmp(&again[i], &first[i], sizeof(BisectorSegment)), 0)
+          << "round " << round << ", segment " << i << ": (" << again[i].from.x << " " << again[i].from.y << ", "
+          << again[i].to.x << " " << again[i].to.y << ") against (" << first[i].from.x << " " << first[i].from.y << ", "
+          << first[i].to.x << " " << first[i].to.y << ")";
+    }
+  }
 }
 
 // Crossing axes: the split is the two angle bisectors' arms between a site of each (|x| = |y|

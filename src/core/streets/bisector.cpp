@@ -5,6 +5,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -68,22 +69,57 @@ std::vector<BisectorSegment> bisector_segments(const std::vector<Point>& a, cons
   Delaunay dt;
   dt.insert(unique_sites.begin(), unique_sites.end());
   if (dt.dimension() < 1) return out;  // (one point, in both sets: nothing is nearer to `b`)
+  // The same sites must give the same segments to the last bit, in every run: the split line is
+  // noded with the overlap's boundary, and where it runs a hair from a vertex a last-bit change
+  // decides how many faces the overlap splits into (on Paris two junctions' shapes changed from
+  // run to run of one build). CGAL's dual() does not give that: its edge iterator reports an edge
+  // from whichever of its two faces lies lower in memory, which sets the segment's direction and
+  // so the clipped ends' rounding, and a face's circumcentre is constructed (inexactly) from its
+  // vertices in the order the face happens to list them. So each circumcentre is built from its
+  // face's vertices in xy order, each segment runs from its xy-smaller end, and the segments are
+  // returned sorted.
+  auto circumcentre = [](Delaunay::Face_handle f) {
+    std::array<Kernel::Point_2, 3> p{f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()};
+    std::sort(p.begin(), p.end());
+    return point_of(CGAL::circumcenter(p[0], p[1], p[2]));
+  };
+  auto xy_less = [](Point p, Point q) { return p.x < q.x || (p.x == q.x && p.y < q.y); };
+  const double inf = std::numeric_limits<double>::infinity();
   for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
-    Delaunay::Vertex_handle u = e->first->vertex(Delaunay::cw(e->second));
-    Delaunay::Vertex_handle v = e->first->vertex(Delaunay::ccw(e->second));
+    Delaunay::Face_handle f = e->first;
+    Delaunay::Vertex_handle u = f->vertex(Delaunay::cw(e->second));
+    Delaunay::Vertex_handle v = f->vertex(Delaunay::ccw(e->second));
     if (u->info() == v->info()) continue;
     // The dual of a Delaunay edge: a segment between two circumcentres, a ray from one when the
     // edge is on the hull, or the two sites' bisector line when all sites lie on one line.
-    CGAL::Object dual = dt.dual(e);
-    const double inf = std::numeric_limits<double>::infinity();
-    if (const auto* s = CGAL::object_cast<Kernel::Segment_2>(&dual)) {
-      keep_clipped(point_of(s->source()), point_of(s->target()), 0.0, 1.0, clip, out);
-    } else if (const auto* r = CGAL::object_cast<Kernel::Ray_2>(&dual)) {
-      keep_clipped(point_of(r->source()), point_of(r->point(1)), 0.0, inf, clip, out);
-    } else if (const auto* l = CGAL::object_cast<Kernel::Line_2>(&dual)) {
-      keep_clipped(point_of(l->point(0)), point_of(l->point(1)), -inf, inf, clip, out);
+    if (dt.dimension() == 1) {
+      Kernel::Point_2 p = u->point(), q = v->point();
+      if (q < p) std::swap(p, q);
+      Kernel::Line_2 line = CGAL::bisector(p, q);
+      keep_clipped(point_of(line.point(0)), point_of(line.point(1)), -inf, inf, clip, out);
+      continue;
+    }
+    Delaunay::Face_handle g = f->neighbor(e->second);
+    if (!dt.is_infinite(f) && !dt.is_infinite(g)) {
+      Point from = circumcentre(f), to = circumcentre(g);
+      if (xy_less(to, from)) std::swap(from, to);
+      keep_clipped(from, to, 0.0, 1.0, clip, out);
+    } else {
+      // On the hull: from the finite face's circumcentre, perpendicular to the edge, away from
+      // the face (the edge taken counter-clockwise as the finite face sees it).
+      Delaunay::Face_handle finite = dt.is_infinite(f) ? g : f;
+      int k = dt.is_infinite(f) ? g->index(f) : e->second;
+      Kernel::Point_2 p = finite->vertex(Delaunay::ccw(k))->point(), q = finite->vertex(Delaunay::cw(k))->point();
+      Point source = circumcentre(finite);
+      Point outward{q.y() - p.y(), p.x() - q.x()};  // the edge p -> q turned clockwise: out of a ccw face
+      keep_clipped(source, {source.x + outward.x, source.y + outward.y}, 0.0, inf, clip, out);
     }
   }
+  std::sort(out.begin(), out.end(), [&](const BisectorSegment& s, const BisectorSegment& t) {
+    if (xy_less(s.from, t.from)) return true;
+    if (xy_less(t.from, s.from)) return false;
+    return xy_less(s.to, t.to);
+  });
   return out;
 }
 
