@@ -476,9 +476,7 @@ TEST(PatchDangling, LengthCapKeepsTheExamplesDensityPerHullArea) {
   ASSERT_GT(on.stats.cap_length, 0.0);
   EXPECT_GT(on.stats.cap_step, 0u);
   EXPECT_GT(on.stats.cap_fronts_cut, 0u);
-  std::printf("cap %.0f m: off %.0f m, on %.0f m; interior dead ends off %d, on %d; fronts cut %zu\n",
-              on.stats.cap_length, grown_length(off), grown_length(on), interior_dead_ends(off),
-              interior_dead_ends(on), on.stats.cap_fronts_cut);
+  // (seed 4: cap 125 km; 169 km without it, 116 km with it; dead ends inside 7 and 4; 82 cut)
   EXPECT_GT(grown_length(off), 1.3 * on.stats.cap_length);
   EXPECT_LT(grown_length(on), 1.1 * on.stats.cap_length);
   EXPECT_GT(grown_length(on), 0.9 * on.stats.cap_length);

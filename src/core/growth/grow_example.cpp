@@ -411,7 +411,7 @@ class Grower {
       pruned_.clear();
       dead_end_copy_.clear();
       queue_head_ = 0;
-      cap_check_ = 0;
+      new_length_ = 0.0;
       for (LibPatch& lp : library_) lp.uses = 0;
       new_edges_ = 0;
       phase_arterial_ = hierarchy_;
@@ -438,8 +438,7 @@ class Grower {
   bool proposing_dead_end_ = false;
   static constexpr int kRestarts = 5;
   static constexpr int kMaxReseeds = 200;
-  static constexpr std::size_t kCapCheckEvery = 8;
-  std::size_t cap_check_ = 0;
+  double new_length_ = 0.0;  // metres: the grown edges' length (PatchGrowParams::length_cap), kept as they come and go
 
   // One draw of a point in the region's box: true when it lies in the region, off obstacles and
   // water, farther than fill_gap_ from every street.
@@ -652,7 +651,7 @@ class Grower {
   }
 
   // PatchGrowParams::length_cap: whether the local phase (or the one level) has grown the street
-  // length the example has per area of its hull; checked every few steps (a sum over the edges).
+  // length the example has per area of its hull (new_length_: the grown edges, kept as they come and go).
   bool length_cap_reached() {
     if (!params_.use_patches || phase_arterial_ || !(params_.patch.length_cap > 0.0) || examples_.empty() ||
         !(examples_[0].hull_area > 0.0)) {
@@ -661,8 +660,7 @@ class Grower {
     if (stats_.cap_length == 0.0) {
       stats_.cap_length = params_.patch.length_cap * examples_[0].total_length / examples_[0].hull_area * region_area_;
     }
-    if (++cap_check_ % kCapCheckEvery != 0) return false;
-    return grown_length() >= stats_.cap_length;
+    return new_length_ >= stats_.cap_length;
   }
   // The fronts still queued when the cap stopped the growth: each open connector (a dead end that
   // is not the example's) is cut back to its junction.
@@ -1284,7 +1282,10 @@ class Grower {
   }
   void add_edge(std::uint32_t a, std::uint32_t b, int level, std::int64_t example_id, int source, bool bridge = false) {
     auto id = static_cast<std::uint32_t>(edges_.size());
-    if (level >= 0) ++new_edges_;
+    if (level >= 0) {
+      ++new_edges_;
+      new_length_ += distance(nodes_[a].p, nodes_[b].p);
+    }
     edges_.push_back({a, b, level, example_id, source, bridge, step_id_});
     degree_up(a);
     degree_up(b);
@@ -1313,6 +1314,7 @@ class Grower {
     degree_down(old.b);
     b_edges.erase(std::find(b_edges.begin(), b_edges.end(), e));
     edges_[e].b = m;
+    if (old.level >= 0) new_length_ += distance(nodes_[old.a].p, x) - distance(nodes_[old.a].p, nodes_[old.b].p);
     degree_up(m);
     nodes_[m].edges.push_back(e);
     edge_tree_.insert(BoxValue(box_of(nodes_[old.a].p, x), e));
@@ -2165,7 +2167,10 @@ class Grower {
       degree_down(n);
       list.erase(std::find(list.begin(), list.end(), id));
     }
-    if (e.level >= 0) --new_edges_;
+    if (e.level >= 0) {
+      --new_edges_;
+      new_length_ -= distance(nodes_[e.a].p, nodes_[e.b].p);
+    }
     e.level = kRemoved;
   }
   double ex_dead_end_share(std::uint32_t v) const {
