@@ -438,7 +438,7 @@ class Grower {
   bool proposing_dead_end_ = false;
   static constexpr int kRestarts = 5;
   static constexpr int kMaxReseeds = 200;
-  double new_length_ = 0.0;  // metres: the grown edges' length (PatchGrowParams::length_cap), kept as they come and go
+  double new_length_ = 0.0;  // metres: the grown edges' length (length_cap), kept as they come and go
 
   // One draw of a point in the region's box: true when it lies in the region, off obstacles and
   // water, farther than fill_gap_ from every street.
@@ -651,7 +651,7 @@ class Grower {
   }
 
   // PatchGrowParams::length_cap: whether the local phase (or the one level) has grown the street
-  // length the example has per area of its hull (new_length_: the grown edges, kept as they come and go).
+  // length the example has per area of its hull (new_length_: the grown edges, kept as edges come and go).
   bool length_cap_reached() {
     if (!params_.use_patches || phase_arterial_ || !(params_.patch.length_cap > 0.0) || examples_.empty() ||
         !(examples_[0].hull_area > 0.0)) {
@@ -668,7 +668,9 @@ class Grower {
     if (stats_.cap_step == 0) stats_.cap_step = stats_.steps;
     for (std::size_t i = queue_head_; i < unfinished_.size(); ++i) {
       const std::uint32_t v = unfinished_[i];
-      if (is_pruned(v) || nodes_[v].edges.size() != 1 || is_dead_end_copy(v) || example_dead_end_.count(v) != 0) continue;
+      if (is_pruned(v) || nodes_[v].edges.size() != 1 || is_dead_end_copy(v) || example_dead_end_.count(v) != 0) {
+        continue;
+      }
       std::uint32_t cur = v;
       bool cut = false;
       while (nodes_[cur].edges.size() == 1) {
