@@ -8,6 +8,7 @@
 #   NAMES='tokyo new-york' SPEED=0 bash bench/patches/run.sh         some examples, no speed part
 #   OUT=/tmp/pics bash bench/patches/run.sh   where the PNGs go (default: build/bench-patches)
 #   BASELINE=0 bash bench/patches/run.sh      grow_patches only (no grow_example baseline: half the time)
+#   STRUCTURES=0 bash bench/patches/run.sh    without the roundabout / cul-de-sac uses (about 7 of 9 minutes)
 #
 # 1. Realism: for each example, extract its patches, grow its convex hull from one seed at its
 #    centre with grow_patches and with grow_example (default params, max_edges 200000), and
@@ -106,7 +107,7 @@ SQL
   fi
 done
 done
-psql -X -q -v ON_ERROR_STOP=1 <<'SQL'
+psql -X -q -v ON_ERROR_STOP=1 -v structures="${STRUCTURES:-1}" <<'SQL'
 CREATE TABLE cmp AS
 SELECT m.method, r.name, s.seed, c.*
   FROM region r CROSS JOIN (SELECT DISTINCT seed FROM timing) s CROSS JOIN (SELECT DISTINCT method FROM timing) AS m,
@@ -161,6 +162,7 @@ SELECT name, seed,
 SELECT method, round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY score))::numeric, 1) AS median_over_pairs_pct,
        round((100 * max(score))::numeric, 1) AS worst_pair_pct
   FROM cmp WHERE metric = 'median_abs_relative_difference' GROUP BY method;
+\if :structures
 \echo structures: patches tagged roundabout / cul-de-sac in the example, and how often grow_patches used them
 SELECT p.name, count(DISTINCT p.patch_id) FILTER (WHERE 'roundabout' = ANY (p.tags)) AS ex_roundabout_patches,
        (SELECT count(DISTINCT (g.seed, g.origin)) FROM grown g JOIN patch q ON g.origin = 'grow_patches:' || q.patch_id
@@ -169,6 +171,7 @@ SELECT p.name, count(DISTINCT p.patch_id) FILTER (WHERE 'roundabout' = ANY (p.ta
        (SELECT count(DISTINCT (g.seed, g.origin)) FROM grown g JOIN patch q ON g.origin = 'grow_patches:' || q.patch_id
          AND q.name = g.name WHERE g.method = 'patches' AND g.name = p.name AND 'cul-de-sac' = ANY (q.tags)) AS cul_de_sac_uses
   FROM patch p GROUP BY p.name ORDER BY p.name;
+\endif
 \echo where the density comes from (grow_patches, median over seeds): share of the length on main streets (example, grown), mean connector length of the library and of the patches used (weighted by their uses: edges placed over the segments of the patch), junctions (degree >= 3, inside the hull shrunk by 50 m, not simplified) with a statistical street (fallback or join) among their streets
 WITH conn AS (SELECT name, patch_id, avg(ST_Length(geom)) FILTER (WHERE role = 'connector') AS len,
                      sum(ST_NPoints(geom) - 1) AS segments FROM patch GROUP BY 1, 2),

@@ -454,6 +454,11 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           "%zu reseeds (%zu inside the void)",
                           stats.refill_target, stats.refill_gap, stats.refill_before, stats.reseeds,
                           stats.refill_islands)));
+  if (stats.cap_length > 0.0) {
+    ereport(DEBUG1, (errmsg("grow_patches: length cap: %.0f m, reached at step %zu (0: never), %zu open connectors cut "
+                            "back there",
+                            stats.cap_length, stats.cap_step, stats.cap_fronts_cut)));
+  }
   {
     // Patch size at fronts: legality against size (terciles of the local patches' connector length).
     char buf[1024];

@@ -411,6 +411,7 @@ class Grower {
       pruned_.clear();
       dead_end_copy_.clear();
       queue_head_ = 0;
+      new_length_ = 0.0;
       for (LibPatch& lp : library_) lp.uses = 0;
       new_edges_ = 0;
       phase_arterial_ = hierarchy_;
@@ -437,6 +438,7 @@ class Grower {
   bool proposing_dead_end_ = false;
   static constexpr int kRestarts = 5;
   static constexpr int kMaxReseeds = 200;
+  double new_length_ = 0.0;  // metres: the grown edges' length (length_cap), kept as they come and go
 
   // One draw of a point in the region's box: true when it lies in the region, off obstacles and
   // water, farther than fill_gap_ from every street.
@@ -648,9 +650,54 @@ class Grower {
     return false;
   }
 
+  // PatchGrowParams::length_cap: whether the local phase (or the one level) has grown the street
+  // length the example has per area of its hull (new_length_: the grown edges, kept as edges come and go).
+  bool length_cap_reached() {
+    if (!params_.use_patches || phase_arterial_ || !(params_.patch.length_cap > 0.0) || examples_.empty() ||
+        !(examples_[0].hull_area > 0.0)) {
+      return false;
+    }
+    if (stats_.cap_length == 0.0) {
+      stats_.cap_length = params_.patch.length_cap * examples_[0].total_length / examples_[0].hull_area * region_area_;
+    }
+    return new_length_ >= stats_.cap_length;
+  }
+  // The fronts still queued when the cap stopped the growth: each open connector (a dead end that
+  // is not the example's) is cut back to its junction.
+  void cut_fronts_at_cap() {
+    if (stats_.cap_step == 0) stats_.cap_step = stats_.steps;
+    for (std::size_t i = queue_head_; i < unfinished_.size(); ++i) {
+      const std::uint32_t v = unfinished_[i];
+      if (is_pruned(v) || nodes_[v].edges.size() != 1 || is_dead_end_copy(v) || example_dead_end_.count(v) != 0) {
+        continue;
+      }
+      std::uint32_t cur = v;
+      bool cut = false;
+      while (nodes_[cur].edges.size() == 1) {
+        const std::uint32_t e = nodes_[cur].edges[0];
+        if (edges_[e].level < 0) break;  // the existing network is never cut
+        const std::uint32_t w = edges_[e].a == cur ? edges_[e].b : edges_[e].a;
+        if (edges_[e].source >= 0 && stats_.patch_edges > 0) --stats_.patch_edges;  // the counts stay the output's
+        remove_edge(e);
+        node_tree_.remove(PointValue(BPoint(nodes_[cur].p.x, nodes_[cur].p.y), cur));
+        pruned_.resize(nodes_.size(), 0);
+        pruned_[cur] = 1;
+        cut = true;
+        cur = w;
+      }
+      stats_.cap_fronts_cut += cut;
+    }
+    unfinished_.clear();
+    queue_head_ = 0;
+  }
+
   void grow() {
     while (!unfinished_.empty() && new_edges_ < params_.max_edges) {
       poll_interrupts();
+      if (length_cap_reached()) {
+        cut_fronts_at_cap();
+        break;
+      }
       std::uint32_t v;
       if (params_.use_patches) {  // Nishida's FIFO queue: breadth first from the seeds
         v = unfinished_[queue_head_++];
@@ -1237,7 +1284,10 @@ class Grower {
   }
   void add_edge(std::uint32_t a, std::uint32_t b, int level, std::int64_t example_id, int source, bool bridge = false) {
     auto id = static_cast<std::uint32_t>(edges_.size());
-    if (level >= 0) ++new_edges_;
+    if (level >= 0) {
+      ++new_edges_;
+      new_length_ += distance(nodes_[a].p, nodes_[b].p);
+    }
     edges_.push_back({a, b, level, example_id, source, bridge, step_id_});
     degree_up(a);
     degree_up(b);
@@ -1266,6 +1316,7 @@ class Grower {
     degree_down(old.b);
     b_edges.erase(std::find(b_edges.begin(), b_edges.end(), e));
     edges_[e].b = m;
+    if (old.level >= 0) new_length_ += distance(nodes_[old.a].p, x) - distance(nodes_[old.a].p, nodes_[old.b].p);
     degree_up(m);
     nodes_[m].edges.push_back(e);
     edge_tree_.insert(BoxValue(box_of(nodes_[old.a].p, x), e));
@@ -2118,7 +2169,10 @@ class Grower {
       degree_down(n);
       list.erase(std::find(list.begin(), list.end(), id));
     }
-    if (e.level >= 0) --new_edges_;
+    if (e.level >= 0) {
+      --new_edges_;
+      new_length_ -= distance(nodes_[e.a].p, nodes_[e.b].p);
+    }
     e.level = kRemoved;
   }
   double ex_dead_end_share(std::uint32_t v) const {

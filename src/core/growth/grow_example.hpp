@@ -126,6 +126,15 @@ struct PatchGrowParams {
   // (street density -16 to -64 %); 0.85 measured best of 0.7 / 0.85 / 1 (bench/patches, README).
   // 0: off.
   double refill = 0.85;
+  // Length cap (patch growth, local phase or one level): the growth stops once its streets are
+  // `length_cap` x the example's street length per area of its hull x the region's area long, and
+  // the open connectors still queued are cut back to their junctions (artefacts of the stop, not
+  // dead ends of the design). Breadth first from the seeds, the growth otherwise filled the whole
+  // region at the density of the example's built-up parts, while the example's hull also holds
+  // land it leaves empty (parks, yards, the crop's irregular edge): strasbourg grew 1.04-1.25 x its
+  // example's length, barcelona 1.17-1.19 x, quito 1.16 x before its joins (bench/patches, README).
+  // 0: off.
+  double length_cap = 1.0;
   // Arterial refill (levels, after the arterial phase, before the local one): the arterial phase
   // copies the example's arterial network outwards from the seed patch, so it covers only the part
   // of the region the example's arterials reach from there (measured: 6-39 % of the example's
@@ -259,6 +268,9 @@ struct GrowStats {
   double refill_gap = 0.0;         // metres: a refill seed lies farther than this from every street
   double refill_before = 0.0;      // metres of grown streets when the queue first emptied
   std::size_t refill_islands = 0;  // refill fronts at a void's edge that grew nothing, seeded inside the void instead
+  double cap_length = 0.0;         // metres: PatchGrowParams::length_cap's street length for the region (0: off)
+  std::size_t cap_step = 0;        // the step at which the growth reached it (0: never)
+  std::size_t cap_fronts_cut = 0;  // open connectors cut back when it was reached
   // PatchGrowParams::arterial_refill: the main-street length aimed at, the example's widest space
   // between its main streets, the grown main streets when the arterial phase first stopped and at
   // its end, the arterial seeds placed.
