@@ -650,6 +650,24 @@ class Grower {
     return false;
   }
 
+  // Removes the dangling street that ends at `v`, edge by edge back to the junction it left (the
+  // existing network is never cut), and returns the node where it stopped: `v` when nothing was cut.
+  std::uint32_t cut_back_to_junction(std::uint32_t v) {
+    std::uint32_t cur = v;
+    while (nodes_[cur].edges.size() == 1) {
+      const std::uint32_t e = nodes_[cur].edges[0];
+      if (edges_[e].level < 0) break;
+      const std::uint32_t w = edges_[e].a == cur ? edges_[e].b : edges_[e].a;
+      if (edges_[e].source >= 0 && stats_.patch_edges > 0) --stats_.patch_edges;  // the counts stay the output's
+      remove_edge(e);
+      node_tree_.remove(PointValue(BPoint(nodes_[cur].p.x, nodes_[cur].p.y), cur));
+      pruned_.resize(nodes_.size(), 0);
+      pruned_[cur] = 1;
+      cur = w;
+    }
+    return cur;
+  }
+
   // PatchGrowParams::length_cap: whether the local phase (or the one level) has grown the street
   // length the example has per area of its hull (new_length_: the grown edges, kept as edges come and go).
   bool length_cap_reached() {
@@ -671,21 +689,7 @@ class Grower {
       if (is_pruned(v) || nodes_[v].edges.size() != 1 || is_dead_end_copy(v) || example_dead_end_.count(v) != 0) {
         continue;
       }
-      std::uint32_t cur = v;
-      bool cut = false;
-      while (nodes_[cur].edges.size() == 1) {
-        const std::uint32_t e = nodes_[cur].edges[0];
-        if (edges_[e].level < 0) break;  // the existing network is never cut
-        const std::uint32_t w = edges_[e].a == cur ? edges_[e].b : edges_[e].a;
-        if (edges_[e].source >= 0 && stats_.patch_edges > 0) --stats_.patch_edges;  // the counts stay the output's
-        remove_edge(e);
-        node_tree_.remove(PointValue(BPoint(nodes_[cur].p.x, nodes_[cur].p.y), cur));
-        pruned_.resize(nodes_.size(), 0);
-        pruned_[cur] = 1;
-        cut = true;
-        cur = w;
-      }
-      stats_.cap_fronts_cut += cut;
+      stats_.cap_fronts_cut += cut_back_to_junction(v) != v;
     }
     unfinished_.clear();
     queue_head_ = 0;
@@ -2741,18 +2745,7 @@ class Grower {
       ++(corner_front_.count(v) != 0 ? stats_.corners_cut : stats_.crop_ends_cut);
       --dead;
       --street_ends;
-      std::uint32_t cur = v;
-      while (nodes_[cur].edges.size() == 1) {
-        const std::uint32_t e = nodes_[cur].edges[0];
-        if (edges_[e].level < 0) break;  // the existing network is never cut
-        const std::uint32_t w = edges_[e].a == cur ? edges_[e].b : edges_[e].a;
-        if (edges_[e].source >= 0 && stats_.patch_edges > 0) --stats_.patch_edges;  // the counts stay the output's
-        remove_edge(e);
-        node_tree_.remove(PointValue(BPoint(nodes_[cur].p.x, nodes_[cur].p.y), cur));
-        pruned_.resize(nodes_.size(), 0);
-        pruned_[cur] = 1;
-        cur = w;
-      }
+      const std::uint32_t cur = cut_back_to_junction(v);
       // The junction the street left, one street fewer: 3 -> 2 is no street end any more, 2 -> 1 a
       // dead end (0: the whole piece is gone).
       const std::size_t d = nodes_[cur].edges.size();
