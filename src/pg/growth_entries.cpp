@@ -221,7 +221,8 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
   ereport(DEBUG1, (errmsg("grow junctions: dead-end copies %zu, made %zu, lost %zu/%zu/%zu/%zu (angle, clipped, "
                           "short, crowded); node joins by degree 0/1/2/3/4+: snap %zu/%zu/%zu/%zu/%zu, contact "
                           "%zu/%zu/%zu/%zu/%zu, front %zu/%zu/%zu/%zu/%zu; splits snap %zu, contact %zu, front %zu; "
-                          "mix refused at degree 2/3/4+ %zu/%zu/%zu, new T's refused %zu; fronts failed %zu: ahead "
+                          "mix refused at degree 2/3/4+ %zu/%zu/%zu, new T's refused %zu (%zu at the example's "
+                          "junction density); fronts failed %zu: ahead "
                           "node %zu, ahead split %zu, near node %zu, dead end %zu, pruned %zu; copies of a degree-3 "
                           "node ending at degree "
                           "1/2/3/4+ %zu/%zu/%zu/%zu, of a degree-4+ node %zu/%zu/%zu/%zu",
@@ -233,7 +234,8 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
                           stats.node_joins[1][4], stats.node_joins[2][0], stats.node_joins[2][1],
                           stats.node_joins[2][2], stats.node_joins[2][3], stats.node_joins[2][4], stats.splits[0],
                           stats.splits[1], stats.splits[2], stats.mix_refused[2], stats.mix_refused[3],
-                          stats.mix_refused[4], stats.new_ts_refused, stats.fronts_failed, stats.fronts_ahead_node,
+                          stats.mix_refused[4], stats.new_ts_refused, stats.dense_ts_refused, stats.fronts_failed,
+                          stats.fronts_ahead_node,
                           stats.fronts_ahead_split, stats.fronts_near_node, stats.fronts_dead_end,
                           stats.fronts_pruned, stats.copy_result[3][1], stats.copy_result[3][2],
                           stats.copy_result[3][3], stats.copy_result[3][4], stats.copy_result[4][1],

@@ -115,6 +115,9 @@ struct Example {
   // P(degree > 3 | degree >= 3) of the example as given (before contract_short_segments), over its
   // nodes farther than crop_margin inside its hull: the junction mix's top-up aims at it.
   double crossing_share = 0.0;
+  // Its junctions per metre of street, counted as crossing_share counts them (a segment weighs half
+  // for each end farther than crop_margin inside its hull): new_t_refused aims at it.
+  double junctions_per_metre = 0.0;
   std::size_t max_degree = 0;
   BoxTree tree;
   double total_length = 0.0;
@@ -407,6 +410,7 @@ class Grower {
       copied_from_.clear();
       counted_.clear();
       at_least_.clear();
+      counted_length_ = 0.0;
       completed_.clear();
       pruned_.clear();
       dead_end_copy_.clear();
@@ -1293,6 +1297,7 @@ class Grower {
       new_length_ += distance(nodes_[a].p, nodes_[b].p);
     }
     edges_.push_back({a, b, level, example_id, source, bridge, step_id_});
+    counted_length_ += counted_length(a, b);
     degree_up(a);
     degree_up(b);
     nodes_[a].edges.push_back(id);
@@ -1307,6 +1312,12 @@ class Grower {
     if (at_least_.size() <= d) at_least_.resize(d + 1, 0);
     ++at_least_[d];
   }
+  // counted_length_: the output's metres of street as the junction mix counts them, an edge weighing
+  // half for each counted end.
+  double counted_length(std::uint32_t a, std::uint32_t b) const {
+    if (!mix_top_up_) return 0.0;
+    return 0.5 * (counted_[a] + counted_[b]) * distance(nodes_[a].p, nodes_[b].p);
+  }
   void degree_down(std::uint32_t n) {
     if (!mix_top_up_ || !counted_[n]) return;
     --at_least_[nodes_[n].edges.size()];
@@ -1319,6 +1330,7 @@ class Grower {
     auto& b_edges = nodes_[old.b].edges;
     degree_down(old.b);
     b_edges.erase(std::find(b_edges.begin(), b_edges.end(), e));
+    counted_length_ += counted_length(old.a, m) - counted_length(old.a, old.b);
     edges_[e].b = m;
     if (old.level >= 0) new_length_ += distance(nodes_[old.a].p, x) - distance(nodes_[old.a].p, nodes_[old.b].p);
     degree_up(m);
@@ -2173,6 +2185,7 @@ class Grower {
       degree_down(n);
       list.erase(std::find(list.begin(), list.end(), id));
     }
+    counted_length_ -= counted_length(e.a, e.b);
     if (e.level >= 0) {
       --new_edges_;
       new_length_ -= distance(nodes_[e.a].p, nodes_[e.b].p);
@@ -4147,13 +4160,32 @@ class Grower {
   // (new-york's street density -4 -> -9 %) and lowered the median less (seeds 1-30 / 31-60 / 61-90:
   // 4.40 / 4.65 / 4.65 % -> 4.30 / 4.85 / 4.40 % refusing every new T, 4.25 / 4.60 / 4.60 % with
   // both exceptions). bench/growth, README (growth18, growth19).
+  //
+  // It is also refused, failed fronts' joins included, while one more junction would leave the
+  // output's junctions per metre of street (at_least_[3] over counted_length_) above the example's
+  // by half a junction (junction_surplus). Copies lose arms at the example's junctions and joins
+  // make T's elsewhere along streets: strasbourg grew 97-126 T's inside the shrunk hull against its
+  // example's 86 (seeds 1-6; junctions +12 / +18 / +12.5 %, blocks -29 / -32 / -32 %, growth21).
+  // Not in a city of cul-de-sacs (canberra's joins make its crossings, growth15; with it, its φ
+  // +17 %). bench/growth, README (growth21).
   bool new_t_refused(std::uint32_t v, double angle, bool failed_front) {
-    if (!mix_top_up_ || failed_front || goes_straight_on(v, angle)) return false;
+    if (!mix_top_up_ || goes_straight_on(v, angle)) return false;
+    if (junction_surplus()) {
+      ++stats_.new_ts_refused;
+      ++stats_.dense_ts_refused;
+      return true;
+    }
+    if (failed_front) return false;
     const double ge = 3 < at_least_.size() ? static_cast<double>(at_least_[3]) : 0.0;
     const double gt = 4 < at_least_.size() ? static_cast<double>(at_least_[4]) : 0.0;
     if (gt + 0.5 > ex().crossing_share * (ge + 1.0)) return false;
     ++stats_.new_ts_refused;
     return true;
+  }
+  bool junction_surplus() {
+    if (cul_de_sac_city(ex().dead_end_share)) return false;
+    const double ge = 3 < at_least_.size() ? static_cast<double>(at_least_[3]) : 0.0;
+    return ge + 0.5 > ex().junctions_per_metre * counted_length_;
   }
   // Whether leaving v at `angle` continues one of v's streets straight on (within 30 degrees).
   bool goes_straight_on(std::uint32_t v, double angle) const {
@@ -4196,8 +4228,9 @@ class Grower {
     const double gt = 4 < at_least_.size() ? static_cast<double>(at_least_[4]) : 0.0;
     return gt + 0.5 <= ex().crossing_share * ge;  // one more brings the count nearer to the example's share
   }
-  // Example::crossing_share of each example, from the example as given: nodes are its polylines'
-  // vertices (within a millimetre, as build_examples makes them), degrees its distinct segments.
+  // Example::crossing_share and junctions_per_metre of each example, from the example as given: nodes
+  // are its polylines' vertices (within a millimetre, as build_examples makes them), degrees and
+  // lengths its distinct segments.
   void crossing_share_as_given(const std::vector<ExampleEdge>& example) {
     const std::size_t count = examples_.size();
     std::vector<std::unordered_map<MillimetreKey, std::uint32_t, MillimetreKeyHash>> index(count);
@@ -4228,17 +4261,25 @@ class Grower {
       const std::vector<Point> hull = convex_hull(at[k]);
       if (hull.size() < 3) continue;
       double junctions = 0.0, crossings = 0.0;
+      std::vector<char> in(at[k].size(), 0);
       for (std::size_t i = 0; i < at[k].size(); ++i) {
-        if (degree[k][i] < 3) continue;
         double inside = INFINITY;
         for (std::size_t j = 0; j < hull.size(); ++j) {
           inside = std::min(inside, point_segment_distance(at[k][i], hull[j], hull[(j + 1) % hull.size()]));
         }
         if (inside <= crop_margin_) continue;
+        in[i] = 1;
+        if (degree[k][i] < 3) continue;
         junctions += 1.0;
         crossings += degree[k][i] > 3 ? 1.0 : 0.0;
       }
       examples_[k].crossing_share = junctions > 0.0 ? crossings / junctions : 0.0;
+      double length = 0.0;
+      for (std::uint64_t key : seen[k]) {
+        const auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key & 0xffffffffu);
+        length += 0.5 * (in[a] + in[b]) * distance(at[k][a], at[k][b]);
+      }
+      examples_[k].junctions_per_metre = length > 0.0 ? junctions / length : 0.0;
     }
   }
   bool example_allows_one_more(std::size_t d) {
@@ -4426,6 +4467,7 @@ class Grower {
   std::vector<std::uint32_t> open_front_;  // scratch of short_of_dead_ends: open fronts, by stamp
   std::uint32_t open_stamp_ = 0;
   std::vector<std::size_t> at_least_;   // counted nodes by degree, at least d
+  double counted_length_ = 0.0;         // metres of the output's edges as counted (counted_length)
   GeomPtr region_boundary_;
   PreparedPtr region_boundary_prepared_;
   std::vector<std::uint32_t> unfinished_;

@@ -338,7 +338,8 @@ struct GrowStats {
   std::size_t node_joins[3][5] = {};
   std::size_t splits[3] = {};          // joins splitting an edge (a new T), by the same cause
   std::size_t mix_refused[5] = {};     // node joins refused by the example's junction mix, by degree
-  std::size_t new_ts_refused = 0;      // new T's (joins onto degree 2, splits) refused while short of crossings
+  std::size_t new_ts_refused = 0;      // new T's (joins onto degree 2, splits) refused: short of crossings, or dense
+  std::size_t dense_ts_refused = 0;    // of those, refused as the output had the example's junctions per metre
   std::size_t fronts_failed = 0;       // fronts whose every draw failed
   std::size_t fronts_ahead_node = 0, fronts_ahead_split = 0, fronts_near_node = 0;  // closed by close_front
   std::size_t fronts_dead_end = 0, fronts_pruned = 0;  // left a dead end, or cut back
