@@ -392,14 +392,17 @@ TEST(GrowExample, DeadEndsOnTheCropEdgeGrowOn) {
 }
 
 namespace {
+// The point (i, j) of an 80 m grid, moved by up to 20 m in x and y (a fixed hash of i and j).
+Point skewed_grid_point(int i, int j) {
+  unsigned h = static_cast<unsigned>(i * 7919 + j * 104729) * 2654435761u;
+  return Point{i * 80.0 + static_cast<double>(h % 41) - 20.0, j * 80.0 + static_cast<double>((h >> 8) % 41) - 20.0};
+}
+
 // A 9 x 9 grid of 80 m blocks with its junctions moved by up to 20 m and T junctions on every
 // third column (the top-up does not join every failed front); with `spurs`, a 5 m dead-end spur
 // at every other T (under the minimum edge: no copy makes one).
 std::vector<ExampleEdge> skewed_t_grid(bool spurs) {
-  auto at = [](int i, int j) {
-    unsigned h = static_cast<unsigned>(i * 7919 + j * 104729) * 2654435761u;
-    return Point{i * 80.0 + static_cast<double>(h % 41) - 20.0, j * 80.0 + static_cast<double>((h >> 8) % 41) - 20.0};
-  };
+  auto at = skewed_grid_point;
   std::vector<ExampleEdge> example;
   std::int64_t id = 0;
   for (int i = 0; i <= 8; ++i) {
@@ -1470,10 +1473,7 @@ namespace {
 // curves are, so copies lose arms at junctions and joins onto shape points and splits make T's
 // elsewhere along the streets.
 std::vector<ExampleEdge> wobbly_t_grid() {
-  auto at = [](int i, int j) {
-    unsigned h = static_cast<unsigned>(i * 7919 + j * 104729) * 2654435761u;
-    return Point{i * 80.0 + static_cast<double>(h % 41) - 20.0, j * 80.0 + static_cast<double>((h >> 8) % 41) - 20.0};
-  };
+  auto at = skewed_grid_point;
   auto street = [](Point a, Point b, int salt) {
     const Point d = b - a;
     const Point normal{-d.y / distance(a, b), d.x / distance(a, b)};
