@@ -2053,7 +2053,8 @@ class Grower {
             ++stats_.fronts_ahead_node;
             return;
           }
-        } else if (!closes_small_block(v, x, hit.a, hit.b) && !sibling_join(v, UINT32_MAX, c.edge)) {
+        } else if (!closes_small_block(v, x, hit.a, hit.b) && !sibling_join(v, UINT32_MAX, c.edge) &&
+                   !dense_split_refused()) {
           std::uint32_t m = split_edge(c.edge, x);
           add_edge(v, m, level, join_id, join_source);
           ++stats_.accepted;
@@ -4167,19 +4168,29 @@ class Grower {
   // make T's elsewhere along streets: strasbourg grew 97-126 T's inside the shrunk hull against its
   // example's 86 (seeds 1-6; junctions +12 / +18 / +12.5 %, blocks -29 / -32 / -32 %, growth21).
   // Not in a city of cul-de-sacs (canberra's joins make its crossings, growth15; with it, its φ
-  // +17 %). bench/growth, README (growth21).
+  // +17 %). Joins that go straight on are refused as dense too (growth22; growth21 spared them as
+  // growth19's rule does: strasbourg's junctions +9 / +11 / +6 %, with this -4 / +1 / +1 / -3 % on
+  // seeds 1-30 / 31-60 / 61-90 / 91-120). bench/growth, README (growth21, growth22).
   bool new_t_refused(std::uint32_t v, double angle, bool failed_front) {
-    if (!mix_top_up_ || goes_straight_on(v, angle)) return false;
+    if (!mix_top_up_) return false;
     if (junction_surplus()) {
       ++stats_.new_ts_refused;
       ++stats_.dense_ts_refused;
       return true;
     }
-    if (failed_front) return false;
+    if (failed_front || goes_straight_on(v, angle)) return false;
     const double ge = 3 < at_least_.size() ? static_cast<double>(at_least_[3]) : 0.0;
     const double gt = 4 < at_least_.size() ? static_cast<double>(at_least_[4]) : 0.0;
     if (gt + 0.5 > ex().crossing_share * (ge + 1.0)) return false;
     ++stats_.new_ts_refused;
+    return true;
+  }
+  // A failed front's split of the street straight ahead (close_front) makes a new T too: refused as
+  // dense like the joins above (it always goes straight on, so only junction_surplus asks).
+  bool dense_split_refused() {
+    if (!mix_top_up_ || !junction_surplus()) return false;
+    ++stats_.new_ts_refused;
+    ++stats_.dense_ts_refused;
     return true;
   }
   bool junction_surplus() {
