@@ -15,7 +15,8 @@ CREATE TABLE streetgen.default_settings (
   max_transition_deflection_deg double precision NOT NULL DEFAULT 30 CHECK (max_transition_deflection_deg >= 0 AND max_transition_deflection_deg <= 90),
   crossing_width double precision NOT NULL DEFAULT 3 CHECK (crossing_width >= 0 AND crossing_width <= 10),
   crossing_max_speed_kmh double precision NOT NULL DEFAULT 50 CHECK (crossing_max_speed_kmh >= 0 AND crossing_max_speed_kmh <= 300),
-  default_sidewalk_width double precision NOT NULL DEFAULT 2 CHECK (default_sidewalk_width >= 0 AND default_sidewalk_width <= 20)
+  default_sidewalk_width double precision NOT NULL DEFAULT 2 CHECK (default_sidewalk_width >= 0 AND default_sidewalk_width <= 20),
+  details boolean NOT NULL DEFAULT true
 );
 INSERT INTO streetgen.default_settings DEFAULT VALUES;
 GRANT SELECT ON streetgen.default_settings TO PUBLIC;
@@ -33,8 +34,10 @@ COMMENT ON COLUMN streetgen.default_settings.max_transition_deflection_deg IS 'A
 COMMENT ON COLUMN streetgen.default_settings.crossing_width IS 'm: pedestrian crossings along the axis (0: no crossings)';
 COMMENT ON COLUMN streetgen.default_settings.crossing_max_speed_kmh IS 'Crossings only on streets this slow or slower (km/h)';
 COMMENT ON COLUMN streetgen.default_settings.default_sidewalk_width IS 'm: the sidewalk of a street that has one by the class rule when neither sidewalk_width nor an OSM width tag says how wide (see streetgen.sidewalk_widths)';
+COMMENT ON COLUMN streetgen.default_settings.details IS 'false: street surfaces only (nodes, sections, corners, intersections); no lanes, markings, crossings, sidewalks or blocks, which take most of a city''s time';
 
--- The settings as the C function takes them: a float8[] in the column order above. `settings`
+-- The settings as the C function takes them: a float8[] in the column order above (details as 1
+-- or 0; default_sidewalk_width goes to streetgen.sidewalk_widths instead). `settings`
 -- is a jsonb object of overrides (unknown keys are an error), applied over the defaults.
 CREATE FUNCTION streetgen._settings_vector(settings jsonb)
   RETURNS double precision[]
@@ -59,7 +62,8 @@ BEGIN
   SELECT * INTO s FROM jsonb_populate_record((SELECT d FROM streetgen.default_settings d), settings);
   RETURN ARRAY[s.snap_tolerance, s.turn_speed_ratio, s.lateral_acceleration, s.min_radius, s.max_radius,
                s.misplaced_factor, s.min_border_distance, s.transition_length_per_metre, s.min_transition_length,
-               s.max_transition_deflection_deg, s.crossing_width, s.crossing_max_speed_kmh];
+               s.max_transition_deflection_deg, s.crossing_width, s.crossing_max_speed_kmh,
+               CASE WHEN s.details THEN 1 ELSE 0 END];
 END
 $$;
 

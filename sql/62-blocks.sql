@@ -44,10 +44,16 @@ CREATE FUNCTION streetgen._compute_blocks(model text, area geometry, changed geo
   AS $$
 DECLARE
   extent geometry;
+  details boolean;
 BEGIN
   PERFORM streetgen._work_tables();
   DELETE FROM pg_temp._sg_faces;
   DELETE FROM pg_temp._sg_blocks;
+  -- (a model of street surfaces only has no blocks: _store_blocks then deletes any stored ones)
+  EXECUTE format('SELECT s.details FROM %I.settings s', model) INTO details;
+  IF NOT details THEN
+    RETURN;
+  END IF;
   EXECUTE format($q$
     INSERT INTO pg_temp._sg_faces (face)
     SELECT (ST_Dump(ST_Polygonize(s.centre_line))).geom

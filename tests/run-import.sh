@@ -58,6 +58,16 @@ psql -X -q -v ON_ERROR_STOP=1 -c "INSERT INTO import_fact VALUES ('gothenburg', 
   $loaded, $not_driveable, $degenerate, 11.8, 57.6, 12.1, 57.8, $seconds)"
 
 status=0
+# Street surfaces only, a setting given to the import (check-surfaces.sql compares it with the
+# full import of the same file); an unknown setting stops the import before anything is loaded.
+"$SRC/scripts/streetgen-import" -m munich_surfaces -c details=false "$osm_dir/munich.osm.pbf" || status=1
+if "$SRC/scripts/streetgen-import" -m munich_bad_setting -c no_such_setting=1 "$osm_dir/munich.osm.pbf" 2>"$work/bad-setting.err"; then
+  echo "FAIL: streetgen-import accepted an unknown setting" >&2; status=1
+elif ! grep -q 'no_such_setting' "$work/bad-setting.err"; then
+  echo "FAIL: streetgen-import's error does not name the unknown setting: $(cat "$work/bad-setting.err")" >&2; status=1
+elif [ "$(psql -X -At -c "SELECT count(*) FROM streetgen.model WHERE name = 'munich_bad_setting'")" != 0 ]; then
+  echo "FAIL: an import with an unknown setting left a model behind" >&2; status=1
+fi
 pg_prove -d "$db" "$SRC/tests/import/check-import.sql" "$SRC/tests/import/check-surfaces.sql" \
   "$SRC/tests/import/check-refresh.sql" || status=$?
 psql -X -c "SELECT model, kind, highway_ways, loaded, not_driveable, degenerate, seconds FROM import_fact ORDER BY model"

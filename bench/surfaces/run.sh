@@ -6,13 +6,16 @@
 #   PEERS=0 bash bench/surfaces/run.sh    without the peer comparison
 #   OSM_FILES="liechtenstein.osm.pbf munich.osm.pbf" DATASETS=osm ...   some files of ../shared/data/osm
 #   STREETGEN_BENCH_NO_BUILD=1            the streetgen installed for the pg_config on PATH, as it is
+#   SURFACES_ONLY=0                       without the street-surfaces-only runs (settings.details false)
 #
 # Builds and installs streetgen, starts a throwaway cluster, then for every file of
 # ../shared/data/osm, every case of ../shared/data/osm2streets and the Paris example graph:
 # import (wall time), generate (wall time, peak backend memory), surface_quality, corners by
 # status, intersections by status, issues by kind. Then the Neukolln carriageway fidelity against
 # the real lane areas, the junction match against osm2streets' stored outputs, and the peers
-# (SUMO netconvert, osm2streets-js; bench/peers) on the same OSM files, as time ratios.
+# (SUMO netconvert, osm2streets-js; bench/peers) on the same OSM files, as time ratios. Last, the
+# peers' files and Paris again with settings.details false (street surfaces only: nodes, sections,
+# corners, junctions; what issue 3 builds and about what netconvert builds), their ratios too.
 # The report goes to stdout and to $OUT/report.md (default build/bench-surfaces).
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -20,6 +23,7 @@ data="${STREETGEN_SHARED_DATA:-$repo/../shared/data}"
 out="${OUT:-$repo/build/bench-surfaces}"
 datasets="${DATASETS:-osm cases paris}"
 peers="${PEERS:-1}"
+surfaces_only="${SURFACES_ONLY:-1}"
 port="${PORT:-54330}"   # (PORT=... when another cluster holds 54330)
 mkdir -p "$out"
 report="$out/report.md"
@@ -60,7 +64,7 @@ SQL
   echo "$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f", b - a }') $(cat "$out/peak-$model.kb") $base"
 }
 
-declare -A import_s import_sections generate_s peak_kb base_kb
+declare -A import_s import_sections generate_s peak_kb base_kb peer_nc peer_o2
 run_dataset() {  # name, import command...
   local name=$1; shift
   local start
@@ -86,11 +90,12 @@ if [[ " $datasets " == *" cases "* ]]; then
   done
 fi
 if [[ " $datasets " == *" paris "* ]]; then
-  load_paris() {
-    psql -X -q -c "SELECT streetgen.create_model('paris', 0)"
+  load_paris() {  # [model [details]]
+    local model=${1:-paris} details=${2:-true}
+    psql -X -q -c "SELECT streetgen.create_model('$model', 0)" -c "UPDATE $model.settings SET details = $details"
     ogr2ogr -f PostgreSQL "PG:dbname=$PGDATABASE" "$data/examples/cities/paris.geojson" -nln paris_staging \
       -lco GEOMETRY_NAME=geom -lco SPATIAL_INDEX=NONE --config PG_USE_COPY YES -overwrite
-    psql -X -q -v ON_ERROR_STOP=1 -v model=paris -v staging=paris_staging -f "$repo/bench/surfaces/load-example-graph.sql"
+    psql -X -q -v ON_ERROR_STOP=1 -v model="$model" -v staging=paris_staging -f "$repo/bench/surfaces/load-example-graph.sql"
   }
   run_dataset paris load_paris && names+=(paris)
 fi
@@ -193,11 +198,53 @@ if [ "$peers" = 1 ] && [[ " $datasets " == *" osm "* ]]; then
     nc_kb=$(echo "$lines" | sed -n 's/^peer=netconvert .*peak_rss_kb=\([0-9]*\).*status=ok$/\1/p')
     nc_priv=$(echo "$lines" | sed -n 's/^peer=netconvert .*private_peak_kb=\([0-9]*\) .*status=ok$/\1/p')
     o2=$(echo "$lines" | sed -n 's/^peer=osm2streets .*wall_s=\([0-9.]*\).*status=ok$/\1/p')
+    peer_nc[$n]=${nc:-}; peer_o2[$n]=${o2:-}
     # (an import that left the surfaces to a later generate() would not be the whole job)
     [ "${import_sections[$n]:-0}" -gt 0 ] || { echo "$n: the import built no section" >&2; continue; }
     ours=${import_s[$n]}
     ratio=$(awk -v o="$ours" -v a="${nc:-0}" -v b="${o2:-0}" 'BEGIN { m = (a > 0 && (b == 0 || a < b)) ? a : b; if (m > 0) printf "%.2f", o / m; else print "n/a" }')
     say "| $f | $ours | ${nc:-failed} | ${o2:-failed} | $ratio | $(( ${peak_kb[$n]:-0} / 1024 )) | $(mb "$nc_priv") | $(mb "$nc_kb") |"
+  done
+fi
+# Street surfaces only (settings.details false): the peers' files imported again with
+# `streetgen-import -c details=false`, and Paris loaded into a model with it, each then generated
+# again in a fresh backend like the full runs above.
+if [ "$surfaces_only" = 1 ]; then
+  ratio_to_peers() {  # ours netconvert osm2streets
+    awk -v o="$1" -v a="${2:-0}" -v b="${3:-0}" 'BEGIN { m = (a > 0 && (b == 0 || a < b)) ? a : b; if (m > 0) printf "%.2f", o / m; else print "n/a" }'
+  }
+  so_rows=()
+  for f in liechtenstein.osm.pbf reisterstown.osm.pbf baltimore.osm.pbf munich.osm.pbf campo-grande.osm.gz; do
+    n="${f%%.*}"; n="${n//-/_}"
+    [ -n "${import_s[$n]:-}" ] || continue
+    run_dataset "${n}_surfaces" "$repo/scripts/streetgen-import" -m "${n}_surfaces" -c details=false "$data/osm/$f" || continue
+    so_rows+=("$f|$n")
+  done
+  if [[ " ${names[*]} " == *" paris "* ]]; then
+    run_dataset paris_surfaces load_paris paris_surfaces false && so_rows+=("paris|paris")
+  fi
+  say ""
+  say "## Street surfaces only (settings.details false: no lanes, markings, crossings, sidewalks or blocks)"
+  say ""
+  say "What issue 3 builds (nodes, sections, corners, junctions), about what netconvert builds (junction"
+  say "shapes; it also builds lanes). Import = the whole job, as above; generate = a second, whole-model"
+  say "recompute; ratio = the import's wall time / the faster peer's (the peers' times are the run above)."
+  say ""
+  say "| file | import s | generate s | peak private MB | sections | junctions | lanes + sidewalks + blocks | netconvert s | osm2streets s | ratio |"
+  say "|---|---|---|---|---|---|---|---|---|---|"
+  for row in "${so_rows[@]}"; do
+    f=${row%%|*}; n=${row#*|}; m="${n}_surfaces"
+    counts=$(psql -X -At -F '|' -c "SELECT (SELECT count(*) FROM $m.section), (SELECT count(*) FROM $m.intersection),
+                                             (SELECT count(*) FROM $m.lane) + (SELECT count(*) FROM $m.sidewalk) + (SELECT count(*) FROM $m.block)")
+    ratio=$(ratio_to_peers "${import_s[$m]}" "${peer_nc[$n]:-}" "${peer_o2[$n]:-}")
+    say "| $f | ${import_s[$m]} | ${generate_s[$m]} | $(( ${peak_kb[$m]:-0} / 1024 )) | $counts | ${peer_nc[$n]:-n/a} | ${peer_o2[$n]:-n/a} | $ratio |"
+  done
+  say ""
+  say "Where the surfaces-only generate's time goes (engine phases, CPU s: topology, corners, sections, lanes, junctions, sidewalks):"
+  say ""
+  for row in "${so_rows[@]}"; do
+    n=${row#*|}; m="${n}_surfaces"
+    say "- $m: $(sed -n 's/.*streetgen: surfaces in CPU seconds: //p' "$out/generate-$m.log" | head -1)"
   done
 fi
 echo "report: $report"

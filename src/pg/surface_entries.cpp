@@ -24,7 +24,7 @@ using namespace streetgen;
 
 namespace {
 
-constexpr int kSettingCount = 12;  // the order of SurfaceSettings' fields, see 60-surfaces.sql
+constexpr int kSettingCount = 13;  // the order of SurfaceSettings' fields, see _settings_vector in 25-settings.sql
 
 struct AxisArg {  // plain data, filled in phase 1
   std::int64_t id;
@@ -378,12 +378,13 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
   pg::guarded_call(error, [&] {
     core::GeosContext& geos = pg::backend_geos();
     core::SurfaceSettings settings;
-    double* fields[kSettingCount] = {&settings.snap_tolerance, &settings.turn_speed_ratio, &settings.lateral_acceleration,
+    double* fields[kSettingCount - 1] = {&settings.snap_tolerance, &settings.turn_speed_ratio, &settings.lateral_acceleration,
                                      &settings.min_radius, &settings.max_radius, &settings.misplaced_factor,
                                      &settings.min_border_distance, &settings.transition_length_per_metre,
                                      &settings.min_transition_length, &settings.max_transition_deflection_deg,
                                      &settings.crossing_width, &settings.crossing_max_speed_kmh};
-    for (int i = 0; i < kSettingCount; ++i) *fields[i] = setting_values[i];
+    for (int i = 0; i < kSettingCount - 1; ++i) *fields[i] = setting_values[i];
+    settings.details = setting_values[kSettingCount - 1] != 0.0;  // (a boolean, as 1 or 0)
     std::vector<core::SurfaceAxis> input;
     input.reserve(axis_count);
     int srid = 0;

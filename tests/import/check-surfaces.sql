@@ -21,5 +21,25 @@ SELECT is_empty($$SELECT model, intersection_overlap_area, surface_area FROM mea
 SELECT is_empty($$SELECT model FROM measured WHERE intersections = 0 OR sections = 0$$,
                 'every network has sections and intersections');
 
+-- Munich imported again as street surfaces only (streetgen-import -c details=false): the same
+-- nodes, sections, corners and junctions as the full import, and no lanes, markings, crossings,
+-- sidewalks or blocks.
+SELECT is((SELECT details FROM munich_surfaces.settings), false, 'streetgen-import -c details=false set the new model''s setting');
+SELECT cmp_ok((SELECT count(*) FROM munich_surfaces.section), '>', 0::bigint, 'the surfaces-only import built the sections');
+SELECT is((SELECT count(*) FROM munich_surfaces.lane) + (SELECT count(*) FROM munich_surfaces.marking)
+          + (SELECT count(*) FROM munich_surfaces.crossing) + (SELECT count(*) FROM munich_surfaces.sidewalk)
+          + (SELECT count(*) FROM munich_surfaces.block), 0::bigint,
+          'and no lanes, markings, crossings, sidewalks or blocks');
+SELECT set_eq($$SELECT a.source, s.part, s.status, ST_AsEWKB(s.geom) FROM munich_surfaces.section s JOIN munich_surfaces.axis a ON a.id = s.axis_id$$,
+              $$SELECT a.source, s.part, s.status, ST_AsEWKB(s.geom) FROM munich.section s JOIN munich.axis a ON a.id = s.axis_id$$,
+              'its sections are the full import''s, to the byte (axes matched by their OSM source)');
+SELECT set_eq($$SELECT i.status, ST_AsEWKB(i.geom) FROM munich_surfaces.intersection i$$,
+              $$SELECT i.status, ST_AsEWKB(i.geom) FROM munich.intersection i$$,
+              'and so are its junctions');
+SELECT set_eq($$SELECT c.status, c.radius, ST_AsEWKB(c.arc) FROM munich_surfaces.corner c$$,
+              $$SELECT c.status, c.radius, ST_AsEWKB(c.arc) FROM munich.corner c$$,
+              'and its corners');
+SELECT is_empty('SELECT * FROM streetgen.outdated(''munich_surfaces'')', 'a surfaces-only model equals a full recompute');
+
 SELECT * FROM finish();
 ROLLBACK;

@@ -116,6 +116,43 @@ INSERT INTO dt.axis (geom, roadway_width, speed_kmh) VALUES ('SRID=32631;LINESTR
 SELECT is((SELECT count(*) FROM dt.block), 1::bigint, 'an INSERT closing the face makes the block again');
 SELECT * FROM pg_temp.sound('after an insert');
 
+-- Street surfaces only (settings.details false): no lanes, markings, crossings, sidewalks or
+-- blocks, and the street surfaces themselves unchanged; details true again brings them back.
+CREATE TEMP VIEW street_surface_rows AS
+  SELECT 'section' AS kind, axis_id || '/' || part AS key, status, md5(ST_AsEWKB(geom)::text) AS g FROM dt.section
+  UNION ALL SELECT 'intersection', node_id::text, status, md5(ST_AsEWKB(geom)::text) FROM dt.intersection
+  UNION ALL SELECT 'corner', concat_ws('/', node_id, axis_a, part_a, end_a, axis_b, part_b, end_b), status,
+                   md5(ST_AsEWKB(arc)::text) FROM dt.corner
+  UNION ALL SELECT 'node', id::text, degree::text, md5(ST_AsEWKB(geom)::text) FROM dt.node;
+-- (lanes, markings, crossings, sidewalks, blocks)
+CREATE TEMP VIEW detail_counts AS
+  SELECT ARRAY[(SELECT count(*) FROM dt.lane), (SELECT count(*) FROM dt.marking), (SELECT count(*) FROM dt.crossing),
+               (SELECT count(*) FROM dt.sidewalk), (SELECT count(*) FROM dt.block)] AS counts;
+CREATE TEMP TABLE surfaces_with_details AS SELECT * FROM street_surface_rows;
+CREATE TEMP TABLE details_before AS SELECT * FROM detail_counts;
+SELECT ok((SELECT 0 < ALL (counts) FROM details_before),
+          'the model has lanes, markings, crossings, sidewalks and a block to begin with');
+UPDATE dt.settings SET details = false;
+SELECT is((SELECT counts FROM detail_counts), ARRAY[0, 0, 0, 0, 0]::bigint[],
+          'details false: no lanes, markings, crossings, sidewalks or blocks (new settings recompute the model)');
+SELECT set_eq('SELECT * FROM street_surface_rows', 'SELECT * FROM surfaces_with_details',
+              'and the same nodes, sections, corners and junctions, to the byte');
+UPDATE dt.axis SET speed_kmh = 40 WHERE id = :south;
+SELECT is((SELECT counts FROM detail_counts), ARRAY[0, 0, 0, 0, 0]::bigint[], 'an edit of a surfaces-only model makes no details');
+SELECT is_empty('SELECT * FROM streetgen.outdated(''dt'')', 'a surfaces-only model equals a full recompute after an edit');
+UPDATE dt.axis SET speed_kmh = 30 WHERE id = :south;
+UPDATE dt.settings SET details = true;
+SELECT is((SELECT counts FROM detail_counts), (SELECT counts FROM details_before), 'details true again: every detail is back');
+SELECT set_eq('SELECT * FROM street_surface_rows', 'SELECT * FROM surfaces_with_details', 'on the same surfaces');
+SELECT is((SELECT count(*) FROM streetgen.street_surfaces('SELECT id, geom, roadway_width, speed_kmh FROM dt.axis', '{"details": false}')
+            WHERE kind IN ('lane', 'marking', 'crossing', 'sidewalk')), 0::bigint,
+          'street_surfaces with details false returns the surfaces only');
+SELECT is((SELECT count(*) FROM streetgen.street_surfaces('SELECT id, geom, roadway_width, speed_kmh FROM dt.axis', '{"details": false}')
+            WHERE kind = 'intersection'), (SELECT count(*) FROM dt.intersection),
+          'with every junction');
+SELECT throws_ok($$SELECT * FROM streetgen.street_surfaces('SELECT id, geom, roadway_width, speed_kmh FROM dt.axis', '{"details": "some"}')$$,
+                 '22P02', NULL, 'details must be a boolean');
+
 -- Traffic islands: the face between the two one-way carriageways of a dual carriageway.
 SELECT streetgen.create_model('di', 32631);
 INSERT INTO di.axis (geom, roadway_width, speed_kmh, road_class, oneway) VALUES

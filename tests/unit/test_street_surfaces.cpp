@@ -310,6 +310,40 @@ TEST(StreetDetails, SidewalksStayOffRoadwaysAndCrossingsFollowTheRule) {
   EXPECT_THROW(street_surfaces(ctx, axes, {}, SurfaceSettings{}), Error);
 }
 
+// Street surfaces only (SurfaceSettings::details false): no lanes, markings, crossings or
+// sidewalks, and the nodes, sections, corners and junctions exactly those of a run with them.
+TEST(StreetDetails, SurfacesOnlyLeaveOutTheDetailsAndKeepTheSurfaces) {
+  GeosContext ctx;
+  std::vector<SurfaceAxis> axes{axis(1, {{-60, 0}, {0, 0}}, 8, 30), axis(2, {{0, 0}, {60, 0}}, 8, 30),
+                                axis(3, {{0, 0}, {0, 60}}, 8, 30), axis(4, {{0, 0}, {10, -30}, {0, -60}}, 12, 50)};
+  for (SurfaceAxis& a : axes) a.sidewalk_left = a.sidewalk_right = 2.0;
+  SurfaceResult all = street_surfaces(ctx, axes, {}, SurfaceSettings{});
+  SurfaceSettings surfaces_only;
+  surfaces_only.details = false;
+  SurfaceResult bare = street_surfaces(ctx, axes, {}, surfaces_only);
+  ASSERT_FALSE(all.lanes.empty());
+  ASSERT_FALSE(all.sidewalks.empty());
+  ASSERT_FALSE(all.crossings.empty());
+  EXPECT_TRUE(bare.lanes.empty());
+  EXPECT_TRUE(bare.markings.empty());
+  EXPECT_TRUE(bare.crossings.empty());
+  EXPECT_TRUE(bare.sidewalks.empty());
+  EXPECT_EQ(bare.nodes.size(), all.nodes.size());
+  ASSERT_EQ(bare.sections.size(), all.sections.size());
+  for (std::size_t i = 0; i < all.sections.size(); ++i) {
+    EXPECT_EQ(bare.sections[i].status, all.sections[i].status);
+    EXPECT_EQ(GEOSEqualsExact_r(ctx.handle(), bare.sections[i].surface.get(), all.sections[i].surface.get(), 0.0), 1);
+  }
+  ASSERT_EQ(bare.intersections.size(), all.intersections.size());
+  for (std::size_t i = 0; i < all.intersections.size(); ++i) {
+    EXPECT_EQ(bare.intersections[i].node_id, all.intersections[i].node_id);
+    EXPECT_EQ(GEOSEqualsExact_r(ctx.handle(), bare.intersections[i].surface.get(), all.intersections[i].surface.get(), 0.0), 1);
+  }
+  ASSERT_EQ(bare.corners.size(), all.corners.size());
+  for (std::size_t i = 0; i < all.corners.size(); ++i) EXPECT_EQ(bare.corners[i].radius, all.corners[i].radius);
+  expect_valid_and_disjoint(ctx, bare);
+}
+
 // The phase times add up to no more than the CPU time of the whole call (each phase is counted
 // once, none is negative), and the sidewalks, the costliest phase on real cities, are timed.
 TEST(StreetSurfaces, PhaseTimesAddUpToTheCallsCpuTime) {

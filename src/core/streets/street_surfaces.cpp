@@ -306,7 +306,7 @@ class SurfaceBuilder {
     }
     separate_overlapping_sections();
     result_.stats.sections = clock.lap();
-    build_lanes(poller);
+    if (s_.details) build_lanes(poller);
     // (grown by doubling, up to twice what they hold, and held to the end)
     result_.lanes.shrink_to_fit();
     result_.markings.shrink_to_fit();
@@ -336,7 +336,7 @@ class SurfaceBuilder {
     }
     separate_overlapping_junctions(poller);
     result_.stats.junctions = clock.lap();
-    build_sidewalks(poller);
+    if (s_.details) build_sidewalks(poller);
     result_.stats.sidewalks = clock.lap();
     std::size_t corner_count = 0;
     for (const auto& corners : corners_of_node_) corner_count += corners.size();

@@ -32,6 +32,9 @@ struct SurfaceSettings {
   double max_transition_deflection_deg = 30.0;  // width transitions only where the axis runs on
   double crossing_width = 3.0;         // m: a pedestrian crossing along the axis (0: no crossings)
   double crossing_max_speed_kmh = 50.0;  // crossings only on streets this slow or slower
+  // false: the street surfaces only (topology, corners, sections, junctions); no lanes,
+  // markings, crossings or sidewalks, which take most of a city's time.
+  bool details = true;
 };
 
 // Kinematic rule of thumb: a vehicle turns at turn_speed_ratio x the street speed with a lateral
