@@ -65,6 +65,10 @@ SQL
 }
 
 declare -A import_s import_sections generate_s peak_kb base_kb peer_nc peer_o2
+# ours netconvert osm2streets (wall s; a failed peer empty) -> ours / the faster peer, or n/a
+ratio_to_peers() {
+  awk -v o="$1" -v a="${2:-0}" -v b="${3:-0}" 'BEGIN { m = (a > 0 && (b == 0 || a < b)) ? a : b; if (m > 0) printf "%.2f", o / m; else print "n/a" }'
+}
 run_dataset() {  # name, import command...
   local name=$1; shift
   local start
@@ -202,7 +206,7 @@ if [ "$peers" = 1 ] && [[ " $datasets " == *" osm "* ]]; then
     # (an import that left the surfaces to a later generate() would not be the whole job)
     [ "${import_sections[$n]:-0}" -gt 0 ] || { echo "$n: the import built no section" >&2; continue; }
     ours=${import_s[$n]}
-    ratio=$(awk -v o="$ours" -v a="${nc:-0}" -v b="${o2:-0}" 'BEGIN { m = (a > 0 && (b == 0 || a < b)) ? a : b; if (m > 0) printf "%.2f", o / m; else print "n/a" }')
+    ratio=$(ratio_to_peers "$ours" "${nc:-}" "${o2:-}")
     say "| $f | $ours | ${nc:-failed} | ${o2:-failed} | $ratio | $(( ${peak_kb[$n]:-0} / 1024 )) | $(mb "$nc_priv") | $(mb "$nc_kb") |"
   done
 fi
@@ -210,9 +214,6 @@ fi
 # `streetgen-import -c details=false`, and Paris loaded into a model with it, each then generated
 # again in a fresh backend like the full runs above.
 if [ "$surfaces_only" = 1 ]; then
-  ratio_to_peers() {  # ours netconvert osm2streets
-    awk -v o="$1" -v a="${2:-0}" -v b="${3:-0}" 'BEGIN { m = (a > 0 && (b == 0 || a < b)) ? a : b; if (m > 0) printf "%.2f", o / m; else print "n/a" }'
-  }
   so_rows=()
   for f in liechtenstein.osm.pbf reisterstown.osm.pbf baltimore.osm.pbf munich.osm.pbf campo-grande.osm.gz; do
     n="${f%%.*}"; n="${n//-/_}"
