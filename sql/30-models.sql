@@ -316,19 +316,19 @@ $$;
 COMMENT ON FUNCTION streetgen.model_srid(text) IS 'The SRID of model NAME';
 
 -- Bulk loading into a model without axes, the way pg_restore loads a table: the model's foreign
--- keys and non-unique indexes are dropped before the load and made again after it, each in one
--- pass. Row by row, the foreign keys of the stored sections, corners and junctions cost a lookup
--- and a row lock each in their referenced tables (a third of a surfaces-only import), and each
--- spatial index grows node by node; ADD FOREIGN KEY checks a table in one join and CREATE INDEX
--- builds a GiST index from sorted rows.
+-- keys are dropped before the load and made again after it. Row by row, the stored sections,
+-- corners and junctions cost a lookup and a row lock in their referenced tables for each of their
+-- foreign keys (about a fifth of a surfaces-only import's time); ADD FOREIGN KEY checks a whole
+-- table in one join. (The indexes stay: dropped too, the details' phases, which search the
+-- model's tables during the load, took twice as long.)
 --
--- _defer_relations takes every table of MODEL in ACCESS EXCLUSIVE mode (so two loads into one
--- empty model queue instead of deadlocking on the upgrade), and, if the model has no axes and the
--- caller owns all of its tables, drops the relations and returns the statements that make them
--- again (NULL otherwise: the load then goes row by row as before). The caller must pass them to
--- _restore_relations in the same transaction: both run inside load_osm_ways, so an error between
--- them rolls back the whole load and no model is ever left without its keys.
-CREATE FUNCTION streetgen._defer_relations(model text)
+-- _defer_foreign_keys takes every table of MODEL in ACCESS EXCLUSIVE mode (so two loads into
+-- one empty model queue instead of deadlocking on the lock upgrade), and, if the model has no
+-- axes and the caller owns all of its tables, drops the foreign keys and returns the statements
+-- that make them again (NULL otherwise: the load then checks them row by row as before). The
+-- caller passes them to _restore_foreign_keys in the same function: an error between the two
+-- rolls back the whole load, so no model is ever left without its foreign keys.
+CREATE FUNCTION streetgen._defer_foreign_keys(model text)
   RETURNS text[]
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
@@ -354,24 +354,12 @@ BEGIN
   IF has_axes THEN
     RETURN NULL;
   END IF;
-  -- Indexes first, then the foreign keys (whose checks may use them).
-  SELECT array_agg(def ORDER BY kind, name) INTO restore
-    FROM (SELECT 1 AS kind, i.indexrelid::regclass::text AS name, pg_catalog.pg_get_indexdef(i.indexrelid) AS def
-            FROM pg_catalog.pg_index i JOIN pg_catalog.pg_class c ON c.oid = i.indexrelid
-           WHERE c.relnamespace = schema_oid AND NOT i.indisunique
-          UNION ALL
-          SELECT 2, k.conname, format('ALTER TABLE %s ADD CONSTRAINT %I %s', k.conrelid::regclass, k.conname,
-                                      pg_catalog.pg_get_constraintdef(k.oid))
-            FROM pg_catalog.pg_constraint k JOIN pg_catalog.pg_class c ON c.oid = k.conrelid
-           WHERE c.relnamespace = schema_oid AND k.contype = 'f') AS r;
-  SELECT array_agg(d) INTO drops
-    FROM (SELECT format('ALTER TABLE %s DROP CONSTRAINT %I', k.conrelid::regclass, k.conname) AS d
-            FROM pg_catalog.pg_constraint k JOIN pg_catalog.pg_class c ON c.oid = k.conrelid
-           WHERE c.relnamespace = schema_oid AND k.contype = 'f'
-          UNION ALL
-          SELECT format('DROP INDEX %s', i.indexrelid::regclass)
-            FROM pg_catalog.pg_index i JOIN pg_catalog.pg_class c ON c.oid = i.indexrelid
-           WHERE c.relnamespace = schema_oid AND NOT i.indisunique) AS r;
+  SELECT array_agg(format('ALTER TABLE %s ADD CONSTRAINT %I %s', k.conrelid::regclass, k.conname,
+                          pg_catalog.pg_get_constraintdef(k.oid)) ORDER BY k.conname),
+         array_agg(format('ALTER TABLE %s DROP CONSTRAINT %I', k.conrelid::regclass, k.conname) ORDER BY k.conname)
+    INTO restore, drops
+    FROM pg_catalog.pg_constraint k JOIN pg_catalog.pg_class c ON c.oid = k.conrelid
+   WHERE c.relnamespace = schema_oid AND k.contype = 'f';
   FOREACH statement IN ARRAY coalesce(drops, '{}') LOOP
     EXECUTE statement;
   END LOOP;
@@ -379,7 +367,7 @@ BEGIN
 END
 $$;
 
-CREATE FUNCTION streetgen._restore_relations(restore text[])
+CREATE FUNCTION streetgen._restore_foreign_keys(restore text[])
   RETURNS void
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
