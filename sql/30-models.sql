@@ -349,7 +349,12 @@ BEGIN
                    AND NOT pg_catalog.pg_has_role(current_user, c.relowner, 'USAGE')) THEN
     RETURN NULL;
   END IF;
+  EXECUTE format('SELECT EXISTS (SELECT 1 FROM %I.axis)', model) INTO STRICT has_axes;
+  IF has_axes THEN
+    RETURN NULL;
+  END IF;
   EXECUTE format('LOCK TABLE %s IN ACCESS EXCLUSIVE MODE', tables);
+  -- (again under the lock: a load that held it may have committed axes meanwhile)
   EXECUTE format('SELECT EXISTS (SELECT 1 FROM %I.axis)', model) INTO STRICT has_axes;
   IF has_axes THEN
     RETURN NULL;
