@@ -322,10 +322,10 @@ COMMENT ON FUNCTION streetgen.model_srid(text) IS 'The SRID of model NAME';
 -- table in one join. (The indexes stay: dropped too, the details' phases, which search the
 -- model's tables during the load, took twice as long.)
 --
--- _defer_foreign_keys takes every table of MODEL in ACCESS EXCLUSIVE mode (so two loads into
--- one empty model queue instead of deadlocking on the lock upgrade), and, if the model has no
--- axes and the caller owns all of its tables, drops the foreign keys and returns the statements
--- that make them again (NULL otherwise: the load then checks them row by row as before). The
+-- _defer_foreign_keys, if MODEL has no axes and the caller owns all of its tables, takes them
+-- all in ACCESS EXCLUSIVE mode (so two loads into one empty model queue instead of deadlocking
+-- on the lock upgrade), drops the foreign keys and returns the statements that make them again;
+-- otherwise NULL, and the load checks them row by row as before, with no exclusive lock. The
 -- caller passes them to _restore_foreign_keys in the same function: an error between the two
 -- rolls back the whole load, so no model is ever left without its foreign keys.
 CREATE FUNCTION streetgen._defer_foreign_keys(model text)
