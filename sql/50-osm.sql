@@ -280,6 +280,7 @@ DECLARE
   staged bigint;
   driveable bigint;
   without_srid bigint;
+  deferred text[];
 BEGIN
   IF staging IS NULL THEN
     RAISE EXCEPTION 'staging must not be null' USING ERRCODE = 'null_value_not_allowed';
@@ -292,6 +293,8 @@ BEGIN
       USING ERRCODE = 'invalid_parameter_value',
             HINT = 'Staged geometries need an SRID to be transformed to the model''s (osm2pgsql and ogr2ogr stage in 4326).';
   END IF;
+  -- Into a model without axes, a bulk load: its foreign keys are made again after it.
+  deferred := streetgen._defer_foreign_keys(model);
   EXECUTE format($q$
     -- MATERIALIZED: the transformed geometry is used four times below; inlined, PostgreSQL
     -- would transform it four times.
@@ -314,6 +317,7 @@ BEGIN
      WHERE NOT ST_IsEmpty(c.geom) AND ST_Length(c.geom) > 0 AND ST_Length(c.geom) < 'Infinity'::double precision
   $q$, model, model_srid, staging);
   GET DIAGNOSTICS loaded = ROW_COUNT;
+  PERFORM streetgen._restore_foreign_keys(deferred);
   not_driveable := staged - driveable;
   degenerate := driveable - loaded;
 EXCEPTION WHEN internal_error THEN

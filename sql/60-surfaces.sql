@@ -129,10 +129,16 @@ CREATE FUNCTION streetgen._compute_model(model text, context bigint[] DEFAULT NU
   SET jit = off
   -- (_refresh turns them off for its index lookups; these statements join unindexed work tables)
   SET enable_seqscan = on SET enable_hashjoin = on SET enable_mergejoin = on
+  -- (for the work table's ANALYZE below: a sample of 3,000 rows gives the store's plans their
+  -- row counts by kind; the default 30,000 read a city's whole output, 0.2 s of Reisterstown)
+  SET default_statistics_target = 10
   AS $$
+DECLARE
+  details boolean;
 BEGIN
   PERFORM streetgen._work_tables();
   TRUNCATE pg_temp._streetgen_out;
+  EXECUTE format('SELECT s.details FROM %I.settings s', model) INTO details;
   EXECUTE format($q$
     INSERT INTO pg_temp._streetgen_out
     SELECT o.*
@@ -148,8 +154,9 @@ BEGIN
                    array_agg(w.widths[1] ORDER BY a.id) AS sidewalk_left,
                    array_agg(w.widths[2] ORDER BY a.id) AS sidewalk_right
               FROM %1$I.axis a,
-                   LATERAL (SELECT streetgen.sidewalk_widths(a.road_class, a.sidewalk_width, a.tags,
-                                                             (SELECT s.default_sidewalk_width FROM %1$I.settings s)) AS widths) AS w
+                   -- (sidewalks are details: without them, no widths, and the engine draws none)
+                   LATERAL (SELECT CASE WHEN $2 THEN streetgen.sidewalk_widths(a.road_class, a.sidewalk_width, a.tags,
+                                                             (SELECT s.default_sidewalk_width FROM %1$I.settings s)) END AS widths) AS w
              WHERE $1 IS NULL OR a.id = ANY ($1)) AS x,
            (SELECT streetgen._settings_vector(to_jsonb(s) - 'singleton') AS v FROM %1$I.settings s) AS st,
            (SELECT array_agg(k ORDER BY c.node_id, c.axis_a, c.part_a, c.end_a, c.axis_b, c.part_b, c.end_b, i) AS keys
@@ -165,12 +172,13 @@ BEGIN
                                                 coalesce(ov.radii, '{}'), coalesce(x.lanes, '{}'),
                                                 coalesce(x.oneways, '{}'), coalesce(x.lane_tags, '{}'),
                                                 coalesce(x.sidewalk_left, '{}'), coalesce(x.sidewalk_right, '{}')) AS o
-  $q$, model) USING context;
+  $q$, model) USING context, details;
   -- A whole model's output is large: the statements that store it plan with real numbers. A
   -- local recompute's is a few hundred rows, planned well enough from the table's size, and an
   -- ANALYZE would cost as much as storing them.
+  -- Only the columns the store joins and filters on: no plan reads the geometries' statistics.
   IF context IS NULL THEN
-    ANALYZE pg_temp._streetgen_out;
+    ANALYZE pg_temp._streetgen_out (kind, node_id, to_node, axis_id, part, end_a, axis_b, part_b, end_b, status, item);
   END IF;
 END
 $$;
@@ -306,9 +314,13 @@ BEGIN
   -- After a whole model (a bulk load, new settings) the statistics are stale or missing until
   -- autovacuum comes by, and the next edits' neighbourhood searches would plan as if the tables
   -- were empty (seconds instead of milliseconds). A few hundred ms against a full run.
+  -- Corners are looked up by key only (they have no spatial index): their geometries' statistics
+  -- would be half of this ANALYZE's time for no plan. A column list leaves the table due for
+  -- autovacuum's full ANALYZE, which fills them in later.
   IF NOT scoped THEN
-    EXECUTE format('ANALYZE %1$I.axis, %1$I.node, %1$I.section, %1$I.corner, %1$I.intersection, %1$I.lane, %1$I.marking,
-                            %1$I.sidewalk, %1$I.crossing', model);
+    EXECUTE format('ANALYZE %1$I.axis, %1$I.node, %1$I.section,
+                            %1$I.corner (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b, status, radius_override),
+                            %1$I.intersection, %1$I.lane, %1$I.marking, %1$I.sidewalk, %1$I.crossing', model);
     PERFORM streetgen._store_blocks(model, NULL);
   END IF;
 END

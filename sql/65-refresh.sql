@@ -243,6 +243,13 @@ BEGIN
   IF axis_count < 0 THEN
     SELECT count(*) INTO axis_count FROM axis;
   END IF;
+  -- A change that touches a large part of the model: one full run is cheaper than the search.
+  IF cardinality(changed) > least(500, axis_count / 5) THEN
+    PERFORM streetgen._compute_model(model);
+    PERFORM streetgen._store(model, false);
+    PERFORM pg_notify('qgis', model);
+    RETURN;
+  END IF;
   -- (the widest sidewalk by the width index, and the changed axes' new ones)
   SELECT 2 * greatest(coalesce((SELECT w.width FROM sidewalk w ORDER BY w.width DESC LIMIT 1), 0),
                       coalesce((SELECT max(greatest(x.widths[1], x.widths[2]))
@@ -251,13 +258,6 @@ BEGIN
                                                                                  st.default_sidewalk_width) AS widths) AS x
                                  WHERE a.id = ANY (changed)), 0))
     INTO reach;
-  -- A change that touches a large part of the model: one full run is cheaper than the search.
-  IF cardinality(changed) > least(500, axis_count / 5) THEN
-    PERFORM streetgen._compute_model(model);
-    PERFORM streetgen._store(model, false);
-    PERFORM pg_notify('qgis', model);
-    RETURN;
-  END IF;
 
   -- From here on every lookup in the model's tables goes by index: the plans are generic, made
   -- once, and without statistics on the work tables the planner would guess them at thousands

@@ -63,6 +63,8 @@ SELECT set_eq(
     ('streetgen._street_parking_widths(text)', 'double precision[]', 'i', false),
     ('streetgen._compute_model(text,bigint[])', 'void', 'v', false),
     ('streetgen._store(text,boolean)', 'void', 'v', false),
+    ('streetgen._defer_foreign_keys(text)', 'text[]', 'v', false),
+    ('streetgen._restore_foreign_keys(text[])', 'void', 'v', false),
     ('streetgen._lock_outputs(text)', 'void', 'v', false),
     ('streetgen._lock_outputs_first()', 'trigger', 'v', false),
     ('streetgen._axes_of_overlapping_outputs(text)', 'bigint[]', 's', false),
