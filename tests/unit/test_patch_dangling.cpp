@@ -513,3 +513,21 @@ TEST(PatchDangling, LengthCapKeepsTheExamplesDensityPerHullArea) {
   EXPECT_EQ(crossings_without_node(on), 0);
   expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);
 }
+
+// The cuts stop at the dead-end count nearest the example's share, not the first at or under it.
+// Strasbourg's budget, 3.05 % of its street ends: 6 dead ends of 185 (target 5.64) stay 6, where
+// a cut to 5 of 183 (a junction of 3 becomes a bend) lands 0.58 under; of 171 (target 5.22) one is
+// cut (5 of 169: 0.15 under). Never under the target, a tie keeps the dead end.
+TEST(PatchDangling, CutsStopAtTheDeadEndCountNearestTheBudget) {
+  EXPECT_FALSE(cut_nears_dead_end_budget(6, 185, 5, 183, 0.0305));
+  EXPECT_TRUE(cut_nears_dead_end_budget(6, 171, 5, 169, 0.0305));
+  EXPECT_TRUE(cut_nears_dead_end_budget(7, 185, 6, 183, 0.0305));  // 1.36 over, 0.42 after
+  EXPECT_FALSE(cut_nears_dead_end_budget(5, 185, 4, 183, 0.0305));  // already under
+  EXPECT_FALSE(cut_nears_dead_end_budget(3, 10, 2, 10, 0.25));      // 0.5 over, 0.5 under: a tie
+  // A city of cul-de-sacs (27.55 %): from 0.54 over, a cut at a junction of 4 (one street end fewer)
+  // lands 0.19 under, at a junction of 3 (two fewer) 0.09 over: nearer either way.
+  EXPECT_TRUE(cut_nears_dead_end_budget(200, 724, 199, 723, 0.2755));
+  EXPECT_TRUE(cut_nears_dead_end_budget(200, 724, 199, 722, 0.2755));
+  // A bend left as a dead end (its junction was a plain bend): no count changes, no nearer.
+  EXPECT_FALSE(cut_nears_dead_end_budget(200, 700, 200, 700, 0.2755));
+}

@@ -369,6 +369,12 @@ struct GrowResult {
 // contour, bridges).
 GrowResult grow_example(GeosContext& geos, const GrowInput& input, const GrowParams& params);
 
+// The cuts after the joins (corner fronts, crop ends): whether cutting one more dead end brings the
+// network nearer the example's dead-end share, from `dead` dead ends of `street_ends` to the counts
+// after the cut: the count stops at the one nearest the share's target, not the first at or under it
+// (strasbourg: a target of 5.6 dead ends keeps 6, not 5). Never under the target; a tie keeps it.
+bool cut_nears_dead_end_budget(long dead, long street_ends, long dead_after, long street_ends_after, double share);
+
 // The example as grow_example's node matching reads it: every segment (between consecutive
 // vertices, two-way streets mapped twice counted once) between two junctions (nodes of degree 3
 // or more as given) and shorter than `factor` x the mean segment is contracted, its two end nodes
