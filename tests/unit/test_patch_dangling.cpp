@@ -329,14 +329,20 @@ double mean_size_class(const GrowStats& s) {
   return n > 0.0 ? static_cast<double>(s.size_placed[1] + 2 * s.size_placed[2]) / n : 0.0;
 }
 
-// The uneven grid with a 35 m cul-de-sac off the middle of every street: an example whose own dead
-// ends are over 15 % of its street ends (a city of cul-de-sacs, as canberra).
-std::vector<PatchInputEdge> uneven_grid_with_culs_de_sac() {
+// `grid` with a 35 m cul-de-sac off the middle of every (or every `every`-th) street longer than
+// 80 m (a crop's stubs get none): an example whose own dead ends are over 15 % of its street ends
+// (a city of cul-de-sacs, as canberra).
+std::vector<PatchInputEdge> with_culs_de_sac(const std::vector<PatchInputEdge>& grid, int every = 1) {
   std::vector<PatchInputEdge> out;
   std::int64_t id = 0;
-  for (const PatchInputEdge& e : uneven_grid()) {
+  int k = 0;
+  for (const PatchInputEdge& e : grid) {
     const Point a = e.line.front(), b = e.line.back(), m = 0.5 * (a + b);
     const Point d = b - a;
+    if (std::hypot(d.x, d.y) <= 80.0 || k++ % every != 0) {
+      out.push_back({e.line, "street", ++id, false});
+      continue;
+    }
     const Point n = (35.0 / std::hypot(d.x, d.y)) * Point{-d.y, d.x};
     out.push_back({{a, m}, "street", ++id, false});
     out.push_back({{m, b}, "street", ++id, false});
@@ -344,6 +350,7 @@ std::vector<PatchInputEdge> uneven_grid_with_culs_de_sac() {
   }
   return out;
 }
+std::vector<PatchInputEdge> uneven_grid_with_culs_de_sac() { return with_culs_de_sac(uneven_grid()); }
 
 }  // namespace
 
@@ -454,6 +461,28 @@ TEST(PatchDangling, CopiedCropDeadEndsAreCutBack) {
   expect_same_graph(grow_example(f.geos, in, defaults), on);  // (the switch on: its default)
 }
 
+// A city of cul-de-sacs keeps its corner fronts, not the crop's stubs: the cropped grid with a
+// cul-de-sac off every second street (its own dead ends 39.6 % of its street ends) grows its stubs
+// inside the region as dead ends too, no join made (seed 4: 635 dead ends of 1,984 street ends,
+// 32 %, before the cuts); they are cut back under the example's share, planar, deterministic.
+TEST(PatchDangling, ACityOfCulsDeSacCutsItsCopiedCropEnds) {
+  Fixture f;
+  GrowInput in = f.input(with_culs_de_sac(cropped_grid(), 2));
+  GrowParams p = Fixture::patch_growth();
+  p.max_edges = 3000;
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::cut_crop_ends, p);
+  EXPECT_EQ(off.stats.corners_cut, 0u);
+  EXPECT_EQ(off.stats.crop_ends_cut, 0u);
+  EXPECT_GT(on.stats.crop_ends_cut, 10u);
+  EXPECT_EQ(on.stats.corners_cut, 0u);  // (no corner front is kept in a city of cul-de-sacs)
+  EXPECT_LT(interior_dead_ends(on), interior_dead_ends(off));
+  EXPECT_LT(on.edges.size(), off.edges.size());
+  EXPECT_EQ(crossings_without_node(on), 0);
+  GrowParams defaults = Fixture::patch_growth();
+  defaults.max_edges = 3000;
+  expect_same_graph(grow_example(f.geos, in, defaults), on);  // (the switch on: its default)
+}
+
 // length_cap: the uneven grid with one more junction far to its east (a cross of 50 m streets at
 // x = 1700), so a third of its convex hull is land the example leaves empty. Breadth first from
 // the seed, the growth filled the whole region at the grid's own density; with the cap it stops at
@@ -483,4 +512,22 @@ TEST(PatchDangling, LengthCapKeepsTheExamplesDensityPerHullArea) {
   EXPECT_LE(interior_dead_ends(on), interior_dead_ends(off));
   EXPECT_EQ(crossings_without_node(on), 0);
   expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);
+}
+
+// The cuts stop at the dead-end count nearest the example's share, not the first at or under it.
+// Strasbourg's budget, 3.05 % of its street ends: 6 dead ends of 185 (target 5.64) stay 6, where
+// a cut to 5 of 183 (a junction of 3 becomes a bend) lands 0.58 under; of 171 (target 5.22) one is
+// cut (5 of 169: 0.15 under). Never under the target, a tie keeps the dead end.
+TEST(PatchDangling, CutsStopAtTheDeadEndCountNearestTheBudget) {
+  EXPECT_FALSE(cut_nears_dead_end_budget(6, 185, 5, 183, 0.0305));
+  EXPECT_TRUE(cut_nears_dead_end_budget(6, 171, 5, 169, 0.0305));
+  EXPECT_TRUE(cut_nears_dead_end_budget(7, 185, 6, 183, 0.0305));  // 1.36 over, 0.42 after
+  EXPECT_FALSE(cut_nears_dead_end_budget(5, 185, 4, 183, 0.0305));  // already under
+  EXPECT_FALSE(cut_nears_dead_end_budget(3, 10, 2, 10, 0.25));      // 0.5 over, 0.5 under: a tie
+  // A city of cul-de-sacs (27.55 %): from 0.54 over, a cut at a junction of 4 (one street end fewer)
+  // lands 0.19 under, at a junction of 3 (two fewer) 0.09 over: nearer either way.
+  EXPECT_TRUE(cut_nears_dead_end_budget(200, 724, 199, 723, 0.2755));
+  EXPECT_TRUE(cut_nears_dead_end_budget(200, 724, 199, 722, 0.2755));
+  // A bend left as a dead end (its junction was a plain bend): no count changes, no nearer.
+  EXPECT_FALSE(cut_nears_dead_end_budget(200, 700, 200, 700, 0.2755));
 }

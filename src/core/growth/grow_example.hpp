@@ -98,13 +98,14 @@ struct PatchGrowParams {
   // patches met their neighbours a few metres off, and a corner between two streets of a grid reads
   // as one diagonal street (bench/patches: orientation order, README).
   bool avoid_corners = true;
-  // Crop ends (with avoid_corners): a patch's dead-end edge that ends on the example's crop (marked
-  // cut: within a quarter of the mean street of its library's hull) is no dead end of the example,
-  // but placed inside the region it is one. After the joins, those still dead-ended are cut back
-  // to their junction with the corner fronts, under the same budget (while the network has more
-  // dead ends than the example's share of its street ends); not where a step on is illegal (the
-  // region's edge, an obstacle, water). Strasbourg's grown dead ends were mostly such copies (seeds
-  // 1-3: 13-18 of 17-22 inside the hull shrunk by 50 m; bench/patches, README).
+  // Crop ends (with avoid_corners, and in a city of cul-de-sacs, which keeps its corner fronts): a
+  // patch's dead-end edge that ends on the example's crop (marked cut: within a quarter of the mean
+  // street of its library's hull) is no dead end of the example, but placed inside the region it is
+  // one. After the joins, those still dead-ended are cut back to their junction with the corner
+  // fronts, under the same budget (while the network has more dead ends than the example's share of
+  // its street ends); not where a step on is illegal (the region's edge, an obstacle, water).
+  // Strasbourg's grown dead ends were mostly such copies (seeds 1-3: 13-18 of 17-22 inside the hull
+  // shrunk by 50 m; bench/patches, README).
   bool cut_crop_ends = true;
   // Stratified redraw (local phase, or one level; not for a city of cul-de-sacs): a front's first
   // draw (eq. 2's choice were every patch legal) refused for a conflict that grows with street
@@ -367,6 +368,12 @@ struct GrowResult {
 // Sets up the terrain and water checks of every step (legality of new streets, bending along the
 // contour, bridges).
 GrowResult grow_example(GeosContext& geos, const GrowInput& input, const GrowParams& params);
+
+// The cuts after the joins (corner fronts, crop ends): whether cutting one more dead end brings the
+// network nearer the example's dead-end share, from `dead` dead ends of `street_ends` to the counts
+// after the cut: the count stops at the one nearest the share's target, not the first at or under it
+// (strasbourg: a target of 5.6 dead ends keeps 6, not 5). Never under the target; a tie keeps it.
+bool cut_nears_dead_end_budget(long dead, long street_ends, long dead_after, long street_ends_after, double share);
 
 // The example as grow_example's node matching reads it: every segment (between consecutive
 // vertices, two-way streets mapped twice counted once) between two junctions (nodes of degree 3
