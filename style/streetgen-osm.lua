@@ -17,6 +17,10 @@ local staging = osm2pgsql.define_table({
     name = staging_name,
     schema = staging_schema,
     ids = { type = 'way', id_column = 'osm_id' },
+    -- A staging table is read once, whole: no index and no clustering by geometry (osm2pgsql's
+    -- defaults copy and sort the table, then build a GiST index nothing uses).
+    indexes = {},
+    cluster = 'no',
     columns = {
         { column = 'source', type = 'text', not_null = true },
         { column = 'tags', type = 'jsonb', not_null = true },
@@ -28,6 +32,8 @@ local parking = osm2pgsql.define_table({
     name = staging_name .. '_parking',
     schema = staging_schema,
     ids = { type = 'area', id_column = 'osm_id' },
+    indexes = {},
+    cluster = 'no',
     columns = {
         { column = 'source', type = 'text', not_null = true },
         { column = 'tags', type = 'jsonb', not_null = true },
