@@ -372,7 +372,7 @@ GrowResult grow_example(GeosContext& geos, const GrowInput& input, const GrowPar
 // The cuts after the joins (corner fronts, crop ends): whether cutting one more dead end brings the
 // network nearer the example's dead-end share, from `dead` dead ends of `street_ends` to the counts
 // after the cut: the count stops at the one nearest the share's target, not the first at or under it
-// (strasbourg: a target of 5.6 dead ends keeps 6, not 5). Never under the target; a tie keeps it.
+// (strasbourg: a target of 5.6 dead ends keeps 6, not 5). Only while over the target; a tie keeps it.
 bool cut_nears_dead_end_budget(long dead, long street_ends, long dead_after, long street_ends_after, double share);
 
 // The example as grow_example's node matching reads it: every segment (between consecutive
