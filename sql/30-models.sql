@@ -336,17 +336,17 @@ CREATE FUNCTION streetgen._defer_foreign_keys(model text)
 DECLARE
   schema_oid oid := (SELECT n.oid FROM pg_catalog.pg_namespace n WHERE n.nspname = model);
   tables text;
+  owned boolean;
   has_axes boolean;
   restore text[];
   drops text[];
   statement text;
 BEGIN
-  SELECT string_agg(c.oid::regclass::text, ', ' ORDER BY c.relname) INTO tables
+  SELECT string_agg(c.oid::regclass::text, ', ' ORDER BY c.relname),
+         bool_and(pg_catalog.pg_has_role(current_user, c.relowner, 'USAGE'))
+    INTO tables, owned
     FROM pg_catalog.pg_class c WHERE c.relnamespace = schema_oid AND c.relkind = 'r';
-  IF tables IS NULL
-     OR EXISTS (SELECT 1 FROM pg_catalog.pg_class c
-                 WHERE c.relnamespace = schema_oid AND c.relkind = 'r'
-                   AND NOT pg_catalog.pg_has_role(current_user, c.relowner, 'USAGE')) THEN
+  IF tables IS NULL OR NOT owned THEN
     RETURN NULL;
   END IF;
   EXECUTE format('SELECT EXISTS (SELECT 1 FROM %I.axis)', model) INTO STRICT has_axes;
