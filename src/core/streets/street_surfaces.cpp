@@ -952,8 +952,29 @@ class SurfaceBuilder {
                                     return !it->second.empty() && !interiors_may_meet(junction_ring, it->second);
                                   }),
                    over.end());
-        if (over.empty()) continue;
+        if (over.empty()) {
+          ++result_.stats.junctions_touching;
+          continue;
+        }
+        // Most of the rest touch it too, but for rounding where a section's flat end meets the
+        // junction's border line: if what they can share is provably under kGivenAway (with room
+        // for the overlay's own rounding), the overlay below would keep the junction as it is.
+        double shared_at_most = 0.0;
+        for (std::size_t i : over) {
+          const Polyline& ring = section_rings.at(i);
+          std::optional<double> bound = ring.empty() ? std::nullopt : touching_overlap_bound(junction_ring, ring, kSamePoint);
+          if (!bound) {
+            shared_at_most = kGivenAway;
+            break;
+          }
+          shared_at_most += *bound;
+        }
+        if (shared_at_most < 0.25 * kGivenAway) {
+          ++result_.stats.junctions_touching_but_for_rounding;
+          continue;
+        }
       }
+      ++result_.stats.junction_overlays;
       try {
         // (in key order, as one union: the same result whichever order the boxes were paired in)
         std::sort(over.begin(), over.end(), [&](std::size_t a, std::size_t b) {

@@ -158,6 +158,12 @@ struct SurfaceRunStats {
   long sidewalk_claims = 0;
   long sidewalk_claims_held_peak = 0;
   double sidewalk_claim_builds = 0;  // CPU seconds of the claims' first build, for their boxes (of `sidewalks`)
+  // Junctions with sections over their box, and how each was settled: every section only
+  // touching it (exact test), touching but for rounding (an area bound under kGivenAway), or by
+  // a GEOS overlay (union and difference).
+  long junctions_touching = 0;
+  long junctions_touching_but_for_rounding = 0;
+  long junction_overlays = 0;
 };
 
 struct SurfaceResult {
