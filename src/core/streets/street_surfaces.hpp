@@ -164,6 +164,12 @@ struct SurfaceRunStats {
   long junctions_touching = 0;
   long junctions_touching_but_for_rounding = 0;
   long junction_overlays = 0;
+  // Pairs of sections of different axes (and of junctions) near enough to overlap: settled by
+  // the exact tests (touching, or but for rounding) or by a GEOS intersection.
+  long section_pairs_touching = 0;
+  long section_pair_overlays = 0;
+  long junction_pairs_touching = 0;
+  long junction_pair_overlays = 0;
 };
 
 struct SurfaceResult {
