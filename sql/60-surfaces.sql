@@ -22,8 +22,11 @@ CREATE FUNCTION streetgen._streetgen_street_surfaces(
 -- update trigger can compare them). The engine reads sides and directions along the stored axis:
 -- oneway=-1 ways are stored reversed by the importer, so their keys' left and right, forward and
 -- backward swap here (parking:left of the way is parking:right of the axis). placement, which
--- counts lanes from the way's left, is passed as it is.
-CREATE FUNCTION streetgen._lane_tags(tags jsonb)
+-- counts lanes from the way's left, is passed as it is. NULL without such tags.
+-- Most ways have none (Reisterstown: 457 of 4,560), and the listing costs a query a way (28 us):
+-- a look at the tags' text first, which finds every such key (as '"lanes"', '"parking:...'),
+-- in a function of one expression without a SET clause, which PostgreSQL inlines.
+CREATE FUNCTION streetgen._lane_tags_listed(tags jsonb)
   RETURNS text
   LANGUAGE sql IMMUTABLE PARALLEL SAFE
   SET search_path FROM CURRENT
@@ -38,6 +41,13 @@ CREATE FUNCTION streetgen._lane_tags(tags jsonb)
                                          FROM unnest(string_to_array(t.key, ':')) WITH ORDINALITY AS u(p, i) ORDER BY i), ':')
                                 ELSE t.key END AS key) AS k
      WHERE t.key ~ '^(lanes|turn:lanes|cycleway|busway|parking|placement)(:|$)'
+  $$;
+CREATE FUNCTION streetgen._lane_tags(tags jsonb)
+  RETURNS text
+  LANGUAGE sql IMMUTABLE PARALLEL SAFE
+  AS $$
+    SELECT CASE WHEN tags::text ~ '"(lanes|turn:lanes|cycleway|busway|parking|placement)[:"]'
+                THEN streetgen._lane_tags_listed(tags) END
   $$;
 
 -- Sidewalk widths (left, right looking along the axis) of one axis, the rule behind sidewalks:

@@ -510,6 +510,12 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
        "without an overlay; %ld sidewalk claims, at most %ld held at once; their first build %.3f CPU seconds",
        t.junction_sidewalks_by_corner, t.junction_corners_by_buffer, t.junction_sidewalks_by_buffer,
        t.sidewalks_without_overlay, t.sidewalk_claims, t.sidewalk_claims_held_peak, t.sidewalk_claim_builds);
+  elog(DEBUG1,
+       "streetgen: junctions under sections: %ld touching them, %ld touching but for rounding, %ld by an overlay",
+       t.junctions_touching, t.junctions_touching_but_for_rounding, t.junction_overlays);
+  elog(DEBUG1,
+       "streetgen: near pairs of sections: %ld touching, %ld by an overlay; of junctions: %ld touching, %ld by an overlay",
+       t.section_pairs_touching, t.section_pair_overlays, t.junction_pairs_touching, t.junction_pair_overlays);
   emit_rows(kSecondPassKinds[0], kSecondPassKinds[1]);
   emission.release();
   MemoryContextDelete(row_context);

@@ -53,6 +53,7 @@ SELECT set_eq(
     ('streetgen._create_output_tables(text,integer)', 'void', 'v', false),
     ('streetgen._streetgen_street_surfaces(bigint[],bytea[],double precision[],double precision[],integer[],double precision[],double precision[],bigint[],bigint[],double precision[],integer[],boolean[],text[],double precision[],double precision[])', 'SETOF record', 'i', false),
     ('streetgen._lane_tags(jsonb)', 'text', 'i', false),
+    ('streetgen._lane_tags_listed(jsonb)', 'text', 'i', false),
     ('streetgen.sidewalk_widths(text,double precision,jsonb,double precision)', 'double precision[]', 'i', false),
     ('streetgen._sidewalk_tags(jsonb)', 'text', 'i', false),
     ('streetgen._compute_blocks(text,geometry,geometry)', 'void', 'v', false),
@@ -171,7 +172,7 @@ SELECT is_empty(
        AND signature NOT IN ('streetgen.osm_parse_length(text)', 'streetgen.osm_parse_speed(text)',
                              'streetgen._osm_speed_of(text)', 'streetgen._osm_speed_in_range(double precision)',
                              'streetgen.osm_parse_lanes(text)', 'streetgen.osm_is_driveable(jsonb)',
-                             'streetgen._osm_axis_attributes(jsonb)')
+                             'streetgen._osm_axis_attributes(jsonb)', 'streetgen._lane_tags(jsonb)')
        AND NOT EXISTS (SELECT 1 FROM unnest(config) c
                         WHERE c LIKE 'search_path=pg_catalog, streetgen, %, pg_temp')$$,
   'every other SQL-level function pins search_path to pg_catalog, streetgen, postgis, pg_temp');
@@ -180,7 +181,7 @@ SELECT is_empty(
      WHERE signature IN ('streetgen.osm_parse_length(text)', 'streetgen.osm_parse_speed(text)',
                          'streetgen._osm_speed_of(text)', 'streetgen._osm_speed_in_range(double precision)',
                          'streetgen.osm_parse_lanes(text)', 'streetgen.osm_is_driveable(jsonb)',
-                         'streetgen._osm_axis_attributes(jsonb)')
+                         'streetgen._osm_axis_attributes(jsonb)', 'streetgen._lane_tags(jsonb)')
        AND (language <> 'sql' OR config IS NOT NULL)$$,
   'the inlinable mapping functions are plain SQL without a SET clause');
 -- And PostgreSQL does inline the tag parsers: the plan of a query calling them names none of
@@ -202,6 +203,18 @@ SELECT doesnt_match(pg_temp.plan_of($$SELECT streetgen.osm_parse_speed(v), stree
                     'osm_', 'the tag parsers are inlined into the query that calls them');
 SELECT matches(pg_temp.plan_of($$SELECT streetgen.osm_parse_speed(v) FROM tag_values$$),
                'split_part', 'osm_parse_speed''s own expression is in the plan');
+-- _lane_tags too: its look at the tags' text is in the plan, and only the ways it lets through
+-- call _lane_tags_listed (a query each: 28 us a way, on every way before).
+SELECT matches(pg_temp.plan_of($$SELECT streetgen._lane_tags(v::jsonb) FROM tag_values$$),
+               'CASE WHEN .*~.*_lane_tags_listed', '_lane_tags is inlined: its text test decides whether to list the tags');
+SELECT is_empty(
+  $$SELECT t FROM (VALUES ('{"lanes": "2"}'::jsonb), ('{"parking:left": "lane", "highway": "residential"}'),
+                          ('{"turn:lanes:forward": "left|through"}'), ('{"cycleway": "lane"}'), ('{"busway:right": "lane"}'),
+                          ('{"placement": "right_of:1"}'), ('{"oneway": "-1", "lanes:forward": "2", "parking:both": "no"}'),
+                          ('{"name": "parking", "highway": "service"}'), ('{"lanesx": "2", "xlanes": "3"}'),
+                          ('{"lanes\"": "2"}'), ('["lanes"]'), ('"lanes"'), ('{}'), (NULL)) AS v(t)
+     WHERE streetgen._lane_tags(t) IS DISTINCT FROM streetgen._lane_tags_listed(t)$$,
+  '_lane_tags lists the same tags as _lane_tags_listed: its text test lets every such key through');
 SELECT is_empty(
   $$SELECT signature FROM streetgen_functions WHERE signature NOT LIKE 'streetgen.\_%' AND comment IS NULL$$,
   'every public function has a comment');

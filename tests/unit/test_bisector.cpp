@@ -5,6 +5,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "core/streets/bisector.hpp"
 #include "core/streets/polygon_contact.hpp"
@@ -186,4 +187,33 @@ TEST(PolygonContact, OnlyTheEdgesNearTheOtherRingAreTested) {
   EXPECT_TRUE(interiors_may_meet(folded, band));
   Polyline beyond{{600.0, 0.0}, {601.0, 0.0}, {601.0, 2.0}, {600.0, 2.0}};
   EXPECT_FALSE(interiors_may_meet(roadway, beyond));
+}
+
+// A section whose flat end was computed apart from its junction's border line: its corners lie a
+// hair inside the junction (UTM-sized coordinates, as on a real city), so the exact test says
+// they may meet, and the overlap is a sliver of about 1e-8 m². Moved onto the junction's border
+// points, the corners share the border edge: the bound covers the sliver and stays under a
+// tenth of a square millimetre. A real overlap, a corner too far to move and two corners onto one
+// point give no bound.
+TEST(PolygonContact, TouchingButForRoundingIsBoundedBySweptArea) {
+  const double x0 = 512345.25, y0 = 5412345.5;  // (a UTM position: a coordinate's ulp is 1e-9 m)
+  auto at = [&](double x, double y) { return Point{x0 + x, y0 + y}; };
+  const Polyline junction{at(0, 0), at(4, 0), at(4, 4), at(0, 4)};
+  const double hair = 3e-9;
+  const Polyline section{at(4 - hair, 0), at(30, 0), at(30, 4), at(4 - hair, 4)};
+  ASSERT_TRUE(interiors_may_meet(junction, section));
+  std::optional<double> bound = touching_overlap_bound(junction, section, 1e-6);
+  ASSERT_TRUE(bound.has_value());
+  const double sliver = hair * 4.0;  // (the true overlap: 4 m long, 3 nm wide)
+  EXPECT_GE(*bound, sliver);
+  EXPECT_LT(*bound, 1e-7);
+  // Apart already: nothing to move, nothing shared.
+  EXPECT_EQ(touching_overlap_bound(junction, Polyline{at(4, 0), at(30, 0), at(30, 4), at(4, 4)}, 1e-6), 0.0);
+  // Overlapping by a metre: the moved ring still meets the junction.
+  EXPECT_FALSE(touching_overlap_bound(junction, Polyline{at(3, 0), at(30, 0), at(30, 4), at(3, 4)}, 1e-6).has_value());
+  // A corner a millimetre inside: beyond the snap, so it stays, and the interiors meet.
+  EXPECT_FALSE(touching_overlap_bound(junction, Polyline{at(3.999, 0), at(30, 0), at(30, 4), at(4 - hair, 4)}, 1e-6).has_value());
+  // Two corners of a sliver of a section within the snap of one junction vertex.
+  EXPECT_FALSE(touching_overlap_bound(junction, Polyline{at(4 - hair, 0), at(4 - 2 * hair, hair), at(30, 2), at(4 - hair, 4)}, 1e-6)
+                   .has_value());
 }

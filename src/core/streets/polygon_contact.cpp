@@ -3,6 +3,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
 
+#include <cmath>
+
 #include <algorithm>
 #include <vector>
 
@@ -148,6 +150,55 @@ bool interiors_may_meet(const Polyline& ring_a, const Polyline& ring_b) {
   // Every point of one boundary on the other's: the same polygon (their interiors meet), or a
   // case this reasoning does not cover; either way, not "certainly apart".
   return a_on_b || b_on_a;
+}
+
+std::optional<double> touching_overlap_bound(const Polyline& fixed, const Polyline& moved, double snap) {
+  std::vector<P2> f = open_ring(fixed), m = open_ring(moved);
+  if (f.size() < 3 || m.size() < 3) return std::nullopt;
+  const Box2 f_box = box_of(f);
+  const Box2 near_f{f_box.xmin - snap, f_box.ymin - snap, f_box.xmax + snap, f_box.ymax + snap};
+  std::vector<std::size_t> target_of(m.size(), f.size());  // f.size(): stays
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    if (!near_f.holds(m[i])) continue;
+    double best = snap;
+    for (std::size_t k = 0; k < f.size(); ++k) {
+      double d = std::hypot(f[k].x() - m[i].x(), f[k].y() - m[i].y());
+      if (d <= best) {
+        best = d;
+        target_of[i] = k;
+      }
+    }
+    if (target_of[i] != f.size() && f[target_of[i]] == m[i]) target_of[i] = f.size();  // (already there)
+  }
+  // One after the other, each move changes the ring by at most the triangles its vertex sweeps
+  // with its two neighbours (as moved so far).
+  double swept = 0.0;
+  bool any = false;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    if (target_of[i] == f.size()) continue;
+    const P2 to = f[target_of[i]];
+    const P2& prev = m[(i + m.size() - 1) % m.size()];
+    const P2& next = m[(i + 1) % m.size()];
+    auto triangle = [](const P2& a, const P2& b, const P2& c) {
+      return 0.5 * std::abs((b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x()));
+    };
+    swept += triangle(prev, m[i], to) + triangle(m[i], to, next);
+    m[i] = to;
+    any = true;
+  }
+  if (any) {
+    // Two vertices onto one point, or a fold: the moved ring says nothing about the real one.
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      if (m[i] == m[(i + 1) % m.size()]) return std::nullopt;
+    }
+    if (!CGAL::is_simple_2(m.begin(), m.end(), Kernel())) return std::nullopt;
+  }
+  Polyline moved_ring;
+  moved_ring.reserve(m.size());
+  for (const P2& p : m) moved_ring.push_back({p.x(), p.y()});
+  if (interiors_may_meet(fixed, moved_ring)) return std::nullopt;
+  // (the triangles' areas in doubles: a relative error of a few ulps, doubled to be safe)
+  return 2.0 * swept;
 }
 
 }  // namespace streetgen::core

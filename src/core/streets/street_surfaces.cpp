@@ -870,9 +870,16 @@ class SurfaceBuilder {
       // GEOS overlay (OverlayNG) is robust where its predicates can throw on nearly coincident
       // edges, so no GEOSIntersects here; and one pair that GEOS cannot split is reported, not
       // allowed to fail the whole model.
+      // (most pairs left only touch, at a junction's border line or by a hair where roadways
+      // meet: an overlay would find less than kGivenAway, which is left alone)
+      if (surely_share_less(a.surface.get(), b.surface.get(), 0.25 * kGivenAway)) {
+        ++result_.stats.section_pairs_touching;
+        continue;
+      }
+      ++result_.stats.section_pair_overlays;
       try {
         GeomPtr overlap = own(ctx_, GEOSIntersection_r(ctx_.handle(), a.surface.get(), b.surface.get()), "overlap");
-        if (area_of(ctx_, overlap.get()) < 1e-6) continue;
+        if (area_of(ctx_, overlap.get()) < kGivenAway) continue;
         auto [nearer_a, nearer_b] = split_by_nearness(overlap.get(), axis_a, axis_b);
         given_away[i].push_back(std::move(nearer_b));
         given_away[j].push_back(std::move(nearer_a));
@@ -952,8 +959,29 @@ class SurfaceBuilder {
                                     return !it->second.empty() && !interiors_may_meet(junction_ring, it->second);
                                   }),
                    over.end());
-        if (over.empty()) continue;
+        if (over.empty()) {
+          ++result_.stats.junctions_touching;
+          continue;
+        }
+        // Most of the rest touch it too, but for rounding where a section's flat end meets the
+        // junction's border line: if what they can share is provably under kGivenAway (with room
+        // for the overlay's own rounding), the overlay below would keep the junction as it is.
+        double shared_at_most = 0.0;
+        for (std::size_t i : over) {
+          const Polyline& ring = section_rings.at(i);
+          std::optional<double> bound = ring.empty() ? std::nullopt : touching_overlap_bound(junction_ring, ring, kSamePoint);
+          if (!bound) {
+            shared_at_most = kGivenAway;
+            break;
+          }
+          shared_at_most += *bound;
+        }
+        if (shared_at_most < 0.25 * kGivenAway) {
+          ++result_.stats.junctions_touching_but_for_rounding;
+          continue;
+        }
       }
+      ++result_.stats.junction_overlays;
       try {
         // (in key order, as one union: the same result whichever order the boxes were paired in)
         std::sort(over.begin(), over.end(), [&](std::size_t a, std::size_t b) {
@@ -986,6 +1014,11 @@ class SurfaceBuilder {
     std::map<std::size_t, std::vector<GeomPtr>> given_away;
     for (auto [x, y] : junction_pairs) {
       poller.tick();
+      if (surely_share_less(current(x), current(y), 0.25 * kGivenAway)) {
+        ++result_.stats.junction_pairs_touching;
+        continue;
+      }
+      ++result_.stats.junction_pair_overlays;
       try {
         GeomPtr overlap = own(ctx_, GEOSIntersection_r(ctx_.handle(), current(x), current(y)), "overlap");
         if (area_of(ctx_, overlap.get()) < kGivenAway) continue;
@@ -1038,6 +1071,17 @@ class SurfaceBuilder {
     Polyline out(n);
     for (unsigned int i = 0; i < n; ++i) GEOSCoordSeq_getXY_r(ctx_.handle(), seq, i, &out[i].x, &out[i].y);
     return out;
+  }
+
+  // Whether two simple polygons surely share less than `area`, by exact tests without an overlay:
+  // their interiors apart, or apart but for rounding with a bound on what they can share under it.
+  // false when that cannot be shown (then an overlay tells).
+  bool surely_share_less(const GEOSGeometry* a, const GEOSGeometry* b, double area) {
+    Polyline ring_a = simple_ring(a), ring_b = simple_ring(b);
+    if (ring_a.empty() || ring_b.empty()) return false;
+    if (!interiors_may_meet(ring_a, ring_b)) return true;
+    std::optional<double> bound = touching_overlap_bound(ring_a, ring_b, kSamePoint);
+    return bound && *bound < area;
   }
 
   // A junction's skeleton as one polyline: from the node out along each axis to its border line

@@ -158,6 +158,18 @@ struct SurfaceRunStats {
   long sidewalk_claims = 0;
   long sidewalk_claims_held_peak = 0;
   double sidewalk_claim_builds = 0;  // CPU seconds of the claims' first build, for their boxes (of `sidewalks`)
+  // Junctions with sections over their box, and how each was settled: every section only
+  // touching it (exact test), touching but for rounding (an area bound under kGivenAway), or by
+  // a GEOS overlay (union and difference).
+  long junctions_touching = 0;
+  long junctions_touching_but_for_rounding = 0;
+  long junction_overlays = 0;
+  // Pairs of sections of different axes (and of junctions) near enough to overlap: settled by
+  // the exact tests (touching, or but for rounding) or by a GEOS intersection.
+  long section_pairs_touching = 0;
+  long section_pair_overlays = 0;
+  long junction_pairs_touching = 0;
+  long junction_pair_overlays = 0;
 };
 
 struct SurfaceResult {
