@@ -2448,7 +2448,9 @@ class Grower {
         if (lp.style != style) continue;
         for (const LibEdge& e : lp.edges) pts.insert(pts.end(), e.line.begin(), e.line.end());
       }
-      for (const Polyline& line : style == 0 ? isolated_ : std::vector<Polyline>{}) pts.insert(pts.end(), line.begin(), line.end());
+      for (const Polyline& line : style == 0 ? isolated_ : std::vector<Polyline>{}) {
+        pts.insert(pts.end(), line.begin(), line.end());
+      }
       const std::vector<Point> hull = convex_hull(pts);
       auto near_hull = [&](Point q) {
         for (std::size_t i = 0; i < hull.size(); ++i) {
@@ -2502,7 +2504,9 @@ class Grower {
         ++degree[a];
         ++degree[b];
       }
-      for (Point q : {line.front(), line.back()}) (to_hull_of(q) <= 0.25 * street_stats_.length_mean ? cut_end : own_dead)[key_of(q)] = 1;
+      for (Point q : {line.front(), line.back()}) {
+        (to_hull_of(q) <= 0.25 * street_stats_.length_mean ? cut_end : own_dead)[key_of(q)] = 1;
+      }
     }
     double dead = 0.0, ends = 0.0;
     example_ends_.clear();
@@ -2545,7 +2549,9 @@ class Grower {
     if (in_budget_[v] < 0) {
       GeomPtr point = own(geos_, GEOSGeom_createPointFromXY_r(h, nodes_[v].p.x, nodes_[v].p.y), "point");
       double d = 0.0;
-      if (GEOSPreparedDistance_r(h, budget_boundary_prepared_.get(), point.get(), &d) == 0) geos_.fail("boundary distance");
+      if (GEOSPreparedDistance_r(h, budget_boundary_prepared_.get(), point.get(), &d) == 0) {
+        geos_.fail("boundary distance");
+      }
       in_budget_[v] = d > kBudgetMargin ? 1 : 0;
     }
     return in_budget_[v];
