@@ -111,9 +111,11 @@ LibraryArg read_library(FunctionCallInfo fcinfo, int a_ids, int a_roles, int a_c
       e.role = core::PatchEdgeRole::connector;
     } else if (strcmp(role, "dead_end") == 0) {
       e.role = core::PatchEdgeRole::dead_end;
+    } else if (strcmp(role, "isolated") == 0) {
+      e.role = core::PatchEdgeRole::isolated;
     } else {
       ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE),
-                      errmsg("patch edge role must be 'inner', 'connector' or 'dead_end'"),
+                      errmsg("patch edge role must be 'inner', 'connector', 'dead_end' or 'isolated'"),
                       errdetail("%sPatch row %d (patch_id %lld) has role %s.", what, i + 1,
                                 static_cast<long long>(e.patch_id),
                                 roles.nulls[i] ? "NULL" : quote_literal_cstr(role))));

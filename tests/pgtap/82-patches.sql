@@ -26,8 +26,12 @@ SELECT ok((SELECT count(DISTINCT patch_id) FROM pt WHERE name = 'canberra_south_
           'canberra: more than 100 patches');
 SELECT is((SELECT count(*) FROM pt WHERE geom IS NULL OR ST_GeometryType(geom) <> 'ST_LineString' OR ST_SRID(geom) <> 0
                                       OR ST_Length(geom) = 0), 0::bigint, 'every patch edge is a LineString in the example''s SRID');
-SELECT is((SELECT count(*) FROM pt WHERE role NOT IN ('inner', 'connector', 'dead_end')), 0::bigint,
-          'roles are inner, connector or dead_end');
+SELECT is((SELECT count(*) FROM pt WHERE role NOT IN ('inner', 'connector', 'dead_end', 'isolated')), 0::bigint,
+          'roles are inner, connector, dead_end or isolated');
+SELECT ok((SELECT count(*) > 0 AND bool_and(n = 1 AND isolated) FROM (
+             SELECT count(*) AS n, bool_and(role = 'isolated' AND 'isolated' = ANY (tags)) AS isolated
+               FROM pt GROUP BY name, patch_id HAVING bool_or(role = 'isolated' OR 'isolated' = ANY (tags))) i),
+          'a street with no junction at either end is a patch of its own, one edge, role and tag isolated');
 SELECT ok((SELECT count(DISTINCT patch_id) FROM pt WHERE name = 'canberra_south_large' AND 'roundabout' = ANY (tags)) >= 3,
           'canberra: its roundabouts are patches tagged roundabout');
 SELECT is((SELECT count(DISTINCT patch_id) FROM pt WHERE name = 'tokyo' AND 'roundabout' = ANY (tags)), 0::bigint,
@@ -279,7 +283,7 @@ SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT patch_id, ''inne
                  '22023', 'no patch has a connector', 'grow_patches: patches without connectors (22023)');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT patch_id, ''bridge'' AS role, geom FROM pt',
                    (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'))$$,
-                 '22023', 'patch edge role must be ''inner'', ''connector'' or ''dead_end''', 'grow_patches: an unknown role (22023)');
+                 '22023', 'patch edge role must be ''inner'', ''connector'', ''dead_end'' or ''isolated''', 'grow_patches: an unknown role (22023)');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT geom FROM pt',
                    (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'))$$,
                  '22023', 'the patches query must return the columns patch_id, role and geom', 'grow_patches: not a patch query (22023)');

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <queue>
 #include <set>
+#include <tuple>
 #include <random>
 #include <unordered_map>
 #include <unordered_set>
@@ -428,6 +430,7 @@ class Grower {
       bridge_end_.clear();
       example_dead_end_.clear();
       crop_end_.clear();
+      in_budget_.clear();
       load_existing();
       place_seeds();
     }
@@ -2445,6 +2448,9 @@ class Grower {
         if (lp.style != style) continue;
         for (const LibEdge& e : lp.edges) pts.insert(pts.end(), e.line.begin(), e.line.end());
       }
+      for (const Polyline& line : style == 0 ? isolated_ : std::vector<Polyline>{}) {
+        pts.insert(pts.end(), line.begin(), line.end());
+      }
       const std::vector<Point> hull = convex_hull(pts);
       auto near_hull = [&](Point q) {
         for (std::size_t i = 0; i < hull.size(); ++i) {
@@ -2460,32 +2466,95 @@ class Grower {
       }
     }
     // The example's own dead-end share: of its street ends (junctions and dead ends, not the
-    // crop's), the dead ends. A connector appears in both its patches: streets are keyed by their
-    // two ends.
+    // crop's), the dead ends, a node's degree its streets (as the realism metrics count: a loop
+    // twice, two streets between the same nodes both). A connector appears in both its patches:
+    // streets are keyed by their two ends and length.
     auto key_of = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
-    std::unordered_map<MillimetreKey, std::vector<MillimetreKey>, MillimetreKeyHash> around;
+    std::unordered_map<MillimetreKey, std::size_t, MillimetreKeyHash> degree;
+    std::set<std::tuple<MillimetreKey, MillimetreKey, long long>> streets;
     std::unordered_map<MillimetreKey, char, MillimetreKeyHash> own_dead, cut_end;
+    std::vector<Point> pts;
     for (const LibPatch& lp : library_) {
       if (lp.style != 0) continue;
       for (const LibEdge& e : lp.edges) {
+        pts.insert(pts.end(), e.line.begin(), e.line.end());
         const MillimetreKey a = key_of(e.line.front()), b = key_of(e.line.back());
-        std::vector<MillimetreKey>& na = around[a];
-        if (std::find(na.begin(), na.end(), b) == na.end()) na.push_back(b);
-        std::vector<MillimetreKey>& nb = around[b];
-        if (std::find(nb.begin(), nb.end(), a) == nb.end()) nb.push_back(a);
+        if (streets.emplace(std::min(a, b), std::max(a, b), std::llround(length(e.line) * 100.0)).second) {
+          ++degree[a];
+          ++degree[b];
+        }
         if (e.role == PatchEdgeRole::dead_end) (e.cut ? cut_end : own_dead)[b] = 1;
         if (e.role == PatchEdgeRole::connector && e.cut) cut_end[b] = 1;
       }
     }
+    // The example's isolated streets (no junction at either end, in no patch): their ends count as
+    // the metrics count them, dead ends but near the hull (the crop's).
+    for (const Polyline& line : isolated_) pts.insert(pts.end(), line.begin(), line.end());
+    const std::vector<Point> hull0 = convex_hull(pts);
+    auto to_hull_of = [&](Point q) {
+      double to_hull = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; hull0.size() >= 3 && i < hull0.size(); ++i) {
+        to_hull = std::min(to_hull, point_segment_distance(q, hull0[i], hull0[(i + 1) % hull0.size()]));
+      }
+      return to_hull;
+    };
+    for (const Polyline& line : isolated_) {
+      const MillimetreKey a = key_of(line.front()), b = key_of(line.back());
+      if (streets.emplace(std::min(a, b), std::max(a, b), std::llround(length(line) * 100.0)).second) {
+        ++degree[a];
+        ++degree[b];
+      }
+      for (Point q : {line.front(), line.back()}) {
+        (to_hull_of(q) <= 0.25 * street_stats_.length_mean ? cut_end : own_dead)[key_of(q)] = 1;
+      }
+    }
     double dead = 0.0, ends = 0.0;
-    for (const auto& [k, nbrs] : around) {
+    example_ends_.clear();
+    for (const auto& [k, d] : degree) {
       if (cut_end.count(k) != 0) continue;
-      const std::size_t d = nbrs.size();
       if (d == 2 || (d == 1 && own_dead.count(k) == 0)) continue;
       ends += 1.0;
       dead += d == 1;
+      const Point q{static_cast<double>(k.first) / 1000.0, static_cast<double>(k.second) / 1000.0};
+      example_ends_.emplace_back(to_hull_of(q), d == 1 ? 1 : 0);
     }
+    std::sort(example_ends_.begin(), example_ends_.end());
     example_dead_end_share_ = ends > 0.0 ? dead / ends : 0.0;
+  }
+  // The example's share of dead ends among its street ends (as mark_cut_dead_ends counts them)
+  // farther than `margin` from its hull.
+  double example_share_inside(double margin) const {
+    double dead = 0.0, ends = 0.0;
+    for (const auto& [to_hull, d] : example_ends_) {
+      if (to_hull <= margin) continue;
+      ends += 1.0;
+      dead += d;
+    }
+    return ends > 0.0 ? dead / ends : 0.0;
+  }
+  // The dead-end budget as the realism metrics count dead ends (patches26/27): the library's street
+  // ends farther than kBudgetMargin from its hull (its isolated streets' too), a node's degree its
+  // streets (a loop twice, two streets to one node both); the joins' and cuts' counts only the
+  // network's nodes farther than it from the region's boundary.
+  static constexpr double kBudgetMargin = 50.0;
+  double budget_share() const { return example_share_inside(kBudgetMargin); }
+  // Whether node v counts in the dead-end budget's counts: farther than the margin from the region's boundary.
+  long in_budget(std::uint32_t v) {
+    GEOSContextHandle_t h = geos_.handle();
+    if (!budget_boundary_) {
+      budget_boundary_ = own(geos_, GEOSBoundary_r(h, region_geom_), "region boundary");
+      budget_boundary_prepared_ = PreparedPtr(GEOSPrepare_r(h, budget_boundary_.get()), PreparedDeleter{h});
+    }
+    if (in_budget_.size() < nodes_.size()) in_budget_.resize(nodes_.size(), -1);
+    if (in_budget_[v] < 0) {
+      GeomPtr point = own(geos_, GEOSGeom_createPointFromXY_r(h, nodes_[v].p.x, nodes_[v].p.y), "point");
+      double d = 0.0;
+      if (GEOSPreparedDistance_r(h, budget_boundary_prepared_.get(), point.get(), &d) == 0) {
+        geos_.fail("boundary distance");
+      }
+      in_budget_[v] = d > kBudgetMargin ? 1 : 0;
+    }
+    return in_budget_[v];
   }
 
   void build_library(const std::vector<Patch>& patches, const std::vector<Patch>& patches_b) {
@@ -2513,6 +2582,13 @@ class Grower {
         lp.arterial = params_.patch.levels && std::find(p.tags.begin(), p.tags.end(), "arterial") != p.tags.end();
         for (const PatchEdge& e : p.edges) {
           if (e.line.size() < 2) continue;
+          if (e.role == PatchEdgeRole::isolated) {  // never placed; counted in the dead-end budget
+            if (style != 0) continue;
+            Polyline line = e.line;
+            for (Point& q : line) q = {cs * q.x - sn * q.y, sn * q.x + cs * q.y};
+            isolated_.push_back(std::move(line));
+            continue;
+          }
           LibEdge le{e.line, level_of(e.road_class), e.role};
           le.cut = std::find(e.tags.begin(), e.tags.end(), "cut") != e.tags.end();
           for (Point& q : le.line) q = {cs * q.x - sn * q.y, sn * q.x + cs * q.y};
@@ -2754,36 +2830,45 @@ class Grower {
     }
     std::sort(fronts.begin(), fronts.end());
     auto is_end = [](std::size_t k) { return k == 1 || k >= 3 ? 1L : 0L; };
+    const double share = budget_share();
     long dead = 0, street_ends = 0;
     for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
       if (is_pruned(v)) continue;
       const std::size_t d = nodes_[v].edges.size();
+      if (d == 2 || d == 0) continue;
       if (d == 1) {
         const Point p = nodes_[v].p;
         if (!legal(p, p + step * unit(p - other_end(nodes_[v].edges[0], v)), false)) continue;
       }
-      street_ends += d == 1 || d >= 3 ? 1 : 0;
+      if (!in_budget(v)) continue;
+      street_ends += 1;
       dead += d == 1;
     }
     for (std::uint32_t v : fronts) {
       poll_interrupts();
       if (is_pruned(v) || nodes_[v].edges.size() != 1) continue;
-      if (static_cast<double>(dead) <= example_dead_end_share_ * static_cast<double>(street_ends)) break;
+      if (static_cast<double>(dead) <= share * static_cast<double>(street_ends)) break;
       // The counts after the cut, from the node it would stop at, one street fewer: a junction of 3
       // becomes a bend (no street end), one of 4+ stays one, a bend a dead end; a piece without a
       // junction goes whole (its other dead end too).
-      const std::size_t d0 = nodes_[junction_behind(v)].edges.size();
-      const long dead_after = dead - 1 + (d0 == 2 ? 1 : 0) - (d0 == 1 ? 1 : 0);
-      const long ends_after = street_ends - 1 + is_end(d0 - 1) - is_end(d0);
-      if (!cut_nears_dead_end_budget(dead, street_ends, dead_after, ends_after, example_dead_end_share_)) break;
+      const std::uint32_t j = junction_behind(v);
+      const std::size_t d0 = nodes_[j].edges.size();
+      const long cv = in_budget(v), cj = in_budget(j);
+      if (cv == 0 && cj == 0) continue;  // no count changes: left as it is
+      const long dead_after = dead - cv + cj * ((d0 == 2 ? 1 : 0) - (d0 == 1 ? 1 : 0));
+      const long ends_after = street_ends - cv + cj * (is_end(d0 - 1) - is_end(d0));
+      if (!cut_nears_dead_end_budget(dead, street_ends, dead_after, ends_after, share)) {
+        if (cv == 0) continue;
+        break;
+      }
       ++(corner_front_.count(v) != 0 ? stats_.corners_cut : stats_.crop_ends_cut);
-      --dead;
-      --street_ends;
+      dead -= cv;
+      street_ends -= cv;
       const std::uint32_t cur = cut_back_to_junction(v);
       // The junction the street left, one street fewer: 3 -> 2 is no street end any more, 2 -> 1 a
       // dead end (0: the whole piece is gone).
       const std::size_t d = nodes_[cur].edges.size();
-      if (cur != v && !is_pruned(cur)) {
+      if (cur != v && !is_pruned(cur) && in_budget(cur)) {
         street_ends += is_end(d) - is_end(d + 1);
         dead += (d == 1 ? 1 : 0) - (d == 0 ? 1 : 0);
       }
@@ -2814,8 +2899,10 @@ class Grower {
         const Point back = nodes_[edges_[e].a == v ? edges_[e].b : edges_[e].a].p;
         if (!legal(p, p + step * unit(p - back), false)) continue;
       }
-      street_ends += is_end(d);
-      dead += d == 1;
+      if (is_end(d) && in_budget(v)) {
+        street_ends += 1;
+        dead += d == 1;
+      }
       if (d != 1 || !may_connect(v)) continue;
       reach_factor_ = corner_reach_factor(v);
       const double gap = gap_ahead(v);
@@ -2823,9 +2910,10 @@ class Grower {
       if (std::isfinite(gap)) ends.emplace_back(gap, v);
     }
     std::sort(ends.begin(), ends.end());
+    const double share = budget_share();
     for (const auto& [gap, v] : ends) {
       poll_interrupts();
-      if (static_cast<double>(dead) <= example_dead_end_share_ * static_cast<double>(street_ends)) break;
+      if (static_cast<double>(dead) <= share * static_cast<double>(street_ends)) break;
       if (new_edges_ + 2 > params_.max_edges) break;  // a join and the piece of a split street
       if (nodes_[v].edges.size() != 1) continue;  // an earlier extension reached it
       const std::size_t before = nodes_.size();
@@ -2833,11 +2921,11 @@ class Grower {
       const std::uint32_t w = connect_end(v);
       reach_factor_ = 1.0;
       if (w == UINT32_MAX) continue;
-      dead -= 1;  // v: degree 1 -> 2
-      street_ends -= 1;
+      dead -= in_budget(v);  // v: degree 1 -> 2
+      street_ends -= in_budget(v);
       if (w >= before) {
-        street_ends += 1;  // a street split: a new junction of degree 3
-      } else {
+        street_ends += in_budget(w);  // a street split: a new junction of degree 3
+      } else if (in_budget(w)) {
         const std::size_t dw = nodes_[w].edges.size();
         street_ends += is_end(dw) - is_end(dw - 1);
         dead -= dw - 1 == 1;
@@ -3101,6 +3189,11 @@ class Grower {
   std::unordered_set<std::uint32_t> example_dead_end_;  // ends of patch dead-end edges
   std::unordered_set<std::uint32_t> crop_end_;          // ends of patch dead-end edges the example's crop cut
   double example_dead_end_share_ = 0.0;  // of the library's street ends (not cut), its own dead ends
+  std::vector<std::pair<double, char>> example_ends_;  // those street ends: distance to the library's hull, dead end
+  std::vector<Polyline> isolated_;  // the first library's isolated streets (role isolated): only counted
+  GeomPtr budget_boundary_;
+  std::vector<signed char> in_budget_;  // per node: counted in the dead-end budget (-1: not known yet)
+  PreparedPtr budget_boundary_prepared_;
   int styles_ = 1;
   StreetStatistics style_stats_[2];
   StreetStatistics style_level_stats_[2][2];

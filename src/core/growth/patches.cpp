@@ -161,6 +161,7 @@ const char* role_name(PatchEdgeRole role) {
     case PatchEdgeRole::inner: return "inner";
     case PatchEdgeRole::connector: return "connector";
     case PatchEdgeRole::dead_end: return "dead_end";
+    case PatchEdgeRole::isolated: return "isolated";
   }
   return "inner";
 }
@@ -603,6 +604,39 @@ PatchExtraction extract_patches(GeosContext& geos, const std::vector<PatchInputE
     if (patch.edges.empty()) continue;
     patch.id = ++next;
     out.arterial_patches += std::find(patch.tags.begin(), patch.tags.end(), "arterial") != patch.tags.end();
+    out.patches.push_back(std::move(patch));
+  }
+  // The streets of components without a junction (a lone street, a ring) are in no patch; each
+  // is a patch of its own with role isolated, after the others: grow_patches never places one,
+  // but counts its dead ends in the example's share (the metrics count them).
+  std::vector<std::uint32_t> comp(n);
+  for (std::uint32_t v = 0; v < n; ++v) comp[v] = v;
+  auto find = [&](std::uint32_t v) {
+    while (comp[v] != v) v = comp[v] = comp[comp[v]];
+    return v;
+  };
+  for (const Street& s : g.streets) comp[find(s.a)] = find(s.b);
+  std::vector<char> has_junction(n, 0);
+  for (std::uint32_t v = 0; v < n; ++v) has_junction[find(v)] |= g.incident[v].size() >= 3 ? 1 : 0;
+  for (const Street& s : g.streets) {
+    if (has_junction[find(s.a)] != 0 || s.line.size() < 2) continue;
+    Patch patch;
+    patch.id = ++next;
+    const bool curved = turning(s.line) > kCurvedTurning;
+    add_tag(patch.tags, "isolated");
+    add_tag(patch.tags, is_main_class(s.road_class) ? "main" : "local");
+    add_tag(patch.tags, curved ? "curved" : "straight");
+    PatchEdge e;
+    e.line = s.line;
+    e.role = PatchEdgeRole::isolated;
+    e.road_class = s.road_class;
+    e.example_id = s.id;
+    add_tag(e.tags, is_main_class(s.road_class) ? "main" : "local");
+    add_tag(e.tags, "isolated");
+    add_tag(e.tags, curved ? "curved" : "straight");
+    if (g.incident[s.a].size() == 1) add_tag(e.start_tags, "dead-end");
+    if (g.incident[s.b].size() == 1) add_tag(e.end_tags, "dead-end");
+    patch.edges.push_back(std::move(e));
     out.patches.push_back(std::move(patch));
   }
   return out;

@@ -42,7 +42,10 @@ struct PatchParams {
                                     // local patches around the junctions where local streets meet
 };
 
-enum class PatchEdgeRole { inner, connector, dead_end };
+// isolated: a street of the example with no junction at either end (a component without one): in
+// no patch, its own patch (tag isolated) that grow_patches never places but counts in the
+// example's dead-end share.
+enum class PatchEdgeRole { inner, connector, dead_end, isolated };
 const char* role_name(PatchEdgeRole role);
 
 struct PatchEdge {
