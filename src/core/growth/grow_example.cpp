@@ -74,6 +74,16 @@ double segment_distance(Point a, Point b, Point c, Point d) {
                   std::min(point_segment_distance(c, a, b), point_segment_distance(d, a, b)));
 }
 
+// Distance from q to the boundary of a convex hull (a ring of 3+ points, not closed); infinity
+// for fewer points.
+double distance_to_hull(Point q, const std::vector<Point>& hull) {
+  double to_hull = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; hull.size() >= 3 && i < hull.size(); ++i) {
+    to_hull = std::min(to_hull, point_segment_distance(q, hull[i], hull[(i + 1) % hull.size()]));
+  }
+  return to_hull;
+}
+
 // Hausdorff distance between two segments: the distance to a segment is convex along the
 // other, so the largest one is reached at an endpoint.
 double segment_hausdorff(Point a, Point b, Point c, Point d) {
@@ -2442,6 +2452,7 @@ class Grower {
   // is marked cut.
   void mark_cut_dead_ends() {
     const double margin = 0.25 * street_stats_.length_mean;
+    std::vector<Point> hull0;  // style 0's (its isolated streets' too), for its dead-end share below
     for (int style = 0; style < styles_; ++style) {
       std::vector<Point> pts;
       for (const LibPatch& lp : library_) {
@@ -2452,18 +2463,13 @@ class Grower {
         pts.insert(pts.end(), line.begin(), line.end());
       }
       const std::vector<Point> hull = convex_hull(pts);
-      auto near_hull = [&](Point q) {
-        for (std::size_t i = 0; i < hull.size(); ++i) {
-          if (point_segment_distance(q, hull[i], hull[(i + 1) % hull.size()]) <= margin) return true;
-        }
-        return false;
-      };
       for (LibPatch& lp : library_) {
         if (lp.style != style) continue;
         for (LibEdge& e : lp.edges) {
-          if (e.role == PatchEdgeRole::dead_end) e.cut = e.cut || (hull.size() >= 3 && near_hull(e.line.back()));
+          if (e.role == PatchEdgeRole::dead_end) e.cut = e.cut || distance_to_hull(e.line.back(), hull) <= margin;
         }
       }
+      if (style == 0) hull0 = hull;
     }
     // The example's own dead-end share: of its street ends (junctions and dead ends, not the
     // crop's), the dead ends, a node's degree its streets (as the realism metrics count: a loop
@@ -2473,11 +2479,9 @@ class Grower {
     std::unordered_map<MillimetreKey, std::size_t, MillimetreKeyHash> degree;
     std::set<std::tuple<MillimetreKey, MillimetreKey, long long>> streets;
     std::unordered_map<MillimetreKey, char, MillimetreKeyHash> own_dead, cut_end;
-    std::vector<Point> pts;
     for (const LibPatch& lp : library_) {
       if (lp.style != 0) continue;
       for (const LibEdge& e : lp.edges) {
-        pts.insert(pts.end(), e.line.begin(), e.line.end());
         const MillimetreKey a = key_of(e.line.front()), b = key_of(e.line.back());
         if (streets.emplace(std::min(a, b), std::max(a, b), std::llround(length(e.line) * 100.0)).second) {
           ++degree[a];
@@ -2489,15 +2493,7 @@ class Grower {
     }
     // The example's isolated streets (no junction at either end, in no patch): their ends count as
     // the metrics count them, dead ends but near the hull (the crop's).
-    for (const Polyline& line : isolated_) pts.insert(pts.end(), line.begin(), line.end());
-    const std::vector<Point> hull0 = convex_hull(pts);
-    auto to_hull_of = [&](Point q) {
-      double to_hull = std::numeric_limits<double>::infinity();
-      for (std::size_t i = 0; hull0.size() >= 3 && i < hull0.size(); ++i) {
-        to_hull = std::min(to_hull, point_segment_distance(q, hull0[i], hull0[(i + 1) % hull0.size()]));
-      }
-      return to_hull;
-    };
+    auto to_hull_of = [&](Point q) { return distance_to_hull(q, hull0); };
     for (const Polyline& line : isolated_) {
       const MillimetreKey a = key_of(line.front()), b = key_of(line.back());
       if (streets.emplace(std::min(a, b), std::max(a, b), std::llround(length(line) * 100.0)).second) {

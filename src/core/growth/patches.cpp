@@ -609,17 +609,12 @@ PatchExtraction extract_patches(GeosContext& geos, const std::vector<PatchInputE
   // The streets of components without a junction (a lone street, a ring) are in no patch; each
   // is a patch of its own with role isolated, after the others: grow_patches never places one,
   // but counts its dead ends in the example's share (the metrics count them).
-  std::vector<std::uint32_t> comp(n);
-  for (std::uint32_t v = 0; v < n; ++v) comp[v] = v;
-  auto find = [&](std::uint32_t v) {
-    while (comp[v] != v) v = comp[v] = comp[comp[v]];
-    return v;
-  };
-  for (const Street& s : g.streets) comp[find(s.a)] = find(s.b);
+  UnionFind components(n);
+  for (const Street& s : g.streets) components.unite(s.a, s.b);
   std::vector<char> has_junction(n, 0);
-  for (std::uint32_t v = 0; v < n; ++v) has_junction[find(v)] |= g.incident[v].size() >= 3 ? 1 : 0;
+  for (std::uint32_t v = 0; v < n; ++v) has_junction[components.find(v)] |= g.incident[v].size() >= 3 ? 1 : 0;
   for (const Street& s : g.streets) {
-    if (has_junction[find(s.a)] != 0 || s.line.size() < 2) continue;
+    if (has_junction[components.find(s.a)] != 0 || s.line.size() < 2) continue;
     Patch patch;
     patch.id = ++next;
     const bool curved = turning(s.line) > kCurvedTurning;
