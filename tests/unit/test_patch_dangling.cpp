@@ -229,6 +229,7 @@ TEST(PatchDangling, FacingTeesContinueAcross) {
   // made a crossing (with the stratified redraw one did here: 23 crossings, 22 T's for 12 joins).
   GrowParams p = Fixture::patch_growth();
   p.patch.avoid_corners = false;
+  p.patch.continue_local_tees = false;  // the facing T's alone (local T's to the street ahead: below)
   auto [off, on] = f.grow_off_on(in, &PatchGrowParams::continue_across, p);
   EXPECT_EQ(off.stats.continued_across, 0u);
   ASSERT_GT(on.stats.continued_across, 0u);
@@ -278,6 +279,7 @@ TEST(PatchDangling, ArterialTeesContinueToTheStreetAhead) {
   GrowInput streets_in = f.input(uneven_grid());
   GrowInput avenues_in = f.input(avenues);
   GrowParams p = Fixture::patch_growth();
+  p.patch.continue_local_tees = false;  // local T's to the street ahead: below
   GrowResult streets = grow_example(f.geos, streets_in, p);
   GrowResult on = grow_example(f.geos, avenues_in, p);
   p.patch.continue_across = false;
@@ -291,6 +293,81 @@ TEST(PatchDangling, ArterialTeesContinueToTheStreetAhead) {
   const double share_on = static_cast<double>(fours_on) / static_cast<double>(threes_on + fours_on);
   EXPECT_LE(share_on, 49.0 / 77.0 + 2.0 / static_cast<double>(threes_on + fours_on));
   EXPECT_EQ(crossings_without_node(on), 0);
+}
+
+// The uneven grid of local streets grown west of a wall across the region (so its network is
+// sparser than the example per area of the region shrunk by 50 m, as new-york's growth is): with
+// continue_local_tees a local T with no T facing it goes on to the node or street ahead too: more
+// crossings, fewer T's, no more than the example's share of crossings, planar, deterministic.
+TEST(PatchDangling, LocalTeesContinueToTheNodeOrStreetAhead) {
+  Fixture f;
+  GrowInput in = f.input(uneven_grid());
+  GeomPtr wall = wkt(f.geos, "POLYGON((-60 -1600, 60 -1600, 60 1600, -60 1600, -60 -1600))");
+  in.obstacles = {wall.get()};
+  in.seeds = {{-800.0, 0.0}};
+  GrowParams p = Fixture::patch_growth();
+  p.patch.avoid_corners = false;  // the corner cut after the joins may take a street off a crossing
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::continue_local_tees, p);
+  EXPECT_EQ(off.stats.local_tees_continued, 0u);
+  ASSERT_GT(on.stats.local_tees_continued, 0u);
+  EXPECT_EQ(on.stats.local_tees_long, 0u);
+  EXPECT_GT(on.stats.continued_across, off.stats.continued_across);
+  const auto [threes_off, fours_off] = junction_counts(off);
+  const auto [threes_on, fours_on] = junction_counts(on);
+  EXPECT_GT(fours_on, fours_off);
+  EXPECT_LT(threes_on, threes_off);
+  EXPECT_GE(on.edges.size(), off.edges.size() + on.stats.local_tees_continued);
+  const double share_on = static_cast<double>(fours_on) / static_cast<double>(threes_on + fours_on);
+  EXPECT_LE(share_on, 49.0 / 77.0 + 2.0 / static_cast<double>(threes_on + fours_on));
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, p), on);
+  // Without the wall the growth fills the region at the example's street length: no local T goes on.
+  GrowInput open = f.input(uneven_grid());
+  GrowResult full = grow_example(f.geos, open, p);
+  EXPECT_EQ(full.stats.local_tees_continued, 0u);
+  EXPECT_GT(full.stats.local_tees_long, 0u);
+}
+
+// The same growth with an existing network south of it that makes the region denser than the
+// example: 1,300 m streets 5 m apart (street length over the example's per area) stop every local
+// T's join; 600 small T's (junctions over the example's per area, 10.5 m of street each; crossings
+// would raise the network's share of them to the example's, which ends the joins before) stop
+// those that would make a junction (a split street, a node of degree 2), not those onto a T.
+TEST(PatchDangling, LocalTeesStopWhereTheNetworkIsDenserThanTheExample) {
+  Fixture f;
+  GrowInput in = f.input(uneven_grid());
+  GeomPtr wall = wkt(f.geos, "POLYGON((-60 -1600, 60 -1600, 60 1600, -60 1600, -60 -1600))");
+  in.obstacles = {wall.get()};
+  in.seeds = {{-800.0, 0.0}};
+  GrowParams p = Fixture::patch_growth();
+  p.patch.avoid_corners = false;
+
+  GrowInput lines = in;
+  for (int k = 0; k <= 120; ++k) lines.existing.push_back({{-1400.0, -1400.0 + 5.0 * k}, {-100.0, -1400.0 + 5.0 * k}});
+  GrowResult long_network = grow_example(f.geos, lines, p);
+  EXPECT_EQ(long_network.stats.local_tees_continued, 0u);
+  EXPECT_GT(long_network.stats.local_tees_long, 0u);
+  EXPECT_EQ(crossings_without_node(long_network), 0);
+
+  GrowInput tees = in;
+  for (int i = 0; i < 25; ++i) {
+    for (int j = 0; j < 24; ++j) {
+      const double x = -1380.0 + 50.0 * i, y = -1380.0 + 25.0 * j;
+      tees.existing.push_back({{x - 3.5, y}, {x, y}});
+      tees.existing.push_back({{x, y}, {x + 3.5, y}});
+      tees.existing.push_back({{x, y}, {x, y + 3.5}});
+    }
+  }
+  p.patch.continue_local_tees = false;
+  GrowResult dense_off = grow_example(f.geos, tees, p);
+  p.patch.continue_local_tees = true;
+  GrowResult dense_on = grow_example(f.geos, tees, p);
+  EXPECT_GT(dense_on.stats.local_tees_dense, 0u);
+  EXPECT_GT(dense_on.stats.local_tees_continued, 0u);  // onto T's
+  const auto [threes_off, fours_off] = junction_counts(dense_off);
+  const auto [threes_on, fours_on] = junction_counts(dense_on);
+  EXPECT_EQ(threes_on + fours_on, threes_off + fours_off);  // no junction made
+  EXPECT_EQ(crossings_without_node(dense_on), 0);
 }
 
 namespace {

@@ -88,6 +88,15 @@ struct PatchGrowParams {
   // cross streets run on across; growth leaves them as pairs of T's); then an arterial T (three
   // main streets) with no T facing it goes on straight to the first street ahead (split there).
   bool continue_across = true;
+  // With continue_across: a local T (its lone street a grown street) with no T facing it goes on
+  // straight to the node or street ahead within a mean street as an arterial T does, while the
+  // network has fewer 4-way junctions than the example's share, and while its street length farther
+  // than 50 m from the region's boundary stays under the example's per area (the example's farther
+  // than 50 m from its hull over that shrunk hull's area); where that makes a junction (a split
+  // street, a node of degree 2), only while its junctions there stay within half a junction of the
+  // example's per area. Growth leaves grid streets ending at a T a block short of the next one
+  // (new-york's 4-way share -14 to -17 pp; bench/patches, README, patches28).
+  bool continue_local_tees = true;
   // Corners (with connect_dangling): at a dead-end front with a node or street ahead within a mean
   // street, a patch that would leave the front as a corner (its only new street there turning more
   // than 45 degrees from the front's street, the others left out as redundant) is illegal, and such
@@ -289,6 +298,9 @@ struct GrowStats {
   std::size_t dead_ends_kept = 0;    // prune_dangling: dead ends left (the example's, or blocked)
   std::size_t dangling_connected = 0;  // connect_dangling: streets extended to a node or street ahead
   std::size_t continued_across = 0;    // continue_across: T-junctions joined to the T facing them
+  std::size_t local_tees_continued = 0;  // continue_local_tees: local T's gone on to the node or street ahead
+  std::size_t local_tees_long = 0;       // continue_local_tees: joins refused for the example's street length per area
+  std::size_t local_tees_dense = 0;      // continue_local_tees: joins refused for the example's junctions per area
   std::size_t corners_avoided = 0;     // avoid_corners: fronts where a patch was refused for leaving a corner
   std::size_t corners_cut = 0;         // avoid_corners: of those, dead ends cut back after the joins
   std::size_t crop_ends_cut = 0;       // cut_crop_ends: copied crop dead ends cut back after the joins
