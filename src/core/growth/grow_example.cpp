@@ -1700,8 +1700,10 @@ class Grower {
   // grown φ is at or over their examples', got more ordered still (README, growth22, growth26-29).
   // Only for copies of example nodes farther than crop_margin inside its hull (a T on the crop's
   // edge is a street the crop cut), and not in a city of cul-de-sacs (its corners are its crescents).
+  // Not in a blend either: there the output mixes its examples' orientations, so no one example's φ
+  // is its target (with tokyo and canberra blended, canberra's end lost a tenth of its edges).
   void straight_front(std::uint32_t v, std::uint32_t first, std::uint32_t copied) {
-    if (!mix_top_up_ || cul_de_sac_city(ex().dead_end_share)) return;
+    if (!mix_top_up_ || examples_.size() > 1 || cul_de_sac_city(ex().dead_end_share)) return;
     if (crop_margin_ > 0.0 && ex().inside[copied] <= crop_margin_) return;
     const std::uint32_t e = corner_edge(v, first);
     if (e == UINT32_MAX) return;
