@@ -1590,7 +1590,8 @@ std::vector<ExampleEdge> grid_with_corners() {
   auto corner = [](int i, int j) { return i > 0 && i < 8 && j > 0 && j < 8 && (i + 2 * j) % 4 == 0; };
   for (int i = 0; i <= 8; ++i) {
     for (int j = 0; j < 8; ++j) {
-      // (j, i) -> (j + 1, i) is the west street of node (j + 1, i); (i, j) -> (i, j + 1) the south street of (i, j + 1).
+      // (j, i) -> (j + 1, i) is the west street of node (j + 1, i); (i, j) -> (i, j + 1) the south
+      // street of node (i, j + 1).
       if (!corner(j + 1, i)) out.push_back({{{j * 80.0, i * 80.0}, {(j + 1) * 80.0, i * 80.0}}, "street", ++id});
       if (!corner(i, j + 1)) out.push_back({{{i * 80.0, j * 80.0}, {i * 80.0, (j + 1) * 80.0}}, "street", ++id});
     }

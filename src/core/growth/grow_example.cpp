@@ -1621,7 +1621,8 @@ class Grower {
   // The orientation order φ of a graph as network_stats computes it (Boeing 2019): chains merged
   // through nodes of degree 2, each weighed by its length at its chord's bearing, 36 bins of 10°
   // counted both ways; φ = 1 - ((H - ln 4) / (ln 36 - ln 4))². Whole graphs, no window.
-  static double orientation_order_of(const std::vector<Point>& at, const std::vector<std::vector<std::uint32_t>>& next) {
+  static double orientation_order_of(const std::vector<Point>& at,
+                                     const std::vector<std::vector<std::uint32_t>>& next) {
     std::vector<double> bins(36, 0.0);
     std::unordered_set<std::uint64_t> done;
     auto key = [](std::uint32_t a, std::uint32_t b) {
@@ -1644,7 +1645,8 @@ class Grower {
           cur = nxt;
         }
         if (cur == a) continue;  // a loop: no chord
-        const double bearing = std::fmod(std::atan2(at[cur].x - at[a].x, at[cur].y - at[a].y) * 180.0 / kPi + 360.0, 360.0);
+        const double bearing =
+            std::fmod(std::atan2(at[cur].x - at[a].x, at[cur].y - at[a].y) * 180.0 / kPi + 360.0, 360.0);
         bins[bin(bearing)] += length;
         bins[bin(std::fmod(bearing + 180.0, 360.0))] += length;
       }
