@@ -240,6 +240,8 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
                           stats.fronts_pruned, stats.copy_result[3][1], stats.copy_result[3][2],
                           stats.copy_result[3][3], stats.copy_result[3][4], stats.copy_result[4][1],
                           stats.copy_result[4][2], stats.copy_result[4][3], stats.copy_result[4][4])));
+  ereport(DEBUG1, (errmsg("grow front corners: kept %zu, taken back %zu, straight on %zu",
+                          stats.front_corners_kept, stats.front_corners_taken_back, stats.front_corners_straight)));
   ereport(DEBUG1, (errmsg("grow rejections: angle %zu, clipped %zu, first half %zu, snap node %zu, snap edge %zu, "
                           "crowded %zu, contact node %zu, no new T %zu, contact short %zu, split %zu; copied dead "
                           "ends joined by snap %zu, contact %zu, front %zu",

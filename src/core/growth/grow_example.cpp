@@ -422,6 +422,7 @@ class Grower {
       copied_from_.clear();
       counted_.clear();
       at_least_.clear();
+      output_order_ = NAN;
       counted_length_ = 0.0;
       completed_.clear();
       pruned_.clear();
@@ -751,11 +752,13 @@ class Grower {
       if (is_pruned(v)) continue;  // its street was cut back after it was queued
       std::size_t before = stats_.accepted;
       done_ = false;
+      front_retry_ = false;
       step(v);
       if (done_) continue;
       // A front whose random candidates all failed gets a few more draws before it is left as a
-      // dead end (a growth that stops after its first edges is the common failure otherwise).
-      if (stats_.accepted == before) {
+      // dead end (a growth that stops after its first edges is the common failure otherwise); so
+      // does one whose turning street was taken back (straight_front).
+      if (stats_.accepted == before || front_retry_) {
         if (++attempts_[v] < kAttempts) {
           unfinished_.push_back(v);
         } else {
@@ -1574,6 +1577,8 @@ class Grower {
     const Match& best = candidates[coherent_found_ ? 0 : best_match(v, candidates)];
     step_frame_ = best.theta;
     const ExNode& s = ex().nodes[best.node];
+    const bool front = nodes_[v].edges.size() == 1;
+    const auto first_new_edge = static_cast<std::uint32_t>(edges_.size());
     for (std::size_t k = 0; k < s.halves.size(); ++k) {
       if (best.used[k]) continue;
       if (new_edges_ >= params_.max_edges) return;
@@ -1586,6 +1591,143 @@ class Grower {
     }
     const std::size_t copied = std::min<std::size_t>(s.halves.size(), 4);
     ++stats_.copy_result[copied][std::min<std::size_t>(nodes_[v].edges.size(), 4)];
+    if (front && s.halves.size() >= 3) straight_front(v, first_new_edge, best.node);
+  }
+
+  // The turn of the street a -> b -> c at b, radians in [0, pi].
+  static double turn_at(Point a, Point b, Point c) {
+    const Point u = unit(b - a), w = unit(c - b);
+    return std::acos(std::clamp(dot(u, w), -1.0, 1.0));
+  }
+  // The new edge at front v (made at or after edge `first`) when v is now a corner: of degree 2, its
+  // street turning by more than kCornerTurn; UINT32_MAX otherwise.
+  std::uint32_t corner_edge(std::uint32_t v, std::uint32_t first) const {
+    if (nodes_[v].edges.size() != 2) return UINT32_MAX;
+    std::uint32_t old_e = nodes_[v].edges[0], new_e = nodes_[v].edges[1];
+    if (old_e >= first) std::swap(old_e, new_e);
+    if (old_e >= first || new_e < first) return UINT32_MAX;
+    return turn_at(other_end(old_e, v), nodes_[v].p, other_end(new_e, v)) > kCornerTurn ? new_e : UINT32_MAX;
+  }
+  // Takes edge e back from v; its other end goes too when no other edge holds it.
+  void take_back(std::uint32_t v, std::uint32_t e) {
+    const std::uint32_t w = edges_[e].a == v ? edges_[e].b : edges_[e].a;
+    remove_edge(e);
+    if (nodes_[w].edges.empty()) {
+      node_tree_.remove(PointValue(BPoint(nodes_[w].p.x, nodes_[w].p.y), w));
+      pruned_.resize(nodes_.size(), 0);
+      pruned_[w] = 1;
+    }
+  }
+  // The orientation order φ of a graph as network_stats computes it (Boeing 2019): chains merged
+  // through nodes of degree 2, each weighed by its length at its chord's bearing, 36 bins of 10°
+  // counted both ways; φ = 1 - ((H - ln 4) / (ln 36 - ln 4))². Whole graphs, no window.
+  static double orientation_order_of(const std::vector<Point>& at,
+                                     const std::vector<std::vector<std::uint32_t>>& next) {
+    std::vector<double> bins(36, 0.0);
+    std::unordered_set<std::uint64_t> done;
+    auto key = [](std::uint32_t a, std::uint32_t b) {
+      return static_cast<std::uint64_t>(std::min(a, b)) << 32 | std::max(a, b);
+    };
+    auto bin = [](double bearing) {
+      return std::clamp(static_cast<int>(std::floor(std::fmod(bearing + 5.0, 360.0) / 10.0)), 0, 35);
+    };
+    for (std::uint32_t a = 0; a < at.size(); ++a) {
+      if (next[a].empty() || next[a].size() == 2) continue;
+      for (std::uint32_t b0 : next[a]) {
+        if (!done.insert(key(a, b0)).second) continue;
+        std::uint32_t prev = a, cur = b0;
+        double length = distance(at[a], at[b0]);
+        while (next[cur].size() == 2 && cur != a) {
+          const std::uint32_t nxt = next[cur][0] == prev ? next[cur][1] : next[cur][0];
+          if (!done.insert(key(cur, nxt)).second) break;
+          length += distance(at[cur], at[nxt]);
+          prev = cur;
+          cur = nxt;
+        }
+        if (cur == a) continue;  // a loop: no chord
+        const double bearing =
+            std::fmod(std::atan2(at[cur].x - at[a].x, at[cur].y - at[a].y) * 180.0 / kPi + 360.0, 360.0);
+        bins[bin(bearing)] += length;
+        bins[bin(std::fmod(bearing + 180.0, 360.0))] += length;
+      }
+    }
+    double weight = 0.0, entropy = 0.0;
+    for (double w : bins) weight += w;
+    if (!(weight > 0.0)) return 0.0;
+    for (double w : bins) {
+      if (w > 0.0) entropy -= (w / weight) * std::log(w / weight);
+    }
+    const double h_max = std::log(36.0), h_grid = std::log(4.0);
+    return 1.0 - std::pow((entropy - h_grid) / (h_max - h_grid), 2.0);
+  }
+  double example_order() {
+    if (example_order_.size() != examples_.size()) example_order_.assign(examples_.size(), NAN);
+    double& phi = example_order_[cur_];
+    if (std::isnan(phi)) {
+      std::vector<Point> at;
+      std::vector<std::vector<std::uint32_t>> next;
+      for (const ExNode& n : ex().nodes) {
+        at.push_back(n.p);
+        next.emplace_back();
+        for (const ExHalf& h : n.halves) next.back().push_back(h.to);
+      }
+      phi = orientation_order_of(at, next);
+    }
+    return phi;
+  }
+  // The output's φ, recomputed once its edges have changed by 2 % (at least 20) since, so the cost
+  // stays a small share of the growth's.
+  double output_order() {
+    const std::size_t change =
+        new_edges_ > output_order_edges_ ? new_edges_ - output_order_edges_ : output_order_edges_ - new_edges_;
+    if (std::isnan(output_order_) || change >= std::max<std::size_t>(20, new_edges_ / 50)) {
+      std::vector<Point> at(nodes_.size());
+      std::vector<std::vector<std::uint32_t>> next(nodes_.size());
+      for (std::uint32_t i = 0; i < nodes_.size(); ++i) {
+        at[i] = nodes_[i].p;
+        for (std::uint32_t e : nodes_[i].edges) next[i].push_back(edges_[e].a == i ? edges_[e].b : edges_[e].a);
+      }
+      output_order_ = orientation_order_of(at, next);
+      output_order_edges_ = new_edges_;
+    }
+    return output_order_;
+  }
+  // A front (degree 1) whose step copied an example junction but kept only a turning street (its
+  // node now a corner, turning by more than 45°) keeps it while the output is as ordered as its
+  // example (orientation order φ, as network_stats computes it), and otherwise takes it back and
+  // proposes one straight on, as long, with its level and example, as the front's continuation; a
+  // join that turns it after all is taken back too, and the front then tries again (its retries,
+  // close_front or the cut-back). Tokyo's fronts made about 39 such corners per growth (its example
+  // 0.005 per junction), half of its φ gap; straightened everywhere, barcelona and strasbourg, whose
+  // grown φ is at or over their examples', got more ordered still (README, growth22, growth26-29).
+  // Only for copies of example nodes farther than crop_margin inside its hull (a T on the crop's
+  // edge is a street the crop cut), and not in a city of cul-de-sacs (its corners are its crescents).
+  // Not in a blend either: there the output mixes its examples' orientations, so no one example's φ
+  // is its target (with tokyo and canberra blended, canberra's end lost a tenth of its edges).
+  void straight_front(std::uint32_t v, std::uint32_t first, std::uint32_t copied) {
+    if (!mix_top_up_ || examples_.size() > 1 || cul_de_sac_city(ex().dead_end_share)) return;
+    if (crop_margin_ > 0.0 && ex().inside[copied] <= crop_margin_) return;
+    const std::uint32_t e = corner_edge(v, first);
+    if (e == UINT32_MAX) return;
+    if (output_order() >= example_order()) {
+      ++stats_.front_corners_kept;
+      return;
+    }
+    const std::uint32_t in = nodes_[v].edges[0] == e ? nodes_[v].edges[1] : nodes_[v].edges[0];
+    const OEdge turned = edges_[e];
+    const double length = distance(nodes_[turned.a].p, nodes_[turned.b].p);
+    const Point d = nodes_[v].p - other_end(in, v);
+    take_back(v, e);
+    ++stats_.front_corners_taken_back;
+    const auto again = static_cast<std::uint32_t>(edges_.size());
+    propose(v, std::atan2(d.y, d.x), length, false, turned.level, turned.example_id, turned.source);
+    const std::uint32_t e2 = corner_edge(v, again);
+    if (e2 != UINT32_MAX) take_back(v, e2);
+    if (nodes_[v].edges.size() == 1) {
+      front_retry_ = true;
+    } else {
+      ++stats_.front_corners_straight;
+    }
   }
 
   // Teng & Bidarra's parametric growth at v: see ParametricParams. A node that already has its
@@ -4341,6 +4483,10 @@ class Grower {
   ParametricParams shape_;
   std::vector<std::uint8_t> target_degree_;  // parametric: the degree a node grows to (0: not drawn yet)
   bool done_ = false;  // the step finished its node on purpose
+  bool front_retry_ = false;           // straight_front took the step's street back: the front tries again
+  std::vector<double> example_order_;  // per example: its φ (example_order), NaN until asked
+  double output_order_ = NAN;          // the output's φ (output_order) when it had output_order_edges_ edges
+  std::size_t output_order_edges_ = 0;
   std::vector<double> frames_;  // per node: θ of the match that made it; NaN: none (seeds, existing, splits)
   double step_frame_ = NAN;
   double crop_margin_ = 0.0;     // θ of the current step, inherited by the nodes it makes

@@ -356,6 +356,10 @@ struct GrowStats {
   std::size_t fronts_failed = 0;       // fronts whose every draw failed
   std::size_t fronts_ahead_node = 0, fronts_ahead_split = 0, fronts_near_node = 0;  // closed by close_front
   std::size_t fronts_dead_end = 0, fronts_pruned = 0;  // left a dead end, or cut back
+  // Fronts whose step kept only a turning street (a corner, turning by more than 45°): kept while the
+  // output was as ordered as its example, taken back (then a street straight on made, or the front
+  // tried again). straight_front in grow_example.cpp.
+  std::size_t front_corners_kept = 0, front_corners_taken_back = 0, front_corners_straight = 0;
   // Steps that copied an example node of degree k (0-3, 4+) by v's degree after the step (0-3, 4+).
   std::size_t copy_result[5][5] = {};
   // Rejected proposals by reason: angle or length, clipped or steep, stopped in its first half, snap
