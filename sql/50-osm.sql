@@ -305,8 +305,14 @@ BEGIN
       USING ERRCODE = 'invalid_parameter_value',
             HINT = 'Staged geometries need an SRID to be transformed to the model''s (osm2pgsql and ogr2ogr stage in 4326).';
   END IF;
-  -- Into a model without axes, a bulk load: its foreign keys are made again after it.
+  -- Into a model without axes, a bulk load: its foreign keys are made again after it, and its
+  -- insert trigger's recompute (the whole model, as the trigger would have run it) comes after the
+  -- INSERT, in a statement of its own: the INSERT's memory (its transformed rows, the trigger's
+  -- transition table) is freed before the engine runs, and no transition table is kept at all.
   deferred := streetgen._defer_foreign_keys(model);
+  IF deferred IS NOT NULL THEN
+    EXECUTE format('ALTER TABLE %I.axis DISABLE TRIGGER axis_refresh_insert', model);
+  END IF;
   EXECUTE format($q$
     -- MATERIALIZED: the transformed geometry is used four times below; inlined, PostgreSQL
     -- would transform it four times.
@@ -330,6 +336,11 @@ BEGIN
      WHERE NOT ST_IsEmpty(c.geom) AND ST_Length(c.geom) > 0 AND ST_Length(c.geom) < 'Infinity'::double precision
   $q$, model, model_srid, staging);
   GET DIAGNOSTICS loaded = ROW_COUNT;
+  IF deferred IS NOT NULL THEN
+    EXECUTE format('ALTER TABLE %I.axis ENABLE TRIGGER axis_refresh_insert', model);
+    -- (every axis is new: the model had none)
+    EXECUTE format('SELECT streetgen._refresh(%L, (SELECT array_agg(a.id) FROM %I.axis a), ''{}'')', model, model);
+  END IF;
   PERFORM streetgen._restore_foreign_keys(deferred);
   not_driveable := staged - driveable;
   degenerate := driveable - loaded;
