@@ -109,16 +109,26 @@ COMMENT ON FUNCTION streetgen.osm_parse_lanes(text) IS 'Lane count from an OSM l
 -- Is this OSM way a driveable road? Rules: highway class in streetgen.highway_class; not an
 -- area; motor vehicles not forbidden; service roads except parking aisles, parking lots,
 -- emergency access and private ones (the OSMnx "drive_service" rules).
+-- The conditions of osm_is_driveable besides the class, for callers that join highway_class
+-- themselves: one expression without a subquery, so PostgreSQL inlines it (osm_is_driveable's
+-- EXISTS keeps it from being inlined: a call per way, about 10 µs each, most of a load's filter).
+CREATE FUNCTION streetgen._osm_driveable_tags(tags jsonb)
+  RETURNS boolean
+  LANGUAGE sql IMMUTABLE PARALLEL SAFE
+  AS $$
+    SELECT coalesce(tags->>'area', 'no') <> 'yes'
+       AND coalesce(tags->>'motor_vehicle', '') <> 'no'
+       AND coalesce(tags->>'motorcar', '') <> 'no'
+       AND NOT (tags->>'highway' = 'service'
+                AND coalesce(tags->>'service', '') IN ('parking_aisle', 'parking', 'emergency_access', 'private'))
+  $$;
+
 CREATE FUNCTION streetgen.osm_is_driveable(tags jsonb)
   RETURNS boolean
   LANGUAGE sql STABLE PARALLEL SAFE
   AS $$
     SELECT EXISTS (SELECT 1 FROM streetgen.highway_class h WHERE h.highway = tags->>'highway')
-       AND coalesce(tags->>'area', 'no') <> 'yes'
-       AND coalesce(tags->>'motor_vehicle', '') <> 'no'
-       AND coalesce(tags->>'motorcar', '') <> 'no'
-       AND NOT (tags->>'highway' = 'service'
-                AND coalesce(tags->>'service', '') IN ('parking_aisle', 'parking', 'emergency_access', 'private'))
+       AND streetgen._osm_driveable_tags(tags)
   $$;
 COMMENT ON FUNCTION streetgen.osm_is_driveable(jsonb) IS 'True for OSM ways that are driveable roads (see streetgen.highway_class)';
 
@@ -285,16 +295,24 @@ BEGIN
   IF staging IS NULL THEN
     RAISE EXCEPTION 'staging must not be null' USING ERRCODE = 'null_value_not_allowed';
   END IF;
-  EXECUTE format('SELECT count(*), count(*) FILTER (WHERE streetgen.osm_is_driveable(tags)),
-                         count(*) FILTER (WHERE ST_SRID(geom) = 0) FROM %s', staging)
+  -- (osm_is_driveable spelt out: its class test as a join, the rest inlined)
+  EXECUTE format('SELECT count(*), count(*) FILTER (WHERE h.highway IS NOT NULL AND streetgen._osm_driveable_tags(s.tags)),
+                         count(*) FILTER (WHERE ST_SRID(s.geom) = 0)
+                    FROM %s AS s LEFT JOIN streetgen.highway_class AS h ON h.highway = s.tags->>''highway''', staging)
     INTO staged, driveable, without_srid;
   IF without_srid > 0 THEN
     RAISE EXCEPTION 'staging table % has % geometries without SRID', staging, without_srid
       USING ERRCODE = 'invalid_parameter_value',
             HINT = 'Staged geometries need an SRID to be transformed to the model''s (osm2pgsql and ogr2ogr stage in 4326).';
   END IF;
-  -- Into a model without axes, a bulk load: its foreign keys are made again after it.
+  -- Into a model without axes, a bulk load: its foreign keys are made again after it, and its
+  -- insert trigger's recompute (the whole model, as the trigger would have run it) comes after the
+  -- INSERT, in a statement of its own: the INSERT's memory (its transformed rows, the trigger's
+  -- transition table) is freed before the engine runs, and no transition table is kept at all.
   deferred := streetgen._defer_foreign_keys(model);
+  IF deferred IS NOT NULL THEN
+    EXECUTE format('ALTER TABLE %I.axis DISABLE TRIGGER axis_refresh_insert', model);
+  END IF;
   EXECUTE format($q$
     -- MATERIALIZED: the transformed geometry is used four times below; inlined, PostgreSQL
     -- would transform it four times.
@@ -302,7 +320,8 @@ BEGIN
       SELECT s.source, s.tags, ST_Transform(s.geom, %2$s) AS geom, a.*
         FROM %3$s AS s,
              LATERAL streetgen._osm_axis_attributes(s.tags) AS a
-       WHERE streetgen.osm_is_driveable(s.tags)
+       -- (osm_is_driveable without its class test: _osm_axis_attributes joins the class)
+       WHERE streetgen._osm_driveable_tags(s.tags)
          AND ST_GeometryType(s.geom) = 'ST_LineString'
          -- NaN/Inf coordinates and zero-length lines are degenerate; filter them before the
          -- transformation, which would fail on them.
@@ -317,6 +336,11 @@ BEGIN
      WHERE NOT ST_IsEmpty(c.geom) AND ST_Length(c.geom) > 0 AND ST_Length(c.geom) < 'Infinity'::double precision
   $q$, model, model_srid, staging);
   GET DIAGNOSTICS loaded = ROW_COUNT;
+  IF deferred IS NOT NULL THEN
+    EXECUTE format('ALTER TABLE %I.axis ENABLE TRIGGER axis_refresh_insert', model);
+    -- (every axis is new: the model had none)
+    EXECUTE format('SELECT streetgen._refresh(%L, (SELECT array_agg(a.id) FROM %I.axis a), ''{}'')', model, model);
+  END IF;
   PERFORM streetgen._restore_foreign_keys(deferred);
   not_driveable := staged - driveable;
   degenerate := driveable - loaded;

@@ -199,6 +199,14 @@ $$;
 -- neither written nor deleted. Stale rows go first (children, then nodes last, once nothing
 -- refers to them); upserts leave unchanged rows alone; a corner's radius_override is the user's
 -- and is kept.
+--
+-- A whole model into a table that is empty (a bulk load, the first run after create_model) has
+-- nothing to delete or update there: the rows go in by plain INSERT, without the upsert's
+-- speculative insertion and its arbiter index probe, and the table's stale-row DELETE is skipped.
+-- The same rows result (the engine's keys are unique, so an upsert into an empty table only
+-- ever inserts). Recomputes are serialised by _lock_outputs' row lock, so a table found empty
+-- stays empty until this store writes it. INSERTs of a kind the engine did not return (the
+-- details of a surfaces-only model) are skipped too: each would scan the whole work table.
 CREATE FUNCTION streetgen._store(model text, scoped boolean)
   RETURNS void
   LANGUAGE plpgsql VOLATILE
@@ -206,10 +214,20 @@ CREATE FUNCTION streetgen._store(model text, scoped boolean)
   SET jit = off
   -- (_refresh turns them off for its index lookups; these statements join unindexed work tables)
   SET enable_seqscan = on SET enable_hashjoin = on SET enable_mergejoin = on
+  -- (for the ANALYZE at the end: samples of 3,000 rows; the default 30,000 read most of a city's
+  -- tables, and later edits look rows up by key and by box, for which the smaller sample plans
+  -- the same index scans)
+  SET default_statistics_target = 10
   AS $$
 DECLARE
   srid integer := streetgen.model_srid(model);
+  target text;
+  reads text;
   statement text;
+  upsert text;
+  produced text[];          -- the kinds of rows the engine returned (whole model only)
+  was_empty text[] := '{}'; -- the tables that were empty when the store began (whole model only)
+  is_empty boolean;
   node_scope text := CASE WHEN scoped THEN '%s IN (SELECT id FROM pg_temp._sg_scope_nodes)' ELSE 'true OR %s IS NULL' END;
   section_scope text := CASE WHEN scoped
     THEN '(%s, %s) IN (SELECT axis_id, part FROM pg_temp._sg_scope_sections)' ELSE 'true OR (%s, %s) IS NULL' END;
@@ -221,99 +239,162 @@ DECLARE
                      OR %3$s IN (SELECT id FROM pg_temp._sg_scope_nodes) END)'
     ELSE 'true OR (%1$s, %2$s, %3$s) IS NULL' END;
 BEGIN
-  FOREACH statement IN ARRAY ARRAY[
-    $q$DELETE FROM %1$I.corner c WHERE (%3$s) AND NOT EXISTS (
+  IF NOT scoped THEN
+    SELECT array_agg(o.kind) INTO produced FROM (SELECT DISTINCT o.kind FROM pg_temp._streetgen_out o) AS o;
+    FOREACH target IN ARRAY ARRAY['node', 'section', 'lane', 'marking', 'corner', 'intersection', 'sidewalk',
+                                  'crossing', 'issue'] LOOP
+      EXECUTE format('SELECT NOT EXISTS (SELECT 1 FROM %I.%I)', model, target) INTO is_empty;
+      IF is_empty THEN
+        was_empty := was_empty || target;
+      END IF;
+    END LOOP;
+  END IF;
+  -- (target: the table written; reads: the kind of engine rows read, NULL for none; upsert: the
+  -- ON CONFLICT clause of an INSERT, left out when the table was empty)
+  FOR target, reads, statement, upsert IN
+    SELECT * FROM (VALUES
+      ('corner', 'corner',
+       $q$DELETE FROM %1$I.corner c WHERE (%3$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'corner' AND o.node_id = c.node_id
          AND o.axis_id = c.axis_a AND o.part = c.part_a AND o.end_a = c.end_a
          AND o.axis_b = c.axis_b AND o.part_b = c.part_b AND o.end_b = c.end_b)$q$,
-    $q$DELETE FROM %1$I.intersection i WHERE (%4$s) AND NOT EXISTS (
+       NULL),
+      ('intersection', 'intersection',
+       $q$DELETE FROM %1$I.intersection i WHERE (%4$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'intersection' AND o.node_id = i.node_id)$q$,
-    $q$DELETE FROM %1$I.lane s WHERE (%5$s) AND NOT EXISTS (
+       NULL),
+      ('lane', 'lane',
+       $q$DELETE FROM %1$I.lane s WHERE (%5$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'lane' AND o.axis_id = s.axis_id AND o.part = s.part
          AND o.item = s.lane_index)$q$,
-    $q$DELETE FROM %1$I.marking s WHERE (%5$s) AND NOT EXISTS (
+       NULL),
+      ('marking', 'marking',
+       $q$DELETE FROM %1$I.marking s WHERE (%5$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'marking' AND o.axis_id = s.axis_id AND o.part = s.part
          AND o.status = s.kind AND o.item = s.position)$q$,
-    $q$DELETE FROM %1$I.sidewalk s WHERE s.node_id IS NULL AND (%5$s) AND NOT EXISTS (
+       NULL),
+      ('sidewalk', 'sidewalk',
+       $q$DELETE FROM %1$I.sidewalk s WHERE s.node_id IS NULL AND (%5$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'sidewalk' AND o.node_id IS NULL AND o.axis_id = s.axis_id
          AND o.part = s.part AND o.status = s.side)$q$,
-    $q$DELETE FROM %1$I.sidewalk s WHERE s.node_id IS NOT NULL AND (%11$s) AND NOT EXISTS (
+       NULL),
+      ('sidewalk', 'sidewalk',
+       $q$DELETE FROM %1$I.sidewalk s WHERE s.node_id IS NOT NULL AND (%11$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'sidewalk' AND o.node_id = s.node_id AND o.axis_id IS NULL)$q$,
-    $q$DELETE FROM %1$I.crossing s WHERE (%5$s) AND NOT EXISTS (
+       NULL),
+      ('crossing', 'crossing',
+       $q$DELETE FROM %1$I.crossing s WHERE (%5$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'crossing' AND o.axis_id = s.axis_id AND o.part = s.part
          AND o.item = s.position)$q$,
-    $q$DELETE FROM %1$I.section s WHERE (%5$s) AND NOT EXISTS (
+       NULL),
+      ('section', 'section',
+       $q$DELETE FROM %1$I.section s WHERE (%5$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'section' AND o.axis_id = s.axis_id AND o.part = s.part)$q$,
-    $q$INSERT INTO %1$I.node AS t (id, geom, degree, layer, axis_ids)
+       NULL),
+      ('node', 'node',
+       $q$INSERT INTO %1$I.node AS t (id, geom, degree, layer, axis_ids)
     SELECT o.node_id, ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s), o.degree, o.layer, o.axis_ids
-      FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND (%6$s)
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND (%6$s)$q$,
+       $q$
     ON CONFLICT (id) DO UPDATE SET geom = EXCLUDED.geom, degree = EXCLUDED.degree, layer = EXCLUDED.layer,
                                    axis_ids = EXCLUDED.axis_ids
      WHERE (t.geom, t.degree, t.layer, t.axis_ids) IS DISTINCT FROM
-           (EXCLUDED.geom, EXCLUDED.degree, EXCLUDED.layer, EXCLUDED.axis_ids)$q$,
-    $q$INSERT INTO %1$I.section AS t (axis_id, part, from_node, to_node, status, start_border, end_border, centre_line, geom)
+           (EXCLUDED.geom, EXCLUDED.degree, EXCLUDED.layer, EXCLUDED.axis_ids)$q$),
+      ('section', 'section',
+       $q$INSERT INTO %1$I.section AS t (axis_id, part, from_node, to_node, status, start_border, end_border, centre_line, geom)
     SELECT o.axis_id, o.part, o.node_id, o.to_node, o.status, o.start_border, o.end_border,
            ST_SetSRID(ST_GeomFromEWKB(o.geom2), %2$s), ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s)
-      FROM pg_temp._streetgen_out o WHERE o.kind = 'section' AND (%7$s)
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'section' AND (%7$s)$q$,
+       $q$
     ON CONFLICT (axis_id, part) DO UPDATE SET from_node = EXCLUDED.from_node, to_node = EXCLUDED.to_node,
         status = EXCLUDED.status, start_border = EXCLUDED.start_border, end_border = EXCLUDED.end_border,
         centre_line = EXCLUDED.centre_line, geom = EXCLUDED.geom
      WHERE (t.from_node, t.to_node, t.status, t.start_border, t.end_border, t.centre_line, t.geom) IS DISTINCT FROM
            (EXCLUDED.from_node, EXCLUDED.to_node, EXCLUDED.status, EXCLUDED.start_border, EXCLUDED.end_border,
-            EXCLUDED.centre_line, EXCLUDED.geom)$q$,
-    $q$INSERT INTO %1$I.lane AS t (axis_id, part, lane_index, type, direction, width, turn, geom)
+            EXCLUDED.centre_line, EXCLUDED.geom)$q$),
+      ('lane', 'lane',
+       $q$INSERT INTO %1$I.lane AS t (axis_id, part, lane_index, type, direction, width, turn, geom)
     SELECT o.axis_id, o.part, o.item, o.status, o.direction, o.width, o.detail,
            ST_Multi(ST_CollectionExtract(ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s), 3))
-      FROM pg_temp._streetgen_out o WHERE o.kind = 'lane' AND (%7$s)
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'lane' AND (%7$s)$q$,
+       $q$
     ON CONFLICT (axis_id, part, lane_index) DO UPDATE SET type = EXCLUDED.type, direction = EXCLUDED.direction,
         width = EXCLUDED.width, turn = EXCLUDED.turn, geom = EXCLUDED.geom
      WHERE (t.type, t.direction, t.width, t.turn, t.geom) IS DISTINCT FROM
-           (EXCLUDED.type, EXCLUDED.direction, EXCLUDED.width, EXCLUDED.turn, EXCLUDED.geom)$q$,
-    $q$INSERT INTO %1$I.marking AS t (axis_id, part, kind, position, style, geom)
+           (EXCLUDED.type, EXCLUDED.direction, EXCLUDED.width, EXCLUDED.turn, EXCLUDED.geom)$q$),
+      ('marking', 'marking',
+       $q$INSERT INTO %1$I.marking AS t (axis_id, part, kind, position, style, geom)
     SELECT o.axis_id, o.part, o.status, o.item, o.detail,
            ST_Multi(ST_CollectionExtract(ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s), 2))
-      FROM pg_temp._streetgen_out o WHERE o.kind = 'marking' AND (%7$s)
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'marking' AND (%7$s)$q$,
+       $q$
     ON CONFLICT (axis_id, part, kind, position) DO UPDATE SET style = EXCLUDED.style, geom = EXCLUDED.geom
-     WHERE (t.style, t.geom) IS DISTINCT FROM (EXCLUDED.style, EXCLUDED.geom)$q$,
-    $q$INSERT INTO %1$I.corner AS t (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b, status, radius_wanted, radius,
+     WHERE (t.style, t.geom) IS DISTINCT FROM (EXCLUDED.style, EXCLUDED.geom)$q$),
+      ('corner', 'corner',
+       $q$INSERT INTO %1$I.corner AS t (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b, status, radius_wanted, radius,
                                  centre, arc, arc_segmentized)
     SELECT o.node_id, o.axis_id, o.part, o.end_a, o.axis_b, o.part_b, o.end_b, o.status, o.radius_wanted, o.radius,
            ST_SetSRID(ST_GeomFromEWKB(o.geom3), %2$s), ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s),
            ST_SetSRID(ST_GeomFromEWKB(o.geom2), %2$s)
-      FROM pg_temp._streetgen_out o WHERE o.kind = 'corner' AND (%6$s)
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'corner' AND (%6$s)$q$,
+       $q$
     ON CONFLICT (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b) DO UPDATE SET status = EXCLUDED.status,
         radius_wanted = EXCLUDED.radius_wanted, radius = EXCLUDED.radius, centre = EXCLUDED.centre, arc = EXCLUDED.arc,
         arc_segmentized = EXCLUDED.arc_segmentized
      WHERE (t.status, t.radius_wanted, t.radius, t.centre, t.arc, t.arc_segmentized) IS DISTINCT FROM
-           (EXCLUDED.status, EXCLUDED.radius_wanted, EXCLUDED.radius, EXCLUDED.centre, EXCLUDED.arc, EXCLUDED.arc_segmentized)$q$,
-    $q$INSERT INTO %1$I.intersection AS t (node_id, status, axis_ids, geom)
+           (EXCLUDED.status, EXCLUDED.radius_wanted, EXCLUDED.radius, EXCLUDED.centre, EXCLUDED.arc, EXCLUDED.arc_segmentized)$q$),
+      ('intersection', 'intersection',
+       $q$INSERT INTO %1$I.intersection AS t (node_id, status, axis_ids, geom)
     SELECT o.node_id, o.status, n.axis_ids, ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s)
       FROM pg_temp._streetgen_out o
       JOIN pg_temp._streetgen_out n ON n.kind = 'node' AND n.node_id = o.node_id
-     WHERE o.kind = 'intersection' AND (%6$s)
+     WHERE o.kind = 'intersection' AND (%6$s)$q$,
+       $q$
     ON CONFLICT (node_id) DO UPDATE SET status = EXCLUDED.status, axis_ids = EXCLUDED.axis_ids, geom = EXCLUDED.geom
-     WHERE (t.status, t.axis_ids, t.geom) IS DISTINCT FROM (EXCLUDED.status, EXCLUDED.axis_ids, EXCLUDED.geom)$q$,
-    $q$INSERT INTO %1$I.sidewalk AS t (axis_id, part, side, width, geom)
+     WHERE (t.status, t.axis_ids, t.geom) IS DISTINCT FROM (EXCLUDED.status, EXCLUDED.axis_ids, EXCLUDED.geom)$q$),
+      ('sidewalk', 'sidewalk',
+       $q$INSERT INTO %1$I.sidewalk AS t (axis_id, part, side, width, geom)
     SELECT o.axis_id, o.part, o.status, o.width, ST_Multi(ST_CollectionExtract(ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s), 3))
-      FROM pg_temp._streetgen_out o WHERE o.kind = 'sidewalk' AND o.node_id IS NULL AND (%7$s)
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'sidewalk' AND o.node_id IS NULL AND (%7$s)$q$,
+       $q$
     ON CONFLICT (axis_id, part, side) WHERE node_id IS NULL DO UPDATE SET width = EXCLUDED.width, geom = EXCLUDED.geom
-     WHERE (t.width, t.geom) IS DISTINCT FROM (EXCLUDED.width, EXCLUDED.geom)$q$,
-    $q$INSERT INTO %1$I.sidewalk AS t (node_id, side, width, geom)
+     WHERE (t.width, t.geom) IS DISTINCT FROM (EXCLUDED.width, EXCLUDED.geom)$q$),
+      ('sidewalk', 'sidewalk',
+       $q$INSERT INTO %1$I.sidewalk AS t (node_id, side, width, geom)
     SELECT o.node_id, o.status, o.width, ST_Multi(ST_CollectionExtract(ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s), 3))
-      FROM pg_temp._streetgen_out o WHERE o.kind = 'sidewalk' AND o.axis_id IS NULL AND (%6$s)
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'sidewalk' AND o.axis_id IS NULL AND (%6$s)$q$,
+       $q$
     ON CONFLICT (node_id) WHERE node_id IS NOT NULL DO UPDATE SET width = EXCLUDED.width, geom = EXCLUDED.geom
-     WHERE (t.width, t.geom) IS DISTINCT FROM (EXCLUDED.width, EXCLUDED.geom)$q$,
-    $q$INSERT INTO %1$I.crossing AS t (axis_id, part, position, node_id, width, geom)
+     WHERE (t.width, t.geom) IS DISTINCT FROM (EXCLUDED.width, EXCLUDED.geom)$q$),
+      ('crossing', 'crossing',
+       $q$INSERT INTO %1$I.crossing AS t (axis_id, part, position, node_id, width, geom)
     SELECT o.axis_id, o.part, o.item, o.node_id, o.width, ST_Multi(ST_CollectionExtract(ST_SetSRID(ST_GeomFromEWKB(o.geom), %2$s), 3))
-      FROM pg_temp._streetgen_out o WHERE o.kind = 'crossing' AND (%7$s)
+      FROM pg_temp._streetgen_out o WHERE o.kind = 'crossing' AND (%7$s)$q$,
+       $q$
     ON CONFLICT (axis_id, part, position) DO UPDATE SET node_id = EXCLUDED.node_id, width = EXCLUDED.width, geom = EXCLUDED.geom
-     WHERE (t.node_id, t.width, t.geom) IS DISTINCT FROM (EXCLUDED.node_id, EXCLUDED.width, EXCLUDED.geom)$q$,
-    $q$DELETE FROM %1$I.node t WHERE (%8$s) AND NOT EXISTS (
+     WHERE (t.node_id, t.width, t.geom) IS DISTINCT FROM (EXCLUDED.node_id, EXCLUDED.width, EXCLUDED.geom)$q$),
+      ('node', 'node',
+       $q$DELETE FROM %1$I.node t WHERE (%8$s) AND NOT EXISTS (
       SELECT 1 FROM pg_temp._streetgen_out o WHERE o.kind = 'node' AND o.node_id = t.id)$q$,
-    $q$DELETE FROM %1$I.issue i WHERE (%9$s)$q$,
-    $q$INSERT INTO %1$I.issue (axis_id, part, kind, detail, node_id)
-    SELECT o.axis_id, o.part, o.status, o.detail, o.node_id FROM pg_temp._streetgen_out o WHERE o.kind = 'issue' AND (%10$s)$q$
-  ] LOOP
+       NULL),
+      ('issue', NULL,
+       $q$DELETE FROM %1$I.issue i WHERE (%9$s)$q$,
+       NULL),
+      ('issue', 'issue',
+       $q$INSERT INTO %1$I.issue (axis_id, part, kind, detail, node_id)
+    SELECT o.axis_id, o.part, o.status, o.detail, o.node_id FROM pg_temp._streetgen_out o WHERE o.kind = 'issue' AND (%10$s)$q$,
+       NULL)
+    ) AS s (target, reads, statement, upsert)
+  LOOP
+    IF NOT scoped AND target = ANY (was_empty) AND statement LIKE 'DELETE%' THEN
+      CONTINUE;
+    END IF;
+    IF NOT scoped AND statement LIKE 'INSERT%' AND NOT reads = ANY (coalesce(produced, '{}')) THEN
+      CONTINUE;
+    END IF;
+    IF upsert IS NOT NULL AND NOT (NOT scoped AND target = ANY (was_empty)) THEN
+      statement := statement || upsert;
+    END IF;
     EXECUTE format(statement, model, srid,
                    format(node_scope, 'c.node_id'), format(node_scope, 'i.node_id'),
                    format(section_scope, 's.axis_id', 's.part'), format(node_scope, 'o.node_id'),

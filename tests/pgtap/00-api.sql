@@ -38,6 +38,7 @@ SELECT set_eq(
     ('streetgen.osm_parse_lanes(text)', 'smallint', 'i', false),
     ('streetgen.osm_is_driveable(jsonb)', 'boolean', 's', false),
     ('streetgen.osm_axis_attributes(jsonb)', 'record', 's', false),
+    ('streetgen._osm_driveable_tags(jsonb)', 'boolean', 'i', false),
     ('streetgen._osm_axis_attributes(jsonb)', 'TABLE(roadway_width double precision, lanes smallint, speed_kmh double precision, road_class text, oneway boolean, reverse_geometry boolean, layer smallint, structure text, sidewalk_width double precision, estimated text[])', 's', false),
     ('streetgen.utm_srid(geometry)', 'integer', 's', false),
     ('streetgen._streetgen_network_stats(bytea[],double precision,bytea,boolean,boolean,boolean,integer[])', 'streetgen.network_metrics', 'i', false),
@@ -172,7 +173,7 @@ SELECT is_empty(
        AND signature NOT IN ('streetgen.osm_parse_length(text)', 'streetgen.osm_parse_speed(text)',
                              'streetgen._osm_speed_of(text)', 'streetgen._osm_speed_in_range(double precision)',
                              'streetgen.osm_parse_lanes(text)', 'streetgen.osm_is_driveable(jsonb)',
-                             'streetgen._osm_axis_attributes(jsonb)', 'streetgen._lane_tags(jsonb)')
+                             'streetgen._osm_driveable_tags(jsonb)', 'streetgen._osm_axis_attributes(jsonb)', 'streetgen._lane_tags(jsonb)')
        AND NOT EXISTS (SELECT 1 FROM unnest(config) c
                         WHERE c LIKE 'search_path=pg_catalog, streetgen, %, pg_temp')$$,
   'every other SQL-level function pins search_path to pg_catalog, streetgen, postgis, pg_temp');
@@ -181,7 +182,7 @@ SELECT is_empty(
      WHERE signature IN ('streetgen.osm_parse_length(text)', 'streetgen.osm_parse_speed(text)',
                          'streetgen._osm_speed_of(text)', 'streetgen._osm_speed_in_range(double precision)',
                          'streetgen.osm_parse_lanes(text)', 'streetgen.osm_is_driveable(jsonb)',
-                         'streetgen._osm_axis_attributes(jsonb)', 'streetgen._lane_tags(jsonb)')
+                         'streetgen._osm_driveable_tags(jsonb)', 'streetgen._osm_axis_attributes(jsonb)', 'streetgen._lane_tags(jsonb)')
        AND (language <> 'sql' OR config IS NOT NULL)$$,
   'the inlinable mapping functions are plain SQL without a SET clause');
 -- And PostgreSQL does inline the tag parsers: the plan of a query calling them names none of
@@ -207,6 +208,19 @@ SELECT matches(pg_temp.plan_of($$SELECT streetgen.osm_parse_speed(v) FROM tag_va
 -- call _lane_tags_listed (a query each: 28 us a way, on every way before).
 SELECT matches(pg_temp.plan_of($$SELECT streetgen._lane_tags(v::jsonb) FROM tag_values$$),
                'CASE WHEN .*~.*_lane_tags_listed', '_lane_tags is inlined: its text test decides whether to list the tags');
+-- The loader's driveable filter: _osm_driveable_tags is inlined (osm_is_driveable's EXISTS
+-- cannot be: a function call per way), and with the class join it says what osm_is_driveable says.
+SELECT doesnt_match(pg_temp.plan_of($$SELECT streetgen._osm_driveable_tags(v::jsonb) FROM tag_values$$),
+                    '_osm_driveable_tags', '_osm_driveable_tags is inlined into the query that calls it');
+SELECT is_empty(
+  $$SELECT t FROM (VALUES ('{"highway": "residential"}'::jsonb), ('{"highway": "service", "service": "alley"}'),
+                          ('{"highway": "service", "service": "parking_aisle"}'), ('{"highway": "service"}'),
+                          ('{"highway": "footway"}'), ('{"highway": "pedestrian", "area": "yes"}'),
+                          ('{"highway": "primary", "area": "no"}'), ('{"highway": "residential", "motor_vehicle": "no"}'),
+                          ('{"highway": "residential", "motorcar": "no"}'), ('{"building": "yes"}'), ('{}')) AS v(t)
+              LEFT JOIN streetgen.highway_class h ON h.highway = t->>'highway'
+     WHERE (h.highway IS NOT NULL AND streetgen._osm_driveable_tags(t)) IS DISTINCT FROM streetgen.osm_is_driveable(t)$$,
+  'the class join and _osm_driveable_tags say what osm_is_driveable says');
 SELECT is_empty(
   $$SELECT t FROM (VALUES ('{"lanes": "2"}'::jsonb), ('{"parking:left": "lane", "highway": "residential"}'),
                           ('{"turn:lanes:forward": "left|through"}'), ('{"cycleway": "lane"}'), ('{"busway:right": "lane"}'),

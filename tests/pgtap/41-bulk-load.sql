@@ -46,6 +46,14 @@ SELECT set_eq($$SELECT * FROM pg_temp.relations('bulk')$$, $$SELECT * FROM pg_te
 SELECT cmp_ok((SELECT count(*) FROM bulk.section), '>=', 24::bigint, 'sections stored');
 SELECT cmp_ok((SELECT count(*) FROM bulk.corner), '>=', 36::bigint, 'corners stored');
 SELECT is_empty($$SELECT * FROM streetgen.outdated('bulk')$$, 'the bulk-loaded outputs equal a full recompute');
+-- (the bulk load runs the insert trigger's recompute itself, once, after the INSERT)
+SELECT is((SELECT string_agg(t.tgname || ' ' || t.tgenabled::text, ', ' ORDER BY t.tgname)
+             FROM pg_trigger t WHERE t.tgrelid = 'bulk.axis'::regclass AND NOT t.tgisinternal),
+          (SELECT string_agg(t.tgname || ' ' || t.tgenabled::text, ', ' ORDER BY t.tgname)
+             FROM pg_trigger t WHERE t.tgrelid = 'reference.axis'::regclass AND NOT t.tgisinternal),
+          'after the bulk load the axis triggers are enabled, as in a new model');
+SELECT is((SELECT refreshes FROM bulk.refresh_state), (SELECT refreshes FROM reference.refresh_state) + 1,
+          'and the load recomputed the model once');
 SELECT throws_ok($$INSERT INTO bulk.corner (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b, status)
                    SELECT node_id, 999999, part_a, end_a, axis_b, part_b, end_b, status FROM bulk.corner LIMIT 1$$,
                  '23503', NULL, 'the foreign keys hold again: a corner of an unknown axis is refused');
@@ -76,6 +84,11 @@ SELECT throws_ok($$SELECT * FROM streetgen.load_osm_ways('bulk_fail', 'bad_stagi
 SELECT set_eq($$SELECT * FROM pg_temp.relations('bulk_fail')$$, $$SELECT * FROM pg_temp.relations('reference')$$,
               'and leaves every relation of the model in place');
 SELECT is((SELECT count(*) FROM bulk_fail.axis), 0::bigint, 'and no axis');
+SELECT is((SELECT string_agg(t.tgname || ' ' || t.tgenabled::text, ', ' ORDER BY t.tgname)
+             FROM pg_trigger t WHERE t.tgrelid = 'bulk_fail.axis'::regclass AND NOT t.tgisinternal),
+          (SELECT string_agg(t.tgname || ' ' || t.tgenabled::text, ', ' ORDER BY t.tgname)
+             FROM pg_trigger t WHERE t.tgrelid = 'reference.axis'::regclass AND NOT t.tgisinternal),
+          'and its axis triggers enabled');
 
 SELECT * FROM finish();
 ROLLBACK;

@@ -15,8 +15,11 @@
 
 namespace streetgen::core {
 
-void for_each_overlapping_pair(const std::vector<Box>& boxes, const std::function<void(std::size_t, std::size_t)>& visit) {
-  using CgalBox = CGAL::Box_intersection_d::Box_with_info_d<double, 2, std::size_t>;
+namespace {
+
+using CgalBox = CGAL::Box_intersection_d::Box_with_info_d<double, 2, std::size_t>;
+
+std::vector<CgalBox> cgal_boxes_of(const std::vector<Box>& boxes) {
   std::vector<CgalBox> cgal_boxes;
   cgal_boxes.reserve(boxes.size());
   for (std::size_t i = 0; i < boxes.size(); ++i) {
@@ -25,6 +28,13 @@ void for_each_overlapping_pair(const std::vector<Box>& boxes, const std::functio
     double hi[2] = {b.xmax, b.ymax};
     cgal_boxes.emplace_back(lo, hi, i);
   }
+  return cgal_boxes;
+}
+
+}  // namespace
+
+void for_each_overlapping_pair(const std::vector<Box>& boxes, const std::function<void(std::size_t, std::size_t)>& visit) {
+  std::vector<CgalBox> cgal_boxes = cgal_boxes_of(boxes);
   InterruptPoller poller(4096);
   CGAL::box_self_intersection_d(
       cgal_boxes.begin(), cgal_boxes.end(),
@@ -35,6 +45,21 @@ void for_each_overlapping_pair(const std::vector<Box>& boxes, const std::functio
         visit(std::min(i, j), std::max(i, j));
       },
       std::ptrdiff_t(10), CGAL::Box_intersection_d::CLOSED);
+}
+
+void for_each_overlapping_cross_pair(const std::vector<Box>& a, const std::vector<Box>& b,
+                                     const std::function<void(std::size_t, std::size_t)>& visit) {
+  std::vector<CgalBox> cgal_a = cgal_boxes_of(a);
+  std::vector<CgalBox> cgal_b = cgal_boxes_of(b);
+  InterruptPoller poller(4096);
+  // (BIPARTITE: each pair of one box from each range once, the first argument from the first range)
+  CGAL::box_intersection_d(
+      cgal_a.begin(), cgal_a.end(), cgal_b.begin(), cgal_b.end(),
+      [&](const CgalBox& x, const CgalBox& y) {
+        poller.tick();
+        visit(x.info(), y.info());
+      },
+      std::ptrdiff_t(10), CGAL::Box_intersection_d::CLOSED, CGAL::Box_intersection_d::BIPARTITE);
 }
 
 std::vector<std::size_t> hilbert_order(const std::vector<Box>& boxes) {

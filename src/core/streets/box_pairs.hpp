@@ -17,6 +17,12 @@ struct Box {
 // Calls visit(i, j) once for each pair i < j of boxes that overlap (closed boxes).
 void for_each_overlapping_pair(const std::vector<Box>& boxes, const std::function<void(std::size_t, std::size_t)>& visit);
 
+// Calls visit(i, j) once for each box i of `a` and box j of `b` that overlap (closed boxes): the
+// pairs between two sets only, without enumerating the pairs within either (CGAL's bipartite
+// box_intersection_d). The order of the calls is unspecified.
+void for_each_overlapping_cross_pair(const std::vector<Box>& a, const std::vector<Box>& b,
+                                     const std::function<void(std::size_t, std::size_t)>& visit);
+
 // The indices of `boxes` in the order a Hilbert curve visits their centres (median policy:
 // deterministic), so that boxes near each other mostly come near each other in the order.
 std::vector<std::size_t> hilbert_order(const std::vector<Box>& boxes);

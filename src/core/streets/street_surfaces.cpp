@@ -917,32 +917,34 @@ class SurfaceBuilder {
   void separate_overlapping_junctions(InterruptPoller& poller) {
     const std::size_t junctions = result_.intersections.size();
     std::vector<std::size_t> sections;  // indices into result_.sections, with a surface
-    std::vector<Box> boxes;             // junctions first, then sections
+    std::vector<Box> junction_boxes;
+    std::vector<Box> section_boxes;     // of `sections`
     for (std::size_t j = 0; j < junctions; ++j) {
       Box b{};
       envelope_box(ctx_, result_.intersections[j].surface.get(), b);
-      boxes.push_back(b);
+      junction_boxes.push_back(b);
     }
     for (std::size_t i = 0; i < result_.sections.size(); ++i) {
       if (!result_.sections[i].surface) continue;
       Box b{};
       envelope_box(ctx_, result_.sections[i].surface.get(), b);
       sections.push_back(i);
-      boxes.push_back(b);
+      section_boxes.push_back(b);
     }
-    std::map<std::size_t, std::vector<std::size_t>> covering;  // junction -> sections over it (result_ indices)
+    // Junction against junction and junction against section only: the section pairs, most of
+    // the boxes that meet (a street's sections meet end to end), are not enumerated at all.
     std::vector<std::pair<std::size_t, std::size_t>> junction_pairs;
-    for_each_overlapping_pair(boxes, [&](std::size_t x, std::size_t y) {
-      if (x >= junctions) return;  // (x < y: a junction pairs with a later junction or a section)
-      int layer = topo_.nodes[junction_node_[x]].layer;
-      if (y < junctions) {
-        if (topo_.nodes[junction_node_[y]].layer == layer) junction_pairs.emplace_back(x, y);
-        return;
-      }
-      std::size_t i = sections[y - junctions];
-      if (axis_layer_.at(result_.sections[i].axis_id) != layer) return;
+    for_each_overlapping_pair(junction_boxes, [&](std::size_t x, std::size_t y) {
+      if (topo_.nodes[junction_node_[x]].layer == topo_.nodes[junction_node_[y]].layer) junction_pairs.emplace_back(x, y);
+    });
+    std::map<std::size_t, std::vector<std::size_t>> covering;  // junction -> sections over it (result_ indices)
+    for_each_overlapping_cross_pair(junction_boxes, section_boxes, [&](std::size_t x, std::size_t k) {
+      std::size_t i = sections[k];
+      if (axis_layer_.at(result_.sections[i].axis_id) != topo_.nodes[junction_node_[x]].layer) return;
       covering[x].push_back(i);
     });
+    // (in index order, as the callbacks come in no set order: the bound below sums over them)
+    for (auto& [j, over] : covering) std::sort(over.begin(), over.end());
     // The junctions less the sections over them. Most sections whose box meets a junction's only
     // touch it along a border line: an exact test on their rings drops those before the overlay.
     std::vector<GeomPtr> cut(junctions);
