@@ -186,6 +186,9 @@ if [ "$peers" = 1 ] && [[ " $datasets " == *" osm "* ]]; then
   say "generate s column above times a second, whole-model recompute, not part of the job)."
   say ""
   bash "$repo/bench/peers/install-peers.sh" >/dev/null 2>&1
+  # netconvert slows down two to three times more than streetgen on a busy machine (README,
+  # perf20: Baltimore 0.39 under load 3.3, 0.59-0.62 quiet), so the load goes beside the ratios
+  load_before=$(cut -d' ' -f1 /proc/loadavg)
   # memory: both without mapped files or shared memory (the backend: its RssAnon sampled by
   # bench/anon_peak.sh; netconvert: VmHWM - RssFile - RssShmem, read by an exit hook), and
   # netconvert's peak RSS with its libraries (/usr/bin/time)
@@ -209,6 +212,9 @@ if [ "$peers" = 1 ] && [[ " $datasets " == *" osm "* ]]; then
     ratio=$(ratio_to_peers "$ours" "${nc:-}" "${o2:-}")
     say "| $f | $ours | ${nc:-failed} | ${o2:-failed} | $ratio | $(( ${peak_kb[$n]:-0} / 1024 )) | $(mb "$nc_priv") | $(mb "$nc_kb") |"
   done
+  say ""
+  say "Machine load (1-minute average) $load_before before the peers, $(cut -d' ' -f1 /proc/loadavg) after, $(nproc) cores."
+  say "Above about 1, the peers slow down more than streetgen and the ratios flatter streetgen: compare on a quiet machine."
 fi
 # Street surfaces only (settings.details false): the peers' files imported again with
 # `streetgen-import -c details=false`, and Paris loaded into a model with it, each then generated
