@@ -295,16 +295,28 @@ TEST(PatchDangling, ArterialTeesContinueToTheStreetAhead) {
   EXPECT_EQ(crossings_without_node(on), 0);
 }
 
-// The uneven grid of local streets grown west of a wall across the region (so its network is
-// sparser than the example per area of the region shrunk by 50 m, as new-york's growth is): with
-// continue_local_tees a local T with no T facing it goes on to the node or street ahead too: more
-// crossings, fewer T's, no more than the example's share of crossings, planar, deterministic.
-TEST(PatchDangling, LocalTeesContinueToTheNodeOrStreetAhead) {
-  Fixture f;
+namespace {
+
+// The uneven grid of local streets grown from (-800, 0), west of a wall across the region, so
+// that its network is sparser than the example per area of the region shrunk by 50 m (as
+// new-york's growth is). `wall` holds the obstacle the input points to.
+GrowInput walled_uneven_grid(Fixture& f, GeomPtr& wall) {
   GrowInput in = f.input(uneven_grid());
-  GeomPtr wall = wkt(f.geos, "POLYGON((-60 -1600, 60 -1600, 60 1600, -60 1600, -60 -1600))");
+  wall = wkt(f.geos, "POLYGON((-60 -1600, 60 -1600, 60 1600, -60 1600, -60 -1600))");
   in.obstacles = {wall.get()};
   in.seeds = {{-800.0, 0.0}};
+  return in;
+}
+
+}  // namespace
+
+// The walled uneven grid: with continue_local_tees a local T with no T facing it goes on to the
+// node or street ahead too: more crossings, fewer T's, no more than the example's share of
+// crossings, planar, deterministic.
+TEST(PatchDangling, LocalTeesContinueToTheNodeOrStreetAhead) {
+  Fixture f;
+  GeomPtr wall;
+  GrowInput in = walled_uneven_grid(f, wall);
   GrowParams p = Fixture::patch_growth();
   p.patch.avoid_corners = false;  // the corner cut after the joins may take a street off a crossing
   auto [off, on] = f.grow_off_on(in, &PatchGrowParams::continue_local_tees, p);
@@ -335,10 +347,8 @@ TEST(PatchDangling, LocalTeesContinueToTheNodeOrStreetAhead) {
 // those that would make a junction (a split street, a node of degree 2), not those onto a T.
 TEST(PatchDangling, LocalTeesStopWhereTheNetworkIsDenserThanTheExample) {
   Fixture f;
-  GrowInput in = f.input(uneven_grid());
-  GeomPtr wall = wkt(f.geos, "POLYGON((-60 -1600, 60 -1600, 60 1600, -60 1600, -60 -1600))");
-  in.obstacles = {wall.get()};
-  in.seeds = {{-800.0, 0.0}};
+  GeomPtr wall;
+  GrowInput in = walled_uneven_grid(f, wall);
   GrowParams p = Fixture::patch_growth();
   p.patch.avoid_corners = false;
 
