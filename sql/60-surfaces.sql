@@ -386,13 +386,14 @@ BEGIN
        NULL)
     ) AS s (target, reads, statement, upsert)
   LOOP
-    IF NOT scoped AND target = ANY (was_empty) AND statement LIKE 'DELETE%' THEN
+    -- (was_empty is filled for a whole model only)
+    IF target = ANY (was_empty) AND statement LIKE 'DELETE%' THEN
       CONTINUE;
     END IF;
     IF NOT scoped AND statement LIKE 'INSERT%' AND NOT reads = ANY (coalesce(produced, '{}')) THEN
       CONTINUE;
     END IF;
-    IF upsert IS NOT NULL AND NOT (NOT scoped AND target = ANY (was_empty)) THEN
+    IF upsert IS NOT NULL AND NOT target = ANY (was_empty) THEN
       statement := statement || upsert;
     END IF;
     EXECUTE format(statement, model, srid,
