@@ -22,6 +22,7 @@
 #include "core/geometry_checks.hpp"
 #include "core/growth/terrain.hpp"
 #include "core/interrupts.hpp"
+#include "core/metrics/network_stats.hpp"
 #include "core/union_find.hpp"
 
 namespace streetgen::core {
@@ -1623,13 +1624,10 @@ class Grower {
   // counted both ways; φ = 1 - ((H - ln 4) / (ln 36 - ln 4))². Whole graphs, no window.
   static double orientation_order_of(const std::vector<Point>& at,
                                      const std::vector<std::vector<std::uint32_t>>& next) {
-    std::vector<double> bins(36, 0.0);
+    std::vector<double> bins(kOrientationBins, 0.0);
     std::unordered_set<std::uint64_t> done;
     auto key = [](std::uint32_t a, std::uint32_t b) {
       return static_cast<std::uint64_t>(std::min(a, b)) << 32 | std::max(a, b);
-    };
-    auto bin = [](double bearing) {
-      return std::clamp(static_cast<int>(std::floor(std::fmod(bearing + 5.0, 360.0) / 10.0)), 0, 35);
     };
     for (std::uint32_t a = 0; a < at.size(); ++a) {
       if (next[a].empty() || next[a].size() == 2) continue;
@@ -1647,8 +1645,8 @@ class Grower {
         if (cur == a) continue;  // a loop: no chord
         const double bearing =
             std::fmod(std::atan2(at[cur].x - at[a].x, at[cur].y - at[a].y) * 180.0 / kPi + 360.0, 360.0);
-        bins[bin(bearing)] += length;
-        bins[bin(std::fmod(bearing + 180.0, 360.0))] += length;
+        bins[orientation_bin(bearing)] += length;
+        bins[orientation_bin(std::fmod(bearing + 180.0, 360.0))] += length;
       }
     }
     double weight = 0.0, entropy = 0.0;
@@ -1657,8 +1655,7 @@ class Grower {
     for (double w : bins) {
       if (w > 0.0) entropy -= (w / weight) * std::log(w / weight);
     }
-    const double h_max = std::log(36.0), h_grid = std::log(4.0);
-    return 1.0 - std::pow((entropy - h_grid) / (h_max - h_grid), 2.0);
+    return orientation_order_of_entropy(entropy);
   }
   double example_order() {
     if (example_order_.size() != examples_.size()) example_order_.assign(examples_.size(), NAN);

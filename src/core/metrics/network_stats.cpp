@@ -105,12 +105,6 @@ bool predicate(GeosContext& geos, char result, const char* operation) {
 }
 
 // Bin of a bearing (degrees in [0, 360)) in OSMnx's layout: bin i covers [10 i - 5, 10 i + 5).
-int orientation_bin(double bearing) {
-  double shifted = std::fmod(bearing + 180.0 / kOrientationBins, 360.0);
-  int bin = static_cast<int>(std::floor(shifted / (360.0 / kOrientationBins)));
-  return std::clamp(bin, 0, kOrientationBins - 1);
-}
-
 void summarise(std::vector<double> values, NetworkStats& s, Metric p25, Metric median, Metric p75) {
   std::sort(values.begin(), values.end());
   s[p25] = quantile_sorted(values, 0.25);
@@ -168,6 +162,17 @@ void compute_blocks(GeosContext& geos, const NetworkGraph& graph, const GEOSPrep
 }
 
 }  // namespace
+
+int orientation_bin(double bearing) {
+  double shifted = std::fmod(bearing + 180.0 / kOrientationBins, 360.0);
+  int bin = static_cast<int>(std::floor(shifted / (360.0 / kOrientationBins)));
+  return std::clamp(bin, 0, kOrientationBins - 1);
+}
+
+double orientation_order_of_entropy(double entropy) {
+  const double h_max = std::log(static_cast<double>(kOrientationBins)), h_grid = std::log(4.0);
+  return 1.0 - std::pow((entropy - h_grid) / (h_max - h_grid), 2.0);
+}
 
 const std::array<MetricInfo, kMetricCount>& metric_table() { return kTable; }
 
@@ -319,9 +324,8 @@ NetworkStats network_stats(GeosContext& geos, const NetworkGraph& graph, const N
       s.orientation_histogram[i] = p;
       if (p > 0.0) entropy -= p * std::log(p);
     }
-    const double h_max = std::log(static_cast<double>(kOrientationBins)), h_grid = std::log(4.0);
     s[Metric::orientation_entropy] = entropy;
-    s[Metric::orientation_order] = 1.0 - std::pow((entropy - h_grid) / (h_max - h_grid), 2.0);
+    s[Metric::orientation_order] = orientation_order_of_entropy(entropy);
   }
 
   if (options.blocks) {

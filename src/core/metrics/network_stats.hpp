@@ -72,6 +72,12 @@ const std::array<MetricInfo, kMetricCount>& metric_table();
 
 constexpr int kOrientationBins = 36;
 
+// The orientation bin of a bearing (degrees clockwise from north, [0, 360)): kOrientationBins bins
+// of 10° centred on 0°, 10°, ... (OSMnx).
+int orientation_bin(double bearing);
+// The orientation order φ of an orientation entropy H: 1 - ((H - ln 4) / (ln 36 - ln 4))² (Boeing 2019).
+double orientation_order_of_entropy(double entropy);
+
 struct NetworkStats {
   std::array<double, kMetricCount> value{};
   std::vector<int> degrees;                   // per node counted (in the window)
