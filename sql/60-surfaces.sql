@@ -146,7 +146,7 @@ CREATE FUNCTION streetgen._compute_model(model text, context bigint[] DEFAULT NU
 DECLARE
   details boolean;
 BEGIN
-  PERFORM streetgen._work_tables();
+  PERFORM streetgen._work_tables(ARRAY['_streetgen_out']);
   TRUNCATE pg_temp._streetgen_out;
   EXECUTE format('SELECT s.details FROM %I.settings s', model) INTO details;
   EXECUTE format($q$
