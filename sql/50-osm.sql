@@ -163,9 +163,12 @@ CREATE FUNCTION streetgen._osm_axis_attributes(tags jsonb)
                   WHEN st.structure = 'tunnel' AND tags->>'tunnel' <> 'building_passage' THEN -1
                   ELSE 0 END)))::smallint,
            st.structure,
-           (SELECT x FROM pg_catalog.unnest(ARRAY[streetgen.osm_parse_length(tags->>'sidewalk:both:width'),
-                                                   streetgen.osm_parse_length(tags->>'sidewalk:width')]) AS x
-             WHERE x > 0 AND x <= 20 LIMIT 1),
+           -- (the subqueries on the tags' values run only for ways that have one of their keys,
+           -- few of them: without one the answer is NULL)
+           CASE WHEN tags ?| ARRAY['sidewalk:both:width', 'sidewalk:width'] THEN
+             (SELECT x FROM pg_catalog.unnest(ARRAY[streetgen.osm_parse_length(tags->>'sidewalk:both:width'),
+                                                     streetgen.osm_parse_length(tags->>'sidewalk:width')]) AS x
+               WHERE x > 0 AND x <= 20 LIMIT 1) END,
            pg_catalog.array_remove(ARRAY[CASE WHEN l.estimated THEN 'lanes' END,
                                          CASE WHEN w.tagged IS NULL THEN 'roadway_width' END,
                                          CASE WHEN sp.tagged IS NULL THEN 'speed_kmh' END], NULL)
@@ -187,18 +190,24 @@ CREATE FUNCTION streetgen._osm_axis_attributes(tags jsonb)
                            lt.tagged IS NULL AS estimated) AS l,
            -- Widths under 2 m or over 60 m on a driveable road are tagging mistakes (a footway
            -- width, the whole corridor): estimated instead.
-           LATERAL (SELECT (SELECT x FROM pg_catalog.unnest(ARRAY[streetgen.osm_parse_length(tags->>'width:carriageway'),
-                                                                   streetgen.osm_parse_length(tags->>'width'),
-                                                                   streetgen.osm_parse_length(tags->>'est_width'),
-                                                                   streetgen.osm_parse_length(tags->>'est:width')])
-                                                   WITH ORDINALITY AS u(x, i)
-                             WHERE x BETWEEN 2 AND 60 ORDER BY i LIMIT 1) AS tagged) AS w,
-           LATERAL (SELECT streetgen._street_parking_widths(
-                             (SELECT pg_catalog.string_agg(t.key || '=' || t.value, E'\n')
-                                FROM pg_catalog.jsonb_each_text(tags) AS t WHERE t.key LIKE 'parking:%')) AS widths) AS pk,
+           LATERAL (SELECT CASE WHEN tags ?| ARRAY['width:carriageway', 'width', 'est_width', 'est:width'] THEN
+                             (SELECT x FROM pg_catalog.unnest(ARRAY[streetgen.osm_parse_length(tags->>'width:carriageway'),
+                                                                     streetgen.osm_parse_length(tags->>'width'),
+                                                                     streetgen.osm_parse_length(tags->>'est_width'),
+                                                                     streetgen.osm_parse_length(tags->>'est:width')])
+                                                     WITH ORDINALITY AS u(x, i)
+                               WHERE x BETWEEN 2 AND 60 ORDER BY i LIMIT 1) END AS tagged) AS w,
+           -- (most ways have no parking:* key: a look at the tags' text first spares them the
+           -- listing of every tag; without one the widths are those of no tags, a constant)
+           LATERAL (SELECT CASE WHEN tags::text LIKE '%"parking:%'
+                                THEN streetgen._street_parking_widths(
+                                       (SELECT pg_catalog.string_agg(t.key || '=' || t.value, E'\n')
+                                          FROM pg_catalog.jsonb_each_text(tags) AS t WHERE t.key LIKE 'parking:%'))
+                                ELSE streetgen._street_parking_widths(NULL) END AS widths) AS pk,
            LATERAL (SELECT coalesce(streetgen.osm_parse_speed(tags->>'maxspeed'),
-                             least(streetgen.osm_parse_speed(tags->>'maxspeed:forward'),
-                                              streetgen.osm_parse_speed(tags->>'maxspeed:backward'))) AS tagged) AS sp,
+                             CASE WHEN tags ?| ARRAY['maxspeed:forward', 'maxspeed:backward'] THEN
+                               least(streetgen.osm_parse_speed(tags->>'maxspeed:forward'),
+                                     streetgen.osm_parse_speed(tags->>'maxspeed:backward')) END) AS tagged) AS sp,
            LATERAL (SELECT CASE WHEN coalesce(tags->>'bridge', 'no') <> 'no' THEN 'bridge'
                                 WHEN coalesce(tags->>'tunnel', 'no') <> 'no' THEN 'tunnel' END AS structure) AS st
      WHERE h.highway = tags->>'highway'

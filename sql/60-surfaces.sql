@@ -146,7 +146,7 @@ CREATE FUNCTION streetgen._compute_model(model text, context bigint[] DEFAULT NU
 DECLARE
   details boolean;
 BEGIN
-  PERFORM streetgen._work_tables();
+  PERFORM streetgen._work_tables(ARRAY['_streetgen_out']);
   TRUNCATE pg_temp._streetgen_out;
   EXECUTE format('SELECT s.details FROM %I.settings s', model) INTO details;
   EXECUTE format($q$
@@ -405,14 +405,24 @@ BEGIN
   END LOOP;
   -- After a whole model (a bulk load, new settings) the statistics are stale or missing until
   -- autovacuum comes by, and the next edits' neighbourhood searches would plan as if the tables
-  -- were empty (seconds instead of milliseconds). A few hundred ms against a full run.
-  -- Corners are looked up by key only (they have no spatial index): their geometries' statistics
-  -- would be half of this ANALYZE's time for no plan. A column list leaves the table due for
-  -- autovacuum's full ANALYZE, which fills them in later.
+  -- were empty (seconds instead of milliseconds). What those plans need is each table's row
+  -- count and its keys' statistics: the searches by box go through the GiST indexes whatever
+  -- the geometries' statistics say (PostGIS assumes a small share of rows without them). The
+  -- geometry, jsonb and array columns' statistics were three quarters of this ANALYZE's time
+  -- (PostGIS's histogram of each geometry column, sorting the tags' jsonb and the nodes'
+  -- axis_ids), so they are left out. A column list leaves the table due for autovacuum's full
+  -- ANALYZE, which fills them in later.
   IF NOT scoped THEN
-    EXECUTE format('ANALYZE %1$I.axis, %1$I.node, %1$I.section,
+    EXECUTE format('ANALYZE %1$I.axis (id, roadway_width, lanes, speed_kmh, road_class, oneway, sidewalk_width, layer,
+                                       structure, radius_override),
+                            %1$I.node (id, degree, layer),
+                            %1$I.section (axis_id, part, from_node, to_node, status, start_border, end_border),
                             %1$I.corner (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b, status, radius_override),
-                            %1$I.intersection, %1$I.lane, %1$I.marking, %1$I.sidewalk, %1$I.crossing', model);
+                            %1$I.intersection (node_id, status),
+                            %1$I.lane (axis_id, part, lane_index, type, direction, width, turn),
+                            %1$I.marking (axis_id, part, kind, position, style),
+                            %1$I.sidewalk (axis_id, part, node_id, side, width),
+                            %1$I.crossing (axis_id, part, position, node_id, width)', model);
     PERFORM streetgen._store_blocks(model, NULL);
   END IF;
 END

@@ -46,7 +46,7 @@ DECLARE
   extent geometry;
   details boolean;
 BEGIN
-  PERFORM streetgen._work_tables();
+  PERFORM streetgen._work_tables(ARRAY['_sg_faces', '_sg_blocks']);
   DELETE FROM pg_temp._sg_faces;
   DELETE FROM pg_temp._sg_blocks;
   -- (a model of street surfaces only has no blocks: _store_blocks then deletes any stored ones)

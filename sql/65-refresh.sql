@@ -16,22 +16,23 @@ BEGIN
 END
 $$;
 
--- The work tables of a recompute: temporary, made once per session. Granted to PUBLIC: one
--- session may recompute as several roles. The engine's output (_streetgen_out) is truncated
--- before each run (see _compute_model); the small neighbourhood tables are emptied by
--- _empty_work_tables. The neighbourhood's sections are kept as their envelopes: only bounding
--- boxes are compared, and small rows keep a table of many emptied edits small.
-CREATE FUNCTION streetgen._work_tables()
+-- The work tables of a recompute: temporary, made once per session, each when first wanted
+-- (WANTED: their names; NULL: all). Granted to PUBLIC: one session may recompute as several
+-- roles. The engine's output (_streetgen_out) is truncated before each run (see
+-- _compute_model); the small neighbourhood tables are emptied by _empty_work_tables. The
+-- neighbourhood's sections are kept as their envelopes: only bounding boxes are compared, and
+-- small rows keep a table of many emptied edits small. (A whole model's recompute, an import's,
+-- wants three of the fourteen: making all of them, their grants and indexes was about 25 ms of
+-- backend CPU, a fiftieth of a city's import.)
+CREATE FUNCTION streetgen._work_tables(wanted text[] DEFAULT NULL)
   RETURNS void
   LANGUAGE plpgsql VOLATILE
   SET search_path FROM CURRENT
   AS $$
 DECLARE
   definition text;
+  name text;
 BEGIN
-  IF to_regclass('pg_temp._sg_blocks') IS NOT NULL THEN
-    RETURN;
-  END IF;
   FOREACH definition IN ARRAY ARRAY[
     '_streetgen_out (kind text, node_id bigint, to_node bigint, axis_id bigint, part bigint, end_a boolean, axis_b bigint,
                      part_b bigint, end_b boolean, status text, detail text, degree integer, layer integer,
@@ -51,13 +52,18 @@ BEGIN
     '_sg_scope_out (geom geometry)',
     '_sg_faces (face geometry)',
     '_sg_blocks (id bigint, face geometry, geom geometry, axis_ids bigint[], kind text, cut boolean)'] LOOP
-    EXECUTE 'CREATE TEMP TABLE IF NOT EXISTS ' || definition;
-    EXECUTE format('GRANT ALL ON pg_temp.%I TO PUBLIC', split_part(definition, ' ', 1));
+    name := split_part(definition, ' ', 1);
+    IF (wanted IS NOT NULL AND NOT name = ANY (wanted)) OR to_regclass('pg_temp.' || name) IS NOT NULL THEN
+      CONTINUE;
+    END IF;
+    EXECUTE 'CREATE TEMP TABLE ' || definition;
+    EXECUTE format('GRANT ALL ON pg_temp.%I TO PUBLIC', name);
+    -- (spatial joins against the engine's output: thousands of rows on either side after a
+    -- large edit, where a nested loop of distance tests took seconds)
+    IF name IN ('_sg_t_nodes', '_sg_scope_out') THEN
+      EXECUTE format('CREATE INDEX %I ON pg_temp.%I USING gist (geom)', name || '_geom', name);
+    END IF;
   END LOOP;
-  -- (spatial joins against the engine's output: thousands of rows on either side after a large
-  -- edit, where a nested loop of distance tests took seconds)
-  CREATE INDEX IF NOT EXISTS _sg_t_nodes_geom ON pg_temp._sg_t_nodes USING gist (geom);
-  CREATE INDEX IF NOT EXISTS _sg_scope_out_geom ON pg_temp._sg_scope_out USING gist (geom);
 END
 $$;
 

@@ -55,6 +55,7 @@ Bytes write_ewkb(GeosContext& ctx, GEOSGeometry* geom, int srid) {
 
 Bytes write_ewkb_coordinates(WkbType type, const double* xy, std::size_t point_count, int srid) {
   Bytes out;
+  out.reserve(1 + 4 + 4 + 4 + 2 * point_count * sizeof(double));  // (byte order, type, SRID, count, points)
   auto put = [&out](const void* data, std::size_t n) {
     const auto* bytes = static_cast<const std::uint8_t*>(data);
     out.insert(out.end(), bytes, bytes + n);

@@ -78,7 +78,7 @@ SELECT set_eq(
     ('streetgen._settings_changed()', 'trigger', 'v', false),
     ('streetgen._create_triggers(text)', 'void', 'v', false),
     ('streetgen.outdated(text)', 'SETOF record', 'v', false),
-    ('streetgen._work_tables()', 'void', 'v', false),
+    ('streetgen._work_tables(text[])', 'void', 'v', false),
     ('streetgen._empty_work_tables()', 'void', 'v', false),
     ('streetgen.generate(text)', 'SETOF record', 'v', false),
     ('streetgen.street_surfaces(text,jsonb)', 'SETOF record', 'v', false),

@@ -57,6 +57,36 @@ SELECT results_eq(
   $$SELECT roadway_width, estimated FROM streetgen.osm_axis_attributes('{"highway": "tertiary", "width": "1"}')$$,
   $$VALUES (2 * 3.0::float8, ARRAY['lanes', 'roadway_width', 'speed_kmh'])$$,
   'an implausible width (1 m on a road) is replaced by the estimate');
+-- Each key the mapping reads behind a look at the tags first (the loader skips the parsing of
+-- widths, directional speeds and street parking for ways without such a key): tagged alone, each
+-- is still read.
+SELECT results_eq(
+  $$SELECT a.roadway_width, a.estimated
+      FROM unnest(ARRAY['{"highway": "residential", "est_width": "7"}',
+                        '{"highway": "residential", "est:width": "8 m"}',
+                        '{"highway": "residential", "width:carriageway": "6.5", "width": "12"}',
+                        '{"highway": "residential", "parking:right": "lane"}',
+                        '{"highway": "residential", "name": "\"parking:left\" lane"}']::jsonb[]) WITH ORDINALITY AS t(tags, i),
+           LATERAL streetgen.osm_axis_attributes(t.tags) AS a ORDER BY t.i$$,
+  $$VALUES (7::float8, ARRAY['lanes', 'speed_kmh']), (8, ARRAY['lanes', 'speed_kmh']), (6.5, ARRAY['lanes', 'speed_kmh']),
+           (2 * 2.75 + 2.0, ARRAY['lanes', 'roadway_width', 'speed_kmh']),
+           (2 * 2.75, ARRAY['lanes', 'roadway_width', 'speed_kmh'])$$,
+  'est_width, est:width, width:carriageway before width, parking:<side> alone; "parking:" in a value is no key');
+SELECT results_eq(
+  $$SELECT a.speed_kmh, a.estimated
+      FROM unnest(ARRAY['{"highway": "residential", "maxspeed:forward": "50", "maxspeed:backward": "30"}',
+                        '{"highway": "residential", "maxspeed:backward": "25 mph"}']::jsonb[]) WITH ORDINALITY AS t(tags, i),
+           LATERAL streetgen.osm_axis_attributes(t.tags) AS a ORDER BY t.i$$,
+  $$VALUES (30::float8, ARRAY['lanes', 'roadway_width']), (25 * 1.609344::float8, ARRAY['lanes', 'roadway_width'])$$,
+  'maxspeed:forward / maxspeed:backward without maxspeed: the lower one');
+SELECT results_eq(
+  $$SELECT a.sidewalk_width
+      FROM unnest(ARRAY['{"highway": "residential", "sidewalk:width": "2.5"}',
+                        '{"highway": "residential", "sidewalk:both:width": "3", "sidewalk:width": "2"}',
+                        '{"highway": "residential"}']::jsonb[]) WITH ORDINALITY AS t(tags, i),
+           LATERAL streetgen.osm_axis_attributes(t.tags) AS a ORDER BY t.i$$,
+  $$VALUES (2.5::float8), (3), (NULL)$$,
+  'sidewalk:width, sidewalk:both:width first, none without either');
 SELECT results_eq(
   $$SELECT lanes FROM streetgen.osm_axis_attributes('{"highway": "tertiary", "lanes:forward": "2", "lanes:backward": "1"}')$$,
   $$VALUES (3::smallint)$$, 'lanes from lanes:forward + lanes:backward');

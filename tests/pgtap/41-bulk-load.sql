@@ -54,10 +54,23 @@ SELECT is((SELECT string_agg(t.tgname || ' ' || t.tgenabled::text, ', ' ORDER BY
           'after the bulk load the axis triggers are enabled, as in a new model');
 SELECT is((SELECT refreshes FROM bulk.refresh_state), (SELECT refreshes FROM reference.refresh_state) + 1,
           'and the load recomputed the model once');
+-- (this file runs in a session of its own: the load made the work tables of a whole model's
+-- recompute, the engine's output and the blocks', and none of a local one's)
+SELECT is(ARRAY(SELECT n FROM unnest(ARRAY['_streetgen_out', '_sg_faces', '_sg_blocks', '_sg_changed_geom', '_sg_scope_out'])
+                 AS n WHERE to_regclass('pg_temp.' || n) IS NOT NULL),
+          ARRAY['_streetgen_out', '_sg_faces', '_sg_blocks'],
+          'a whole model''s recompute makes only the work tables it uses');
 SELECT throws_ok($$INSERT INTO bulk.corner (node_id, axis_a, part_a, end_a, axis_b, part_b, end_b, status)
                    SELECT node_id, 999999, part_a, end_a, axis_b, part_b, end_b, status FROM bulk.corner LIMIT 1$$,
                  '23503', NULL, 'the foreign keys hold again: a corner of an unknown axis is refused');
 SELECT lives_ok($$DELETE FROM bulk.axis WHERE source = 'osm:way/1'$$, 'an axis deleted after the bulk load');
+SELECT is((SELECT count(*) FROM unnest(ARRAY['_sg_changed_geom', '_sg_t_nodes', '_sg_k_nodes', '_sg_s1', '_sg_s2', '_sg_q',
+                                             '_sg_context_nodes', '_sg_scope_sections', '_sg_scope_nodes', '_sg_scope_axes',
+                                             '_sg_scope_out']) AS n
+            WHERE to_regclass('pg_temp.' || n) IS NOT NULL), 11::bigint,
+          'the local recompute of an edit made the neighbourhood''s work tables');
+SELECT is((SELECT count(*) FROM unnest(ARRAY['_sg_t_nodes_geom', '_sg_scope_out_geom']) AS n WHERE to_regclass('pg_temp.' || n) IS NOT NULL), 2::bigint,
+          'with their spatial indexes');
 SELECT is_empty($$SELECT s.axis_id FROM bulk.section s WHERE NOT EXISTS (SELECT 1 FROM bulk.axis a WHERE a.id = s.axis_id)
                   UNION ALL SELECT c.axis_a FROM bulk.corner c WHERE NOT EXISTS (SELECT 1 FROM bulk.axis a WHERE a.id IN (c.axis_a, c.axis_b))$$,
                 'its sections went with it');

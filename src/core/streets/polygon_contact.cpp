@@ -61,11 +61,23 @@ struct RingNear {
   const P2& to(std::size_t e) const { return ring[(e + 1) % ring.size()]; }
 };
 
+// Whether the segments cross at a point inside both: each one's ends strictly on either side of
+// the other's line. Two edges that share an end cannot (an orientation with that end is
+// COLLINEAR): they are answered by comparing coordinates, which is where most calls are, since
+// a junction and a section share their border points exactly. An orientation that comes out
+// exactly zero is CGAL's slow path (its floating-point filter cannot certify a zero, so it
+// computes exactly); the orientations are also taken one at a time, and the first that settles
+// the answer ends it.
 bool properly_cross(const P2& a1, const P2& a2, const P2& b1, const P2& b2) {
-  auto o1 = CGAL::orientation(a1, a2, b1), o2 = CGAL::orientation(a1, a2, b2);
-  auto o3 = CGAL::orientation(b1, b2, a1), o4 = CGAL::orientation(b1, b2, a2);
-  return o1 != CGAL::COLLINEAR && o2 != CGAL::COLLINEAR && o1 != o2 && o3 != CGAL::COLLINEAR &&
-         o4 != CGAL::COLLINEAR && o3 != o4;
+  if (a1 == b1 || a1 == b2 || a2 == b1 || a2 == b2) return false;
+  auto o1 = CGAL::orientation(a1, a2, b1);
+  if (o1 == CGAL::COLLINEAR) return false;
+  auto o2 = CGAL::orientation(a1, a2, b2);
+  if (o2 == CGAL::COLLINEAR || o1 == o2) return false;
+  auto o3 = CGAL::orientation(b1, b2, a1);
+  if (o3 == CGAL::COLLINEAR) return false;
+  auto o4 = CGAL::orientation(b1, b2, a2);
+  return o4 != CGAL::COLLINEAR && o3 != o4;
 }
 
 // Whether u and w are the two ends of an edge of ring b (of its edges near the region: an edge
@@ -79,10 +91,15 @@ bool is_edge_of(const P2& u, const P2& w, const RingNear& b) {
   return false;
 }
 
-// Where p lies against ring b: outside its box at once, else by CGAL's exact test.
-CGAL::Bounded_side side_of(const P2& p, const std::vector<P2>& b, const Box2& b_box) {
+// Where p lies against ring b: outside its box at once, on its boundary when it is one of b's
+// vertices near the region (the rings share their border points exactly, and CGAL's test of a
+// point on an edge is its slow exact path), else by CGAL's exact test.
+CGAL::Bounded_side side_of(const P2& p, const RingNear& b, const Box2& b_box) {
   if (!b_box.holds(p)) return CGAL::ON_UNBOUNDED_SIDE;
-  return CGAL::bounded_side_2(b.begin(), b.end(), p, Kernel());
+  for (std::size_t k : b.vertices) {
+    if (b.ring[k] == p) return CGAL::ON_BOUNDARY;
+  }
+  return CGAL::bounded_side_2(b.ring.begin(), b.ring.end(), p, Kernel());
 }
 
 // Does a point of `a`'s boundary lie strictly inside `b`? Each edge of `a` is cut at the vertices
@@ -99,7 +116,7 @@ bool boundary_enters(const RingNear& a, const RingNear& b, const Box2& b_box, bo
   for (std::size_t e : a.edges) {
     const P2& p = a.from(e);
     const P2& q = a.to(e);
-    auto side = side_of(p, b.ring, b_box);
+    auto side = side_of(p, b, b_box);
     if (side == CGAL::ON_BOUNDED_SIDE) return true;
     if (side == CGAL::ON_UNBOUNDED_SIDE) on_boundary_only = false;
     cuts.assign({p, q});
@@ -117,7 +134,7 @@ bool boundary_enters(const RingNear& a, const RingNear& b, const Box2& b_box, bo
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
       if (is_edge_of(cuts[k], cuts[k + 1], b)) continue;
       P2 middle = CGAL::midpoint(cuts[k], cuts[k + 1]);
-      auto mside = side_of(middle, b.ring, b_box);
+      auto mside = side_of(middle, b, b_box);
       if (mside == CGAL::ON_BOUNDED_SIDE) return true;
       if (mside == CGAL::ON_UNBOUNDED_SIDE) on_boundary_only = false;
     }
