@@ -497,6 +497,7 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
   };
   // The lanes and markings, then the rest of the engine, then everything else.
   emit_rows(kFirstPassKinds[0], kFirstPassKinds[1]);
+  std::vector<OutRow>().swap(emission->chunk);  // (2,048 rows' room, not held through the engine's peak)
   pg::guarded_call(error, [&] {
     core::SurfaceResult rest = emission->run->finish();
     emission->run.reset();
