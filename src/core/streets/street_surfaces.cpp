@@ -337,6 +337,7 @@ class SurfaceBuilder {
         build_intersection(n);
       }
     }
+    decltype(section_surface_)().swap(section_surface_);  // (the junctions' repairs only)
     separate_overlapping_junctions(poller);
     result_.stats.junctions = clock.lap();
     if (s_.details) build_sidewalks(poller);
