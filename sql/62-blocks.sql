@@ -21,8 +21,10 @@
 -- The pieces come in three arrays, read as one list in the order sections, junctions, sidewalks.
 -- The sidewalks' array, the largest, is the first argument: PostgreSQL builds an array argument
 -- from a copy of each element, so while an array is made it is held twice, and those made before
--- it once; the largest made first, Reisterstown's blocks peaked at 14 MB of arrays instead of 24
--- (with one array of every piece).
+-- it once. The largest made first, Reisterstown's 12 MB of pieces take at most 14 MB while they
+-- are made, against 24 in one array (the blocks' spike: 75 -> 57-62 MB of the import's backend).
+-- The order of the pieces is the order of the tables' rows: the union of a face's pieces, and so
+-- the last bits of its block, follow it.
 CREATE FUNCTION streetgen._streetgen_faces_minus(faces bytea[], sidewalks bytea[], sections bytea[], junctions bytea[],
                                                  grid_size double precision, OUT face_index integer, OUT geom bytea)
   RETURNS SETOF record
