@@ -300,6 +300,7 @@ DECLARE
   driveable bigint;
   without_srid bigint;
   deferred text[];
+  insert_trigger text;
 BEGIN
   IF staging IS NULL THEN
     RAISE EXCEPTION 'staging must not be null' USING ERRCODE = 'null_value_not_allowed';
@@ -316,11 +317,17 @@ BEGIN
   END IF;
   -- Into a model without axes, a bulk load: its foreign keys are made again after it, and its
   -- insert trigger's recompute (the whole model, as the trigger would have run it) comes after the
-  -- INSERT, in a statement of its own: the INSERT's memory (its transformed rows, the trigger's
-  -- transition table) is freed before the engine runs, and no transition table is kept at all.
+  -- INSERT, in a statement of its own: the INSERT's memory (its transformed rows) is freed before
+  -- the engine runs. The trigger is dropped for the INSERT and made again from its own definition
+  -- after it, not disabled: PostgreSQL fills a transition table for every trigger that declares
+  -- one, enabled or not, and that table's rows stay in the transaction's memory to its end (4 MB
+  -- of Reisterstown's backend under the engine's and the blocks' peaks).
   deferred := streetgen._defer_foreign_keys(model);
   IF deferred IS NOT NULL THEN
-    EXECUTE format('ALTER TABLE %I.axis DISABLE TRIGGER axis_refresh_insert', model);
+    SELECT pg_catalog.pg_get_triggerdef(t.oid) INTO STRICT insert_trigger
+      FROM pg_catalog.pg_trigger t
+     WHERE t.tgrelid = format('%I.axis', model)::regclass AND t.tgname = 'axis_refresh_insert';
+    EXECUTE format('DROP TRIGGER axis_refresh_insert ON %I.axis', model);
   END IF;
   EXECUTE format($q$
     -- MATERIALIZED: the transformed geometry is used four times below; inlined, PostgreSQL
@@ -346,7 +353,7 @@ BEGIN
   $q$, model, model_srid, staging);
   GET DIAGNOSTICS loaded = ROW_COUNT;
   IF deferred IS NOT NULL THEN
-    EXECUTE format('ALTER TABLE %I.axis ENABLE TRIGGER axis_refresh_insert', model);
+    EXECUTE insert_trigger;
     -- (every axis is new: the model had none)
     EXECUTE format('SELECT streetgen._refresh(%L, (SELECT array_agg(a.id) FROM %I.axis a), ''{}'')', model, model);
   END IF;

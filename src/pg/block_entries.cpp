@@ -1,6 +1,8 @@
 // The block overlay: faces and pieces in as EWKB arrays, one row per face out (its index in
 // the array, from 1, and what is left of it, or NULL). sql/62-blocks.sql gathers the faces and
 // the street surfaces and sidewalks around them.
+#include <malloc.h>  // malloc_trim (glibc)
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -11,6 +13,7 @@
 #include "pg/array_args.hpp"
 #include "pg/boundary.hpp"
 #include "pg/owned_result.hpp"
+#include "pg/srf.hpp"
 
 extern "C" {
 #include "catalog/pg_type.h"
@@ -31,28 +34,39 @@ struct CutRows {
 extern "C" {
 
 PG_FUNCTION_INFO_V1(_streetgen_faces_minus);
-// (faces bytea[], pieces bytea[], grid_size float8) -> SETOF (face_index integer, geom bytea)
+// (faces bytea[], sidewalks bytea[], sections bytea[], junctions bytea[], grid_size float8)
+//   -> SETOF (face_index integer, geom bytea); the pieces are sections, junctions, sidewalks in turn
 Datum _streetgen_faces_minus(PG_FUNCTION_ARGS) {
-  pg::require_argument_count(fcinfo, 3, "_streetgen_faces_minus");
-  if (PG_ARGISNULL(2)) pg::raise_null_argument("grid_size");
+  pg::require_argument_count(fcinfo, 5, "_streetgen_faces_minus");
+  if (PG_ARGISNULL(4)) pg::raise_null_argument("grid_size");
   pg::ArrayArg faces = pg::array_arg(fcinfo, 0, BYTEAOID, "faces");
-  pg::ArrayArg piece_array = pg::array_arg(fcinfo, 1, BYTEAOID, "pieces");
-  double grid_size = PG_GETARG_FLOAT8(2);
+  pg::ArrayArg piece_arrays[3] = {pg::array_arg(fcinfo, 2, BYTEAOID, "sections"),
+                                  pg::array_arg(fcinfo, 3, BYTEAOID, "junctions"),
+                                  pg::array_arg(fcinfo, 1, BYTEAOID, "sidewalks")};
+  double grid_size = PG_GETARG_FLOAT8(4);
   auto* face_views = static_cast<pg::ByteView*>(palloc0(sizeof(pg::ByteView) * (faces.count > 0 ? faces.count : 1)));
   for (int i = 0; i < faces.count; ++i) {
     if (!faces.nulls[i]) face_views[i] = pg::byte_view(faces.values[i]);
   }
-  int piece_count = 0;
-  pg::ByteView* piece_views = pg::byte_views(piece_array, &piece_count);
-  InitMaterializedSRF(fcinfo, 0);
+  pg::ByteView* piece_views[3];
+  int piece_counts[3];
+  for (int k = 0; k < 3; ++k) piece_views[k] = pg::byte_views(piece_arrays[k], &piece_counts[k]);
+  pg::init_materialized_srf(fcinfo, pg::kSrfMemoryKb);
   auto rows = pg::OwnedResult<CutRows>::create();
+  // The statements before this one (the faces' polygonization, the pieces' arrays) leave much of
+  // the heap free but mapped (Reisterstown: about 10 MB), and the overlay's own allocations fill
+  // little of it: handed back to the system first, the blocks' peak does not stack on it.
+  malloc_trim(0);
 
   pg::CallError error;
   pg::guarded_call(error, [&] {
     core::GeosContext& geos = pg::backend_geos();
     // (the pieces stay EWKB here: the overlay reads each when its faces come)
-    std::vector<core::WkbView> pieces(static_cast<std::size_t>(piece_count));
-    for (int i = 0; i < piece_count; ++i) pieces[static_cast<std::size_t>(i)] = {piece_views[i].data, piece_views[i].size};
+    std::vector<core::WkbView> pieces;
+    pieces.reserve(static_cast<std::size_t>(piece_counts[0] + piece_counts[1] + piece_counts[2]));
+    for (int k = 0; k < 3; ++k) {
+      for (int i = 0; i < piece_counts[k]; ++i) pieces.push_back({piece_views[k][i].data, piece_views[k][i].size});
+    }
     // A face is read when its turn comes and its cut written at once (a city's faces and cuts
     // held whole were a fifth of the blocks' memory).
     auto& out = rows.emplace();
@@ -82,10 +96,12 @@ Datum _streetgen_faces_minus(PG_FUNCTION_ARGS) {
        rows->stats.total_seconds);
   auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
   for (std::size_t i = 0; i < rows->geoms.size(); ++i) {
-    const core::Bytes& g = rows->geoms[i];
+    core::Bytes& g = rows->geoms[i];
     Datum values[2] = {Int32GetDatum(static_cast<int32>(i + 1)), g.empty() ? Datum(0) : PointerGetDatum(pg::to_bytea(g))};
     bool nulls[2] = {false, g.empty()};
     tuplestore_putvalues(rsinfo->setResult, rsinfo->setDesc, values, nulls);
+    if (!g.empty()) pfree(DatumGetPointer(values[1]));
+    core::Bytes().swap(g);  // (written: not held beside the rows)
   }
   rows.release();
   PG_RETURN_NULL();

@@ -14,6 +14,7 @@
 #include "pg/array_args.hpp"
 #include "pg/boundary.hpp"
 #include "pg/owned_result.hpp"
+#include "pg/srf.hpp"
 
 extern "C" {
 #include "catalog/pg_type.h"
@@ -370,7 +371,9 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
   }
   int axis_count = ids.count;
   int override_count = override_nodes.count;
-  InitMaterializedSRF(fcinfo, 0);
+  // (rows past the first 256 kB go to the tuplestore's file: a city's rows are written while
+  // the engine's result is held, at its peak; see init_materialized_srf)
+  pg::init_materialized_srf(fcinfo, pg::kSrfMemoryKb);
   auto emission = pg::OwnedResult<SurfaceEmission>::create();
 
   // Phase 2: the engine.
@@ -494,6 +497,7 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
   };
   // The lanes and markings, then the rest of the engine, then everything else.
   emit_rows(kFirstPassKinds[0], kFirstPassKinds[1]);
+  std::vector<OutRow>().swap(emission->chunk);  // (2,048 rows' room, not held through the engine's peak)
   pg::guarded_call(error, [&] {
     core::SurfaceResult rest = emission->run->finish();
     emission->run.reset();

@@ -58,7 +58,7 @@ SELECT set_eq(
     ('streetgen.sidewalk_widths(text,double precision,jsonb,double precision)', 'double precision[]', 'i', false),
     ('streetgen._sidewalk_tags(jsonb)', 'text', 'i', false),
     ('streetgen._compute_blocks(text,geometry,geometry)', 'void', 'v', false),
-    ('streetgen._streetgen_faces_minus(bytea[],bytea[],double precision)', 'SETOF record', 'i', false),
+    ('streetgen._streetgen_faces_minus(bytea[],bytea[],bytea[],bytea[],double precision)', 'SETOF record', 'i', false),
     ('streetgen._store_blocks(text,geometry)', 'void', 'v', false),
     ('streetgen._scope_extent(text)', 'geometry', 'v', false),
     ('streetgen.detail_quality(text)', 'record', 's', false),

@@ -16,6 +16,11 @@ CREATE FUNCTION pg_temp.relations(model text)
            replace(pg_get_constraintdef(k.oid), model || '.', '')
       FROM pg_constraint k JOIN pg_class c ON c.oid = k.conrelid
      WHERE c.relnamespace = model::regnamespace
+    UNION ALL
+    -- (the bulk load drops the axes' insert trigger and makes it again)
+    SELECT 'trigger', c.relname || '.' || t.tgname, replace(pg_get_triggerdef(t.oid), model || '.', '')
+      FROM pg_trigger t JOIN pg_class c ON c.oid = t.tgrelid
+     WHERE c.relnamespace = model::regnamespace AND NOT t.tgisinternal
   $$;
 CREATE FUNCTION pg_temp.foreign_key_oids(model text)
   RETURNS TABLE (name text, oid oid)
@@ -42,7 +47,7 @@ SELECT results_eq($$SELECT loaded FROM streetgen.load_osm_ways('bulk', 'grid_sta
 SELECT is((SELECT count(*) FROM pg_temp.foreign_key_oids('bulk') a JOIN before_load b USING (name, oid)), 0::bigint,
           'the load went in bulk: every foreign key was made again');
 SELECT set_eq($$SELECT * FROM pg_temp.relations('bulk')$$, $$SELECT * FROM pg_temp.relations('reference')$$,
-              'after the bulk load the model has the same keys, foreign keys, checks and indexes as a new model');
+              'after the bulk load the model has the same keys, foreign keys, checks, indexes and triggers as a new model');
 SELECT cmp_ok((SELECT count(*) FROM bulk.section), '>=', 24::bigint, 'sections stored');
 SELECT cmp_ok((SELECT count(*) FROM bulk.corner), '>=', 36::bigint, 'corners stored');
 SELECT is_empty($$SELECT * FROM streetgen.outdated('bulk')$$, 'the bulk-loaded outputs equal a full recompute');

@@ -190,22 +190,24 @@ SELECT throws_ok($$SELECT * FROM streetgen.detail_quality(NULL)$$, '22004', NULL
 
 -- The block overlay (C++): bad input gives its SQLSTATE, a face with nothing on it is itself, a
 -- face covered by a piece is NULL.
-SELECT throws_ok($$SELECT * FROM streetgen._streetgen_faces_minus(ARRAY['\x0102'::bytea], '{}', 1e-6)$$, '22000', NULL,
+SELECT throws_ok($$SELECT * FROM streetgen._streetgen_faces_minus(ARRAY['\x0102'::bytea], '{}', '{}', '{}', 1e-6)$$, '22000', NULL,
                  '_streetgen_faces_minus: a face that is not EWKB');
-SELECT throws_ok($$SELECT * FROM streetgen._streetgen_faces_minus('{}', '{}', NULL)$$, '22004', NULL,
+SELECT throws_ok($$SELECT * FROM streetgen._streetgen_faces_minus('{}', '{}', '{}', '{}', NULL)$$, '22004', NULL,
                  '_streetgen_faces_minus: a NULL grid size');
-SELECT throws_ok($$SELECT * FROM streetgen._streetgen_faces_minus('{}', '{}', 0)$$, '22023', NULL,
+SELECT throws_ok($$SELECT * FROM streetgen._streetgen_faces_minus('{}', '{}', '{}', '{}', 0)$$, '22023', NULL,
                  '_streetgen_faces_minus: a grid size of 0');
+-- (the pieces come in three arrays, sidewalks, sections, junctions: each one cuts)
 SELECT results_eq(
   $$SELECT f.face_index, round(ST_Area(ST_GeomFromEWKB(f.geom))), GeometryType(ST_GeomFromEWKB(f.geom)), ST_SRID(ST_GeomFromEWKB(f.geom))
       FROM streetgen._streetgen_faces_minus(
              ARRAY[ST_AsEWKB('SRID=32631;POLYGON((0 0, 100 0, 100 100, 0 100, 0 0))'::geometry),
                    ST_AsEWKB('SRID=32631;POLYGON((200 0, 210 0, 210 10, 200 10, 200 0))'::geometry), NULL],
-             ARRAY[ST_AsEWKB('SRID=32631;POLYGON((-5 -5, 105 -5, 105 5, -5 5, -5 -5))'::geometry),
-                   ST_AsEWKB('SRID=32631;POLYGON((199 -1, 211 -1, 211 11, 199 11, 199 -1))'::geometry), NULL], 1e-6) AS f
+             ARRAY[ST_AsEWKB('SRID=32631;POLYGON((-5 -5, 105 -5, 105 5, -5 5, -5 -5))'::geometry), NULL],
+             ARRAY[ST_AsEWKB('SRID=32631;POLYGON((-5 95, 105 95, 105 105, -5 105, -5 95))'::geometry)],
+             ARRAY[ST_AsEWKB('SRID=32631;POLYGON((199 -1, 211 -1, 211 11, 199 11, 199 -1))'::geometry), NULL], 1e-6) AS f
      ORDER BY 1$$,
-  $$VALUES (1, 9500::float8, 'MULTIPOLYGON', 32631), (2, NULL, NULL, NULL), (3, NULL, NULL, NULL)$$,
-  '_streetgen_faces_minus: what the pieces leave of each face, NULL when nothing');
+  $$VALUES (1, 9000::float8, 'MULTIPOLYGON', 32631), (2, NULL, NULL, NULL), (3, NULL, NULL, NULL)$$,
+  '_streetgen_faces_minus: what the pieces of all three arrays leave of each face, NULL when nothing');
 
 SELECT * FROM finish();
 ROLLBACK;

@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/interrupts.hpp"
+#include "core/reorder.hpp"
 #include "core/streets/arc_centre.hpp"
 #include "core/streets/bisector.hpp"
 #include "core/streets/box_pairs.hpp"
@@ -294,11 +295,13 @@ class SurfaceBuilder {
     // Corners and border lines first, then sections between the border lines, then the junction
     // surfaces (whose repairs may need the sections around them).
     InterruptPoller poller(64);
-    corners_of_node_.assign(topo_.nodes.size(), {});
+    corner_first_.assign(topo_.nodes.size() + 1, 0);
     for (std::size_t n = 0; n < topo_.nodes.size(); ++n) {
       poller.tick();
+      corner_first_[n] = result_.corners.size();
       build_node(n);
     }
+    corner_first_.back() = result_.corners.size();
     result_.stats.corners = clock.lap();
     for (std::size_t e = 0; e < topo_.edges.size(); ++e) {
       poller.tick();
@@ -334,17 +337,11 @@ class SurfaceBuilder {
         build_intersection(n);
       }
     }
+    decltype(section_surface_)().swap(section_surface_);  // (the junctions' repairs only)
     separate_overlapping_junctions(poller);
     result_.stats.junctions = clock.lap();
     if (s_.details) build_sidewalks(poller);
     result_.stats.sidewalks = clock.lap();
-    std::size_t corner_count = 0;
-    for (const auto& corners : corners_of_node_) corner_count += corners.size();
-    result_.corners.reserve(corner_count);
-    for (auto& corners : corners_of_node_) {
-      for (CornerResult& c : corners) result_.corners.push_back(std::move(c));
-      std::vector<CornerResult>().swap(corners);
-    }
     return std::move(result_);
   }
 
@@ -380,6 +377,9 @@ class SurfaceBuilder {
   }
 
   int degree_of(std::size_t node) const { return static_cast<int>(ends_of_node_[node].size()); }
+
+  // Corner i of node n (all nodes built).
+  const CornerResult& corner(std::size_t n, std::size_t i) const { return result_.corners[corner_first_[n] + i]; }
 
   std::optional<double> corner_override(std::int64_t node_id, const EdgeEnd& a, const EdgeEnd& b) const {
     for (const CornerOverride& o : overrides_) {
@@ -567,9 +567,8 @@ class SurfaceBuilder {
       return;
     }
 
-    std::vector<CornerResult>& corners = corners_of_node_[n];
     for (std::size_t i = 0; i < ends.size(); ++i) {
-      corners.push_back(build_corner(n, ends[i], ends[(i + 1) % ends.size()]));
+      result_.corners.push_back(build_corner(n, ends[i], ends[(i + 1) % ends.size()]));
     }
     for (End& e : ends) {
       e.border = std::min(e.border, e.available);
@@ -599,7 +598,7 @@ class SurfaceBuilder {
       c.b = key_of(ends[1 - i]);
       c.radius_wanted = std::min(ends[0].radius, ends[1].radius);
       c.status = "transition";
-      corners_of_node_[n].push_back(std::move(c));
+      result_.corners.push_back(std::move(c));
     }
   }
 
@@ -664,7 +663,7 @@ class SurfaceBuilder {
     const std::vector<End>& ends = ends_of_node_[n];
     const End& a = ends[i];
     const End& b = ends[(i + 1) % ends.size()];
-    const CornerResult& c = corners_of_node_[n][i];
+    const CornerResult& c = corner(n, i);
     Polyline line{border_point(a.outgoing, a.border, a.left + out, +1)};
     if (c.status == "convex") {
       // Around the outside of the node: a's left border in, round the node, b's right border out.
@@ -1388,7 +1387,7 @@ class SurfaceBuilder {
   // when the corner has none.
   Polyline corner_band(std::size_t n, std::size_t i, double w, SidewalkItem& it) {
     Polyline ring = curb(n, i, 0.0);
-    if (corners_of_node_[n][i].status == "convex") {
+    if (corner(n, i).status == "convex") {
       // Round the outside of a bend, or a step between two streets' borders: the curb's
       // single-sided buffer, whose joins are round as a buffer of the junction's were (the
       // junction's ring runs counter-clockwise: its outside is on the right).
@@ -1695,10 +1694,13 @@ class SurfaceBuilder {
       result_.stats.sidewalk_claims_held_peak = std::max(result_.stats.sidewalk_claims_held_peak, held_count);
     };
     // Sidewalks and failures as they come, each with its claim's index: put back in key order
-    // at the end, as the rows have always come.
-    std::vector<std::pair<std::size_t, SidewalkResult>> sidewalks;
+    // at the end, as the rows have always come (the sidewalks in place: a second vector of them
+    // was the engine's peak).
+    std::vector<SidewalkResult>& sidewalks = result_.sidewalks;
+    std::vector<std::size_t> sidewalk_claim;
     std::vector<std::pair<std::size_t, TopologyIssue>> failures;
     sidewalks.reserve(groups.size());
+    sidewalk_claim.reserve(groups.size());
     std::vector<GeomPtr> junction_parts;
     for (std::size_t g : hilbert_order(group_boxes)) {
       poller.tick();
@@ -1727,7 +1729,8 @@ class SurfaceBuilder {
           SidewalkResult sidewalk = it.meta.result();
           sidewalk.surface = std::move(surface);
           hand_over(sidewalk.surface, sidewalk.ewkb);
-          sidewalks.emplace_back(group.first, std::move(sidewalk));
+          sidewalks.push_back(std::move(sidewalk));
+          sidewalk_claim.push_back(group.first);
         } catch (const Error& err) {
           if (err.kind() != ErrorKind::geometry_engine) throw;
           failures.emplace_back(i, sidewalk_failure(it.meta.result(), err, node_index));
@@ -1738,7 +1741,8 @@ class SurfaceBuilder {
           if (GeomPtr surface = junction_surface(junction_parts)) {
             junction_sidewalk.surface = std::move(surface);
             hand_over(junction_sidewalk.surface, junction_sidewalk.ewkb);
-            sidewalks.emplace_back(group.first, std::move(junction_sidewalk));
+            sidewalks.push_back(std::move(junction_sidewalk));
+            sidewalk_claim.push_back(group.first);
           }
         } catch (const Error& err) {
           if (err.kind() != ErrorKind::geometry_engine) throw;
@@ -1752,11 +1756,9 @@ class SurfaceBuilder {
         std::vector<std::size_t>().swap(blockers[i]);
       }
     }
+    apply_order(sidewalks, stable_order(sidewalk_claim));
     auto by_index = [](const auto& a, const auto& b) { return a.first < b.first; };
-    std::stable_sort(sidewalks.begin(), sidewalks.end(), by_index);
     std::stable_sort(failures.begin(), failures.end(), by_index);
-    result_.sidewalks.reserve(sidewalks.size());
-    for (auto& s : sidewalks) result_.sidewalks.push_back(std::move(s.second));
     for (auto& f : failures) result_.issues.push_back(std::move(f.second));
   }
 
@@ -2081,7 +2083,10 @@ class SurfaceBuilder {
   Topology topo_;
   std::vector<std::vector<End>> ends_of_node_;
   std::vector<std::pair<double, double>> border_;  // per edge: border abscissa at its start, at its end
-  std::vector<std::vector<CornerResult>> corners_of_node_;
+  // Node n's corners are result_.corners[corner_first_[n], corner_first_[n + 1]): built node by
+  // node in node order, they are the result's corners as they are (a vector per node, moved into
+  // one at the end, held them twice at the engine's peak; Reisterstown: 3.5 MB).
+  std::vector<std::size_t> corner_first_;
   std::vector<bool> transition_;
   std::map<std::pair<std::int64_t, std::int64_t>, const GEOSGeometry*> section_surface_;
   std::vector<std::size_t> junction_node_;  // per result_.intersections entry: its node's index
