@@ -68,6 +68,20 @@ elif ! grep -q 'no_such_setting' "$work/bad-setting.err"; then
 elif [ "$(psql -X -At -c "SELECT count(*) FROM streetgen.model WHERE name = 'munich_bad_setting'")" != 0 ]; then
   echo "FAIL: an import with an unknown setting left a model behind" >&2; status=1
 fi
+# The peers' bench prepares each input as OSM XML in its work folder, an .osm input by a link:
+# a later run of another format into the same folder once wrote its conversion through that
+# link, over the .osm input (two files of the shared data overwritten). Whatever ran before in
+# the folder, an input stays as it was. (PEERS empty: only the preparation runs.)
+cp "$osm_dir/bautzen.osm" "$work/peers-input.osm"
+PEERS="" bash "$SRC/bench/peers/run-peers.sh" "$work/peers-input.osm" "$work/peers" >/dev/null || status=1
+PEERS="" bash "$SRC/bench/peers/run-peers.sh" "$osm_dir/paris-11e.osm.pbf" "$work/peers" >/dev/null || status=1
+if ! cmp -s "$osm_dir/bautzen.osm" "$work/peers-input.osm"; then
+  echo "FAIL: run-peers.sh wrote over an earlier run's .osm input" >&2; status=1
+elif [ -L "$work/peers/work/input.osm" ] || ! grep -q '<osm' "$work/peers/work/input.osm"; then
+  echo "FAIL: run-peers.sh did not convert the .pbf input to OSM XML in its own file" >&2; status=1
+else
+  echo "ok: run-peers.sh leaves its inputs as they were"
+fi
 pg_prove -d "$db" "$SRC/tests/import/check-import.sql" "$SRC/tests/import/check-surfaces.sql" \
   "$SRC/tests/import/check-refresh.sql" || status=$?
 psql -X -c "SELECT model, kind, highway_ways, loaded, not_driveable, degenerate, seconds FROM import_fact ORDER BY model"

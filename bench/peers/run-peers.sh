@@ -9,7 +9,7 @@
 # wall_s/peak_rss_kb: the peer process alone (/usr/bin/time). private_peak_kb: its peak without
 # mapped files (libraries), the measure bench/surfaces uses for the backend (private_peak.c).
 # convert_s: turning its output into the two GeoJSON files (Python). prep_s: osmium conversion of FILE to OSM XML (shared by both).
-# Env: PEERS="netconvert osm2streets" to choose; NETCONVERT_EXTRA="..." extra netconvert options.
+# Env: PEERS="netconvert osm2streets" to choose (PEERS= runs none); NETCONVERT_EXTRA="..." extra netconvert options.
 set -uo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 [ $# -eq 2 ] || { echo "usage: $0 FILE OUTDIR" >&2; exit 2; }
@@ -23,7 +23,7 @@ mkdir -p "$out/work"
 out="$(cd "$out" && pwd)"; w="$out/work"
 base="$(basename "$in")"
 case "$base" in input.*) base="$(basename "$(dirname "$in")")/$base" ;; esac   # osm2streets cases
-PEERS="${PEERS:-netconvert osm2streets}"
+PEERS="${PEERS-netconvert osm2streets}"   # (set and empty: no peer, only the XML preparation)
 
 # seconds with 2 decimals and peak RSS of the last timed command
 timed() { # timed LABEL cmd... ; sets T_S T_KB RC
@@ -35,6 +35,9 @@ timed() { # timed LABEL cmd... ; sets T_S T_KB RC
 
 # 1. input as plain OSM XML (both peers read the same file)
 xml="$w/input.osm"
+# (an .osm input is linked, not copied: a later run into the same OUTDIR wrote its conversion
+# through that link, over the earlier run's input file, until the old link was removed first)
+rm -f "$xml"
 case "$in" in
   *.osm) ln -sf "$(cd "$(dirname "$in")" && pwd)/$(basename "$in")" "$xml"; PREP_S=0 ;;
   *) timed prep osmium cat --overwrite -o "$xml" -f osm "$in" 2>"$w/osmium.log"

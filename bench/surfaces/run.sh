@@ -198,7 +198,8 @@ if [ "$peers" = 1 ] && [[ " $datasets " == *" osm "* ]]; then
   for f in liechtenstein.osm.pbf reisterstown.osm.pbf baltimore.osm.pbf munich.osm.pbf campo-grande.osm.gz; do
     n="${f%%.*}"; n="${n//-/_}"
     [ -n "${import_s[$n]:-}" ] || continue
-    lines=$(bash "$repo/bench/peers/run-peers.sh" "$data/osm/$f" "$out/peers/$n" 2>/dev/null || true)
+    # (this script's PEERS is 0 or 1: run-peers.sh's is the list of peers)
+    lines=$(PEERS="netconvert osm2streets" bash "$repo/bench/peers/run-peers.sh" "$data/osm/$f" "$out/peers/$n" 2>/dev/null || true)
     # a peer that failed (status=fail: it quit early, in a fraction of its real time) is shown as
     # failed and kept out of the ratio
     nc=$(echo "$lines" | sed -n 's/^peer=netconvert .*wall_s=\([0-9.]*\).*status=ok$/\1/p')
