@@ -3874,6 +3874,7 @@ class Grower {
       refusal_ = kRefNone;
       if (place_patch(v, j, lp.edges[best_[j].edge].line[0], best_[j].edge)) {
         ++stats_.size_placed[lp.size_class];
+        if (seam_pass == 0 && seam_hit_) ++stats_.seam_refused;
         seam_limit_ = 0.0;
         done_ = true;
         return;

@@ -315,7 +315,8 @@ struct GrowStats {
   std::size_t local_tees_dense = 0;      // continue_local_tees: joins refused for the example's junctions per area
   // Seams (DEBUG1): the patch streets glued, and those whose chord a merge turned, by turn (under
   // 2, 2-5, 5-10, 10-20, 20 degrees and more; count and metres); fronts where seam_turn refused a
-  // draw, where the draws were tried again without it, dead ends slid (seam_slide).
+  // draw, those of them where no other draw was legal and the draws were tried again without it,
+  // dead ends slid (seam_slide).
   double patch_length = 0.0;
   std::size_t seam_count[5] = {};
   double seam_length[5] = {};
