@@ -4061,7 +4061,9 @@ class Grower {
     const Point p = nodes_[v].p, pw = nodes_[w].p;
     if (distance(pw, np) < min_length_ || dot(np - pw, p - pw) <= 0.0) return false;
     if (distance(pw, np) > distance(pw, p)) {
-      if (!legal(p, np) || first_contact(p, np, v).found || !clear_of_network(p, np, clearance_, v, w, -1)) return false;
+      if (!legal(p, np) || first_contact(p, np, v).found || !clear_of_network(p, np, clearance_, v, w, -1)) {
+        return false;
+      }
     }
     point_hits_.clear();
     node_tree_.query(bgi::nearest(BPoint(np.x, np.y), 2), std::back_inserter(point_hits_));
