@@ -484,6 +484,14 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
     ereport(DEBUG1, (errmsg("grow_patches: patch size at fronts (local terciles %.0f, %.0f m): %s; stratified redraws %zu",
                             stats.size_cut[0], stats.size_cut[1], buf, stats.size_redraws)));
   }
+  ereport(DEBUG1, (errmsg("grow_patches: seams: %.0f m of patch streets glued; streets whose chord a merge "
+                          "turned (under 2, 2-5, 5-10, 10-20, 20+ degrees): %zu, %zu, %zu, %zu, %zu streets, %.0f, "
+                          "%.0f, %.0f, %.0f, %.0f m; fronts with a draw refused for its seam %zu, tried again without "
+                          "the rule %zu; dead ends slid %zu",
+                          stats.patch_length, stats.seam_count[0], stats.seam_count[1], stats.seam_count[2],
+                          stats.seam_count[3], stats.seam_count[4], stats.seam_length[0], stats.seam_length[1],
+                          stats.seam_length[2], stats.seam_length[3], stats.seam_length[4], stats.seam_refused,
+                          stats.seam_relaxed, stats.seam_slid)));
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();
   PG_RETURN_NULL();

@@ -3853,8 +3853,19 @@ class Grower {
     // Patch size against legality (DEBUG1): the first draw's size class is eq. 2's choice were
     // every patch legal; the placed ones' classes show what legality shifts.
     if (!keyed_.empty()) ++stats_.size_first[library_[keyed_[0].second].size_class];
-    int tries = 0;
     const bool stratify = size_redraw_here();
+    // Seams (PatchGrowParams::seam_turn): the draws whose merges would turn a patch street by more
+    // than seam_turn are refused first; when that refused one and no other was placed, the draws
+    // are tried again without the rule.
+    const bool seams = params_.patch.seam_turn > 0.0 && seams_here();
+    for (int seam_pass = 0; seam_pass < (seams ? 2 : 1); ++seam_pass) {
+    seam_limit_ = seams && seam_pass == 0 ? params_.patch.seam_turn : 0.0;
+    if (seam_pass == 1) {
+      if (!seam_hit_) break;
+      ++stats_.seam_relaxed;
+    }
+    seam_hit_ = false;
+    int tries = 0;
     for (std::size_t i = 0; i < keyed_.size(); ++i) {
       if (tries++ >= params_.patch.tries) break;
       const std::uint32_t j = keyed_[i].second;
@@ -3863,6 +3874,8 @@ class Grower {
       refusal_ = kRefNone;
       if (place_patch(v, j, lp.edges[best_[j].edge].line[0], best_[j].edge)) {
         ++stats_.size_placed[lp.size_class];
+        if (seam_pass == 0 && seam_hit_) ++stats_.seam_refused;
+        seam_limit_ = 0.0;
         done_ = true;
         return;
       }
@@ -3878,6 +3891,9 @@ class Grower {
         ++stats_.size_redraws;
       }
     }
+    if (seam_pass == 0 && seam_hit_) ++stats_.seam_refused;
+    }  // seam_pass
+    seam_limit_ = 0.0;
     }  // pass
     if (arterial_front) count_arterial_stop(v, any_candidate);
     // A front that two patches already reached is connected: the fallback only continues streets
@@ -4012,13 +4028,73 @@ class Grower {
   // a street between merged nodes are left out; a connector leaving the region or touching an
   // obstacle is clipped, any other illegal edge rejects the patch. Nothing changes unless it is
   // legal as a whole.
+  // A patch glued at v (see place_patch_at); with seam_slide, the dead ends it slid go back when it
+  // is refused.
   bool place_patch(std::uint32_t v, std::uint32_t j, Point anchor, std::uint32_t skip, bool local_only = false) {
+    slide_here_ = params_.patch.seam_slide && seams_here();
+    if (!slide_here_) return place_patch_at(v, j, anchor, skip, local_only);
+    slid_.clear();
+    const bool ok = place_patch_at(v, j, anchor, skip, local_only);
+    if (ok) stats_.seam_slid += slid_.size();
+    for (auto it = slid_.rbegin(); !ok && it != slid_.rend(); ++it) move_dead_end(it->first, it->second);
+    slid_.clear();
+    slide_here_ = false;
+    return ok;
+  }
+  // Seams (PatchGrowParams::seam_turn, seam_slide): where the example is ordered (φ at least
+  // kSeamOrder) and while the output is less ordered than it.
+  bool seams_here() {
+    if (styles_ != 1 || examples_.empty() || example_order() < kSeamOrder) return false;
+    return output_order() < example_order();
+  }
+  static constexpr double kSeamOrder = 0.6;
+  bool slide_here_ = false;
+  std::vector<std::pair<std::uint32_t, Point>> slid_;  // dead ends slid by the patch being placed, where they were
+  double seam_limit_ = 0.0;  // degrees: seam_turn at this draw (0: off)
+  bool seam_hit_ = false;    // a draw was refused for its seam
+  // Dead end v slides to np along its street: the street stays at least min_length and points the
+  // same way; a lengthened street's new piece is legal, touches nothing and keeps the clearance; no
+  // other node within the clearance of np.
+  bool slide_dead_end(std::uint32_t v, Point np) {
+    const std::uint32_t e = nodes_[v].edges[0];
+    const std::uint32_t w = edges_[e].a == v ? edges_[e].b : edges_[e].a;
+    const Point p = nodes_[v].p, pw = nodes_[w].p;
+    if (distance(pw, np) < min_length_ || dot(np - pw, p - pw) <= 0.0) return false;
+    if (distance(pw, np) > distance(pw, p)) {
+      if (!legal(p, np) || first_contact(p, np, v).found || !clear_of_network(p, np, clearance_, v, w, -1)) {
+        return false;
+      }
+    }
+    point_hits_.clear();
+    node_tree_.query(bgi::nearest(BPoint(np.x, np.y), 2), std::back_inserter(point_hits_));
+    for (const PointValue& pv : point_hits_) {
+      if (pv.second != v && distance(nodes_[pv.second].p, np) < clearance_) return false;
+    }
+    move_dead_end(v, np);
+    return true;
+  }
+  void move_dead_end(std::uint32_t v, Point np) {
+    const std::uint32_t e = nodes_[v].edges[0];
+    const OEdge& edge = edges_[e];
+    const Point p = nodes_[v].p, pw = other_end(e, v);
+    edge_tree_.remove(BoxValue(box_of(nodes_[edge.a].p, nodes_[edge.b].p), e));
+    counted_length_ -= counted_length(edge.a, edge.b);
+    if (edge.level >= 0) new_length_ -= distance(p, pw);
+    node_tree_.remove(PointValue(BPoint(p.x, p.y), v));
+    nodes_[v].p = np;
+    node_tree_.insert(PointValue(BPoint(np.x, np.y), v));
+    edge_tree_.insert(BoxValue(box_of(nodes_[edge.a].p, nodes_[edge.b].p), e));
+    counted_length_ += counted_length(edge.a, edge.b);
+    if (edge.level >= 0) new_length_ += distance(np, pw);
+  }
+  bool place_patch_at(std::uint32_t v, std::uint32_t j, Point anchor, std::uint32_t skip, bool local_only) {
     const LibPatch& lp = library_[j];
     const Point at_v = nodes_[v].p;
     // Patch vertices (edge ends): an existing node (>= 0), or a new one (-(index into fresh) - 1).
     std::unordered_map<MillimetreKey, std::int64_t, MillimetreKeyHash> vertex;
     std::vector<Point> fresh;
     const MillimetreKey anchor_key{std::llround(anchor.x * 1000.0), std::llround(anchor.y * 1000.0)};
+    std::vector<std::uint32_t> merged_here;  // nodes merged into so far (a node slides only at its first)
     auto vertex_of = [&](Point q) -> std::int64_t {
       MillimetreKey key{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)};
       auto it = vertex.find(key);
@@ -4034,6 +4110,18 @@ class Grower {
         node_tree_.query(bgi::nearest(BPoint(at.x, at.y), 1), std::back_inserter(point_hits_));
         if (!point_hits_.empty() && distance(nodes_[point_hits_[0].second].p, at) <= snap_) {
           id = point_hits_[0].second;
+          // PatchGrowParams::seam_slide: a dead end of the network meets the patch's vertex along
+          // its own street (taken back by place_patch if the patch is refused).
+          const auto n = static_cast<std::uint32_t>(id);
+          const bool first_merge = std::find(merged_here.begin(), merged_here.end(), n) == merged_here.end();
+          merged_here.push_back(n);
+          if (slide_here_ && first_merge && n != v && nodes_[n].edges.size() == 1 &&
+              edges_[nodes_[n].edges[0]].level >= 0) {
+            const Point was = nodes_[n].p;
+            const Point u = unit(was - other_end(nodes_[n].edges[0], n));
+            const Point to = was + dot(at - was, u) * u;
+            if (distance(to, was) > kContact && slide_dead_end(n, to)) slid_.emplace_back(n, was);
+          }
         } else {
           fresh.push_back(at);
           id = -static_cast<std::int64_t>(fresh.size());
@@ -4204,6 +4292,25 @@ class Grower {
         pl.on_edge = best;
       }
     }
+    // Seams: how far the merges of its ends (into a node within snap, or onto an arterial) turned a
+    // patch street's chord, in degrees; a clip shortens a street without turning it.
+    auto seam_turn = [&](const Planned& pl) {
+      const Point da = pl.line.front() - pl.from;
+      const Point db = pl.clipped ? Point{0.0, 0.0} : pl.line.back() - pl.to;
+      const Point now = pl.line.back() - pl.line.front();
+      const Point was = now - db + da;
+      if (norm(now) <= kContact || norm(was) <= kContact) return 0.0;
+      return std::abs(std::atan2(cross(was, now), dot(was, now))) * 180.0 / kPi;
+    };
+    if (seam_limit_ > 0.0) {
+      for (const Planned& pl : plan) {
+        if (seam_turn(pl) > seam_limit_) {
+          ++stats_.patch_illegal;
+          seam_hit_ = true;
+          return refuse(kRefSeam);
+        }
+      }
+    }
     std::size_t segments = 0;
     for (const Planned& pl : plan) segments += pl.line.size() - 1;
     if (new_edges_ + segments > params_.max_edges) return refuse(kRefMaxEdges);
@@ -4338,6 +4445,15 @@ class Grower {
     for (const Planned& pl : plan) {
       std::uint32_t prev = node_id(pl.a);
       line_nodes_.assign(1, prev);
+      {
+        const double turn = seam_turn(pl), len = length(pl.line);
+        const int bin = turn < 2.0 ? 0 : turn < 5.0 ? 1 : turn < 10.0 ? 2 : turn < 20.0 ? 3 : 4;
+        stats_.patch_length += len;
+        if (turn > 0.0) {
+          ++stats_.seam_count[bin];
+          stats_.seam_length[bin] += len;
+        }
+      }
       for (std::size_t k = 1; k < pl.line.size(); ++k) {
         std::uint32_t next = k + 1 == pl.line.size() ? node_id(pl.b) : add_node(pl.line[k]);
         if (k + 1 < pl.line.size()) completed_[next] = 1;

@@ -116,6 +116,18 @@ struct PatchGrowParams {
   // Strasbourg's grown dead ends were mostly such copies (seeds 1-3: 13-18 of 17-22 inside the hull
   // shrunk by 50 m; bench/patches, README).
   bool cut_crop_ends = true;
+  // Seams (patches31; only where the example is ordered, its orientation order φ at least 0.6, and
+  // while the output's φ is under the example's): a patch end that merges into a node within snap
+  // turns the patch's street there, and the patches' seams were where tokyo lost its grid (README).
+  // seam_turn (degrees; 0: off): at a front, a draw whose merges would turn one of the patch's
+  // streets (its chord) by more than this is refused at first; when that refused one and no other
+  // was placed, the draws are tried again without the rule (the front keeps a patch rather than
+  // falling back to statistical streets). seam_slide: a dead end of the network (an earlier
+  // connector's guess at where its neighbouring junction is) that a patch vertex merges into slides
+  // along its own street to meet it (the street keeps its bearing), so only the offset across it
+  // turns the patch's street.
+  double seam_turn = 5.0;
+  bool seam_slide = true;
   // Stratified redraw (local phase, or one level; not for a city of cul-de-sacs): a front's first
   // draw (eq. 2's choice were every patch legal) refused for a conflict that grows with street
   // length (clearance, crossing, angle) is followed by the draws of its size class first (terciles
@@ -248,16 +260,16 @@ struct GrownEdge {
 // Why a drawn patch was not placed (place_patch), counted per draw in the arterial phase.
 enum PatchRefusal : int {
   kRefNone, kRefRedundant, kRefCorner, kRefLevel, kRefIllegal, kRefClipped, kRefMaxEdges, kRefClearance,
-  kRefDegree, kRefJunctionMix, kRefAngle, kRefCrossing, kRefSelfCrossing, kPatchRefusals
+  kRefDegree, kRefJunctionMix, kRefAngle, kRefCrossing, kRefSelfCrossing, kRefSeam, kPatchRefusals
 };
 // Their names at DEBUG1: every edge doubles a street; a corner left at a dead-end front; an arterial
 // street in the local phase; an inner or dead-end edge outside the region, on an obstacle, over water
 // or too steep; every connector clipped away; max_edges; clearance from the network; a junction over
 // max_degree; a busier junction than the example's mix allows; an angle under min_angle; a crossing
-// with the network; a crossing within the patch after merges.
+// with the network; a crossing within the patch after merges; a merge turning a street (seam_turn).
 inline constexpr const char* kPatchRefusalNames[kPatchRefusals] = {
     "none", "redundant", "corner", "level", "illegal edge", "clipped away", "max_edges", "clearance",
-    "degree", "junction mix", "angle", "crossing", "self-crossing"};
+    "degree", "junction mix", "angle", "crossing", "self-crossing", "seam"};
 
 struct GrowStats {
   std::size_t steps = 0;           // unfinished nodes processed
@@ -301,6 +313,14 @@ struct GrowStats {
   std::size_t local_tees_continued = 0;  // continue_local_tees: local T's gone on to the node or street ahead
   std::size_t local_tees_long = 0;       // continue_local_tees: joins refused for the example's street length per area
   std::size_t local_tees_dense = 0;      // continue_local_tees: joins refused for the example's junctions per area
+  // Seams (DEBUG1): the patch streets glued, and those whose chord a merge turned, by turn (under
+  // 2, 2-5, 5-10, 10-20, 20 degrees and more; count and metres); fronts where seam_turn refused a
+  // draw, those of them where no other draw was legal and the draws were tried again without it,
+  // dead ends slid (seam_slide).
+  double patch_length = 0.0;
+  std::size_t seam_count[5] = {};
+  double seam_length[5] = {};
+  std::size_t seam_refused = 0, seam_relaxed = 0, seam_slid = 0;
   std::size_t corners_avoided = 0;     // avoid_corners: fronts where a patch was refused for leaving a corner
   std::size_t corners_cut = 0;         // avoid_corners: of those, dead ends cut back after the joins
   std::size_t crop_ends_cut = 0;       // cut_crop_ends: copied crop dead ends cut back after the joins
