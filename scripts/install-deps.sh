@@ -9,7 +9,7 @@ packages=(
   libgeos-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libeigen3-dev zlib1g-dev
   libgtest-dev valgrind
-  osm2pgsql osmium-tool gdal-bin time
+  libosmium2-dev osm2pgsql osmium-tool gdal-bin time
   python3 python3-psycopg python3-qgis
   python3-osmnx python3-scipy python3-skimage
   python3-torch python3-gdal

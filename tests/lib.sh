@@ -5,6 +5,8 @@ set -euo pipefail
 export PGOPTIONS="${PGOPTIONS:-} -c client_min_messages=warning"
 SRC="${STREETGEN_SOURCE_DIR:?}"
 BIN="${STREETGEN_BINARY_DIR:?}"
+# streetgen-import reads OSM files with this build's reader (not an older one on PATH).
+export STREETGEN_OSM_STAGE="$BIN/streetgen-osm-stage"
 
 # A fresh database with streetgen (and the given extra extensions) installed.
 fresh_db() {

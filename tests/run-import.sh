@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Import layer: every OSM file of ../shared/data/osm (all four formats) through osm2pgsql and the
-# shipped flex style, and the GeoJSON demo network (Gothenburg, npm geojson-path-finder@2.1.0)
+# Import layer: every OSM file of ../shared/data/osm (all four formats) through streetgen-import
+# (libosmium's reader, streetgen-osm-stage), and the GeoJSON demo network (Gothenburg, npm geojson-path-finder@2.1.0)
 # through ogr2ogr, into models of one database; then tests/import/check-import.sql checks the
 # result against facts gathered here with independent tools (osmium, python's json);
 # tests/import/check-surfaces.sql generates street surfaces on every network and checks them;
@@ -22,6 +22,41 @@ psql -X -q -v ON_ERROR_STOP=1 -c "CREATE TABLE import_fact (model text PRIMARY K
   CREATE TABLE import_source_id (model text, source text);"
 classes=$(psql -X -At -c "SELECT string_agg(highway, ',' ORDER BY highway) FROM streetgen.highway_class")
 
+# What streetgen-osm-stage stages from FILE against what osm2pgsql's flex output with the shipped
+# style stages from it (sorted first: osm2pgsql needs order, the reader does not), as one row of
+# stage_parity: lines by (source, tags, EWKB bytes), street parking areas by (source, tags) and
+# ST_Equals.
+psql -X -q -v ON_ERROR_STOP=1 -c "CREATE SCHEMA oracle;
+  CREATE TABLE stage_parity (name text PRIMARY KEY, osm2pgsql_lines bigint, reader_lines bigint,
+    lines_only_osm2pgsql bigint, lines_only_reader bigint, osm2pgsql_areas bigint, reader_areas bigint,
+    areas_differing bigint)"
+stage_parity() {
+  local file=$1 name=$2 input=$1
+  if [ "$(osmium fileinfo -e -g data.objects_ordered "$file")" != yes ]; then
+    input="$work/$name-sorted.osm.pbf"
+    osmium sort -O --no-progress -o "$input" "$file"
+  fi
+  STREETGEN_STAGING_SCHEMA=oracle STREETGEN_STAGING_TABLE="o_$name" \
+    osm2pgsql --output=flex --style="$SRC/style/streetgen-osm.lua" --create --log-level=warn \
+    --log-progress=false "$input" 2>&1 | grep -v 'osm2pgsql version' || true
+  "$BIN/streetgen-osm-stage" "$file" >"$work/$name.staged"
+  psql -X -q -v ON_ERROR_STOP=1 <<SQL
+CREATE TABLE oracle.s_$name (kind text, source text, tags jsonb, geom geometry);
+\\copy oracle.s_$name FROM '$work/$name.staged'
+INSERT INTO stage_parity
+SELECT '$name',
+  (SELECT count(*) FROM oracle.o_$name), (SELECT count(*) FROM oracle.s_$name WHERE kind = 'way'),
+  (SELECT count(*) FROM (SELECT source, tags, ST_AsEWKB(geom) FROM oracle.o_$name
+                         EXCEPT ALL SELECT source, tags, ST_AsEWKB(geom) FROM oracle.s_$name WHERE kind = 'way') d),
+  (SELECT count(*) FROM (SELECT source, tags, ST_AsEWKB(geom) FROM oracle.s_$name WHERE kind = 'way'
+                         EXCEPT ALL SELECT source, tags, ST_AsEWKB(geom) FROM oracle.o_$name) d),
+  (SELECT count(*) FROM oracle.o_${name}_parking), (SELECT count(*) FROM oracle.s_$name WHERE kind = 'parking'),
+  (SELECT count(*) FROM oracle.o_${name}_parking o FULL JOIN (SELECT * FROM oracle.s_$name WHERE kind = 'parking') s USING (source)
+    WHERE o.source IS NULL OR s.source IS NULL OR o.tags <> s.tags OR NOT ST_Equals(o.geom, s.geom));
+SQL
+}
+stage_parity "$SRC/tests/import/stage-cases.osm" cases
+
 for file in "$osm_dir"/*.osm "$osm_dir"/*.osm.gz "$osm_dir"/*.osm.bz2 "$osm_dir"/*.pbf; do
   [ -e "$file" ] || continue
   base=$(basename "$file")
@@ -34,6 +69,7 @@ for file in "$osm_dir"/*.osm "$osm_dir"/*.osm.gz "$osm_dir"/*.osm.bz2 "$osm_dir"
   osmium cat -O -t way -f opl "$work/$model-highway.osm.pbf" 2>/dev/null | sed -n 's/^w\([0-9]*\) .*/osm:way\/\1/p' \
     | sed "s/^/$model\t/" >"$work/$model-ids.tsv"
   psql -X -q -v ON_ERROR_STOP=1 -c "\\copy import_source_id FROM '$work/$model-ids.tsv'"
+  stage_parity "$file" "$model"
   bbox=$(osmium fileinfo -e -g data.bbox "$file" | tr -d '()' | tr ',' ' ')
   read -r minlon minlat maxlon maxlat <<<"$bbox"
 
@@ -67,6 +103,23 @@ elif ! grep -q 'no_such_setting' "$work/bad-setting.err"; then
   echo "FAIL: streetgen-import's error does not name the unknown setting: $(cat "$work/bad-setting.err")" >&2; status=1
 elif [ "$(psql -X -At -c "SELECT count(*) FROM streetgen.model WHERE name = 'munich_bad_setting'")" != 0 ]; then
   echo "FAIL: an import with an unknown setting left a model behind" >&2; status=1
+fi
+# A file as JOSM saves new objects (negative ids, which osm2pgsql refuses) loads; a file that is
+# not what its name says fails with the reader's message naming it, and leaves no model behind.
+out=$("$SRC/scripts/streetgen-import" -m negative_ids "$SRC/tests/import/stage-negative-ids.osm") || status=1
+echo "$out"
+if [ "$(psql -X -At -c "SELECT string_agg(source, ' ' ORDER BY id) FROM negative_ids.axis")" != "osm:way/-5 osm:way/6" ]; then
+  echo "FAIL: the ways of negative and positive ids are not the axes osm:way/-5 and osm:way/6" >&2; status=1
+fi
+printf 'this is not a PBF file\n' >"$work/broken.osm.pbf"
+if "$SRC/scripts/streetgen-import" -m broken_file "$work/broken.osm.pbf" 2>"$work/broken.err"; then
+  echo "FAIL: streetgen-import loaded a broken file" >&2; status=1
+elif ! grep -q 'streetgen-osm-stage: .*broken.osm.pbf' "$work/broken.err"; then
+  echo "FAIL: the error of a broken file does not name it: $(cat "$work/broken.err")" >&2; status=1
+elif [ "$(psql -X -At -c "SELECT count(*) FROM streetgen.model WHERE name = 'broken_file'")" != 0 ]; then
+  echo "FAIL: a broken file left a model behind" >&2; status=1
+else
+  echo "ok: a broken file fails with its name and leaves no model"
 fi
 # The peers' bench prepares each input as OSM XML in its work folder, an .osm input by a link:
 # a later run of another format into the same folder once wrote its conversion through that

@@ -1,39 +1,32 @@
 #!/usr/bin/env bash
-# The import's backend memory: stages an OSM file as scripts/streetgen-import does (osmium sort,
-# osm2pgsql with style/streetgen-osm.lua), then runs create_model and load_osm_ways in one fresh
-# session, as the import does, ROUNDS times (default 1), each into a new model, and prints the
+# The import's backend memory: stages an OSM file as scripts/streetgen-import does (the reader,
+# streetgen-osm-stage, into an unlogged table from the session), then runs create_model and
+# load_osm_ways in that session, as the import does, ROUNDS times (default 1), each into a new
+# fresh session and model, and prints the
 # backend's peak private memory (RssAnon, sampled by bench/anon_peak.sh) and its CPU seconds
 # (user + system). Settings as the import's defaults (details on).
 #
 #   PGHOST=... PGPORT=... PGDATABASE=... bash bench/surfaces/import-memory.sh FILE [ROUNDS]
 #
-# The database must have streetgen installed; the staging table and the model (mem_<name>) are
-# dropped at the end.
+# The database must have streetgen installed; the model (mem_<name>) is dropped at the end. The
+# reader: STREETGEN_OSM_STAGE, else streetgen-osm-stage on PATH, else build/ of this checkout.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 file=${1:?usage: import-memory.sh FILE [ROUNDS]}
 rounds=${2:-1}
 name="$(basename "$file")"; name="${name%%.*}"; name="${name//-/_}"
-staging=streetgen_staging.mem_$name
 model=mem_$name
+stage_bin="${STREETGEN_OSM_STAGE:-$(command -v streetgen-osm-stage || echo "$repo/build/streetgen-osm-stage")}"
+export STREETGEN_OSM_STAGE="$stage_bin" STREETGEN_OSM_FILE="$file"
 export PGOPTIONS="-c client_min_messages=warning"
 tmp=$(mktemp -d)
 cleanup() {
-  psql -X -q -c "DROP TABLE IF EXISTS $staging, ${staging}_parking" \
-       -c "SELECT streetgen.drop_model('$model') FROM streetgen.model WHERE name = '$model'" >/dev/null 2>&1 || true
+  psql -X -q -c "SELECT streetgen.drop_model('$model') FROM streetgen.model WHERE name = '$model'" \
+       -c "DROP TABLE IF EXISTS streetgen_staging.mem_$name CASCADE" >/dev/null 2>&1 || true
   rm -rf "$tmp"
 }
 trap cleanup EXIT
 
-psql -X -q -c "CREATE SCHEMA IF NOT EXISTS streetgen_staging" -c "DROP TABLE IF EXISTS $staging, ${staging}_parking"
-if [ "$(osmium fileinfo -e -g data.objects_ordered "$file")" != "yes" ]; then
-  osmium sort --overwrite --no-progress -f pbf,pbf_compression=none -o "$tmp/sorted.osm.pbf" "$file"
-  file="$tmp/sorted.osm.pbf"
-fi
-STREETGEN_STAGING_SCHEMA=streetgen_staging STREETGEN_STAGING_TABLE=mem_$name \
-PGOPTIONS="$PGOPTIONS -c default_statistics_target=1" \
-  osm2pgsql --output=flex --style="$repo/style/streetgen-osm.lua" --create --log-level=warn --log-progress=false \
-    ${PGDATABASE:+--database="$PGDATABASE"} "$file"
 
 echo "| file | round | peak private MB | backend CPU s | load |"
 echo "|---|---|---|---|---|"
@@ -44,9 +37,14 @@ SELECT pg_backend_pid() AS pid \gset
 \setenv SGPID :pid
 \! bash "$repo/bench/anon_peak.sh" \$SGPID "$tmp/peak.kb" >/dev/null 2>&1 &
 SELECT pg_sleep(0.1) \g /dev/null
-SELECT streetgen.utm_srid(ST_SetSRID(ST_Extent(geom)::geometry, 4326))::text AS srid FROM $staging \gset
+CREATE SCHEMA IF NOT EXISTS streetgen_staging;
+DROP TABLE IF EXISTS streetgen_staging.mem_$name CASCADE;
+CREATE UNLOGGED TABLE streetgen_staging.mem_$name (kind text, source text, tags jsonb, geom geometry);
+\\copy streetgen_staging.mem_$name FROM PROGRAM '"\$STREETGEN_OSM_STAGE" "\$STREETGEN_OSM_FILE"'
+CREATE TEMP VIEW _osm_ways AS SELECT source, tags, geom FROM streetgen_staging.mem_$name WHERE kind = 'way';
+SELECT streetgen.utm_srid(ST_SetSRID(ST_Extent(geom)::geometry, 4326))::text AS srid FROM _osm_ways \gset
 SELECT streetgen.create_model(:'model', :'srid'::integer) \g /dev/null
-SELECT loaded FROM streetgen.load_osm_ways(:'model', '$staging') \g /dev/null
+SELECT loaded FROM streetgen.load_osm_ways(:'model', 'pg_temp._osm_ways') \g /dev/null
 \! awk '{ print \$14 + \$15 }' /proc/\$SGPID/stat
 SQL
 )

@@ -43,7 +43,25 @@ SELECT is((SELECT loaded + not_driveable + degenerate FROM import_fact WHERE mod
           (SELECT highway_ways FROM import_fact WHERE model = 'gothenburg'),
           'GeoJSON: every feature is accounted for (loaded, not driveable or degenerate)');
 
--- The axes themselves.
+-- The reader (streetgen-osm-stage) stages what osm2pgsql with the shipped flex style stages.
+SELECT is((SELECT count(*) FROM stage_parity), (SELECT count(*) + 1 FROM import_fact WHERE kind = 'osm'),
+          'every OSM file and the hand-made cases were staged by both');
+SELECT is_empty($$SELECT * FROM stage_parity
+                   WHERE osm2pgsql_lines <> reader_lines OR lines_only_osm2pgsql > 0 OR lines_only_reader > 0
+                      OR osm2pgsql_areas <> reader_areas OR areas_differing > 0$$,
+                'the reader stages the same lines (to the byte) and street parking areas as osm2pgsql');
+SELECT results_eq($$SELECT reader_lines, reader_areas FROM stage_parity WHERE name = 'cases'$$,
+                  $$VALUES (5::bigint, 2::bigint)$$,
+                  'hand-made cases: five highway lines (a missing node skipped, repeats once, a closed way, a highway with parking tags) and two street parking areas (a closed way, a multipolygon)');
+SELECT is((SELECT string_agg(source, ' ' ORDER BY source) FROM oracle.s_cases),
+          'osm:relation/30 osm:way/10 osm:way/11 osm:way/13 osm:way/14 osm:way/20 osm:way/22',
+          'hand-made cases: which objects are staged');
+SELECT is((SELECT tags FROM oracle.s_cases WHERE source = 'osm:way/10'),
+          jsonb_build_object('highway', 'residential', 'name', 'Straße "am" Back\slash',
+                             'note', E'a tab\tand a new line\nin a value', 'name:ja', '通り'),
+          'quotes, backslashes, tabs, new lines and non-Latin text in tags arrive as they are in the file');
+
+-- The axes themselves.-- The axes themselves.
 SELECT is_empty($$SELECT model, id FROM axes WHERE NOT (roadway_width > 0 AND speed_kmh > 0)$$,
                 'every axis has a positive roadway width and speed');
 SELECT is_empty($$SELECT model, id FROM axes WHERE NOT ST_IsValid(geom) OR ST_GeometryType(geom) <> 'ST_LineString'$$,
