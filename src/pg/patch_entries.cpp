@@ -492,6 +492,8 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           stats.seam_count[3], stats.seam_count[4], stats.seam_length[0], stats.seam_length[1],
                           stats.seam_length[2], stats.seam_length[3], stats.seam_length[4], stats.seam_refused,
                           stats.seam_relaxed, stats.seam_slid)));
+  ereport(DEBUG1, (errmsg("grow_patches: corners: %zu gone on straight (the other street dropped), %zu gone on to a T",
+                          stats.corners_straightened, stats.corners_completed)));
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();
   PG_RETURN_NULL();
