@@ -1110,7 +1110,7 @@ TEST(GrowExample, FailedFrontsDoNotCloseBlocksUnderTheExamplesMedian) {
   // web_with_narrow_rings grown over a 2 km square with one random candidate and no coherent
   // copying, so that fronts fail and close_front joins them ahead or to the nearest node: a join
   // that closes a cycle shorter than the example's median block (344 m around; its small blocks
-  // 143 m) is refused (about 10 per growth, seeds 1-6). An ordered example (grid_with_narrow_rows,
+  // 143 m) is refused (about 10 per growth, seeds 1-6). A nearly square grid (grid_with_narrow_rows,
   // φ 0.98) keeps its fronts' joins: there the rule is off.
   Fixture f;
   GrowInput in = f.input();
