@@ -211,19 +211,23 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
                           "(%zu by the direction raster), %zu chosen by the weight raster, %zu proposals, "
                           "%zu accepted, %zu snapped, %zu clipped, %zu rejected, %zu pruned, %zu reseeds, %zu restarts; "
                           "example dead-end share %.3f, small block %.1f m (%zu joins refused), "
+                          "median block %.1f m (%zu failed fronts' joins refused), "
                           "%zu sibling joins refused, %zu short example segments contracted",
                           stats.steps, stats.coherent, stats.unmatched, stats.fallback, stats.guided, stats.directed,
                           stats.weighted, stats.proposals,
                           stats.accepted, stats.snapped, stats.clipped, stats.rejected, stats.pruned, stats.reseeds,
                           stats.restarts, stats.dead_end_share, stats.small_block, stats.small_cycles_refused,
-                          stats.sibling_joins_refused, stats.example_contracted)));
+                          stats.median_block, stats.median_joins_refused, stats.sibling_joins_refused,
+                          stats.example_contracted)));
   // The junction mix: where dead ends and 4-way junctions are made or lost.
   ereport(DEBUG1, (errmsg("grow junctions: dead-end copies %zu, made %zu, lost %zu/%zu/%zu/%zu (angle, clipped, "
                           "short, crowded); node joins by degree 0/1/2/3/4+: snap %zu/%zu/%zu/%zu/%zu, contact "
                           "%zu/%zu/%zu/%zu/%zu, front %zu/%zu/%zu/%zu/%zu; splits snap %zu, contact %zu, front %zu; "
                           "mix refused at degree 2/3/4+ %zu/%zu/%zu, new T's refused %zu (%zu at the example's "
                           "junction density); fronts failed %zu: ahead "
-                          "node %zu, ahead split %zu, near node %zu, dead end %zu, pruned %zu; copies of a degree-3 "
+                          "node %zu, ahead split %zu, near node %zu (%zu off their heading refused), dead end %zu, "
+                          "pruned %zu; "
+                          "copies of a degree-3 "
                           "node ending at degree "
                           "1/2/3/4+ %zu/%zu/%zu/%zu, of a degree-4+ node %zu/%zu/%zu/%zu",
                           stats.dead_end_proposals, stats.dead_end_made, stats.dead_end_lost[0],
@@ -236,7 +240,8 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
                           stats.splits[1], stats.splits[2], stats.mix_refused[2], stats.mix_refused[3],
                           stats.mix_refused[4], stats.new_ts_refused, stats.dense_ts_refused, stats.fronts_failed,
                           stats.fronts_ahead_node,
-                          stats.fronts_ahead_split, stats.fronts_near_node, stats.fronts_dead_end,
+                          stats.fronts_ahead_split, stats.fronts_near_node, stats.fronts_off_heading_refused,
+                          stats.fronts_dead_end,
                           stats.fronts_pruned, stats.copy_result[3][1], stats.copy_result[3][2],
                           stats.copy_result[3][3], stats.copy_result[3][4], stats.copy_result[4][1],
                           stats.copy_result[4][2], stats.copy_result[4][3], stats.copy_result[4][4])));

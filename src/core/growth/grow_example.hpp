@@ -372,6 +372,10 @@ struct GrowStats {
   double small_block = 0.0;        // the (first) example's small-block perimeter (m; 0: the rule is off)
   std::size_t example_contracted = 0;  // example segments under the minimum edge contracted (contract_short_segments)
   std::size_t small_cycles_refused = 0;  // joins refused for closing a cycle shorter than that
+  double median_block = 0.0;        // the (first) example's median block perimeter (m; 0: the rule is off)
+  std::size_t median_joins_refused = 0;  // failed fronts' joins (close_front) refused for closing a cycle under it
+  // of close_front's nearest-node joins, those refused off the front's heading (while less ordered)
+  std::size_t fronts_off_heading_refused = 0;
   std::size_t sibling_joins_refused = 0; // joins refused for closing a triangle with two sibling edges
   // The junction mix (DEBUG1, growth13): where dead ends and 4-way junctions are made or lost.
   std::size_t dead_end_proposals = 0;  // proposals copied from an example dead end
