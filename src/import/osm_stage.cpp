@@ -32,7 +32,6 @@
 #include <osmium/osm/area.hpp>
 #include <osmium/osm/relation.hpp>
 #include <osmium/osm/way.hpp>
-#include <osmium/visitor.hpp>
 
 #include <algorithm>
 #include <cstdint>
@@ -153,21 +152,20 @@ bool append_linestring_ewkb(std::string& out, const osmium::WayNodeList& nodes) 
 // (libosmium's object order: negative ids first, then by absolute id): the axes' ids follow it.
 class Rows {
 public:
-    void add(const char* kind, const char* type, osmium::object_id_type id, const osmium::TagList& tags,
+    void add(const char* kind, osmium::item_type type, osmium::object_id_type id, const osmium::TagList& tags,
              const std::string& geom_hex) {
+        const bool relation = type == osmium::item_type::relation;
         std::string line;
         line.reserve(geom_hex.size() + 64 + tags.byte_size());
         line += kind;
-        line += "\tosm:";
-        line += type;
-        line += '/';
+        line += relation ? "\tosm:relation/" : "\tosm:way/";
         line += std::to_string(id);
         line += '\t';
         append_tags(line, tags);
         line += '\t';
         line += geom_hex;
         line += '\n';
-        rows_.push_back(Row{std::string{type} == "relation", id > 0, id < 0 ? -id : id, std::move(line)});
+        rows_.push_back(Row{relation, id > 0, id < 0 ? -id : id, std::move(line)});
     }
 
     void write_sorted() {
@@ -267,13 +265,13 @@ int run(const char* path) {
             if (way.tags().has_key("highway")) {
                 geom.clear();
                 if (append_linestring_ewkb(geom, way.nodes())) {
-                    rows.add("way", "way", way.id(), way.tags(), geom);
+                    rows.add("way", osmium::item_type::way, way.id(), way.tags(), geom);
                 }
             } else if (way.is_closed() && is_street_parking(way.tags()) && way.nodes().size() >= 4U) {
                 osmium::area::GeomAssembler assembler{area_config};
                 osmium::memory::Buffer area_buffer{1024, osmium::memory::Buffer::auto_grow::yes};
                 if (assembler(way, area_buffer)) {
-                    rows.add("parking", "way", way.id(), way.tags(),
+                    rows.add("parking", osmium::item_type::way, way.id(), way.tags(),
                                multipolygon_hex(area_buffer.get<osmium::Area>(0)));
                 }
             }
@@ -303,7 +301,7 @@ int run(const char* path) {
         osmium::area::GeomAssembler assembler{area_config};
         osmium::memory::Buffer area_buffer{1024, osmium::memory::Buffer::auto_grow::yes};
         if (assembler(relation, ways, area_buffer)) {
-            rows.add("parking", "relation", relation.id(), relation.tags(),
+            rows.add("parking", osmium::item_type::relation, relation.id(), relation.tags(),
                        multipolygon_hex(area_buffer.get<osmium::Area>(0)));
         }
     }
