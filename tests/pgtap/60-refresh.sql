@@ -100,6 +100,29 @@ INSERT INTO live.axis (id, geom, roadway_width, speed_kmh) OVERRIDING SYSTEM VAL
   (3, 'SRID=32631;LINESTRING(0 -80, 0 0)', 6, 30);
 SELECT is((SELECT count(*) FROM streetgen.outdated('live')), 0::bigint, 'and new axes after it are current');
 
+-- New settings of a model with nothing in it recompute nothing (an import sets them before it
+-- loads); once it has axes, they recompute it. Counted by PostgreSQL's function statistics of
+-- this transaction.
+SET LOCAL track_functions = 'pl';
+CREATE FUNCTION pg_temp.computes() RETURNS bigint LANGUAGE sql AS
+  $$ SELECT coalesce(pg_stat_get_xact_function_calls('streetgen._compute_model(text, bigint[])'::regprocedure), 0) $$;
+SELECT streetgen.create_model('settings_first', 32631);
+CREATE TEMP TABLE computes_before AS SELECT pg_temp.computes() AS n;
+UPDATE settings_first.settings SET details = false;
+SELECT is(pg_temp.computes(), (SELECT n FROM computes_before), 'new settings of an empty model run no recompute');
+INSERT INTO settings_first.axis (geom, roadway_width, speed_kmh) VALUES
+  ('SRID=32631;LINESTRING(-80 0, 0 0)', 8, 50), ('SRID=32631;LINESTRING(0 0, 80 0)', 8, 50),
+  ('SRID=32631;LINESTRING(0 -80, 0 0)', 6, 30);
+SELECT is((SELECT count(*) FROM settings_first.intersection), 1::bigint, 'its first axes get their junction');
+SELECT is((SELECT count(*) FROM settings_first.lane), 0::bigint, 'under the settings set before them (details off: no lanes)');
+UPDATE settings_first.settings SET details = true;
+SELECT is(pg_temp.computes(), (SELECT n FROM computes_before) + 2, 'with axes, new settings recompute (the insert once, the settings once)');
+SELECT ok((SELECT count(*) FROM settings_first.lane) > 0, 'and their lanes appear');
+SELECT is((SELECT count(*) FROM streetgen.outdated('settings_first')), 0::bigint, 'the model is current');
+TRUNCATE settings_first.axis CASCADE;
+SELECT is((SELECT count(*) FROM settings_first.node) + (SELECT count(*) FROM settings_first.block), 0::bigint,
+          'a TRUNCATE still clears the nodes left behind');
+
 SELECT throws_ok($$SELECT * FROM streetgen.outdated('nope')$$, '42704', NULL, 'outdated() of an unknown model');
 SELECT throws_ok($$SELECT * FROM streetgen.outdated(NULL)$$, '22004', NULL, 'outdated(NULL)');
 
