@@ -4,9 +4,10 @@
 # load_osm_ways in that session, as the import does, ROUNDS times (default 1), each into a new
 # fresh session and model, and prints the
 # backend's peak private memory (RssAnon, sampled by bench/anon_peak.sh) and its CPU seconds
-# (user + system). Settings as the import's defaults (details on).
+# (user + system). Settings as the import's defaults (details on); DETAILS=false measures a
+# surfaces-only import (streetgen-import -c details=false).
 #
-#   PGHOST=... PGPORT=... PGDATABASE=... bash bench/surfaces/import-memory.sh FILE [ROUNDS]
+#   PGHOST=... PGPORT=... PGDATABASE=... [DETAILS=false] bash bench/surfaces/import-memory.sh FILE [ROUNDS]
 #
 # The database must have streetgen installed; the model (mem_<name>) is dropped at the end. The
 # reader: STREETGEN_OSM_STAGE, else streetgen-osm-stage on PATH, else build/ of this checkout.
@@ -32,7 +33,7 @@ echo "| file | round | peak private MB | backend CPU s | load |"
 echo "|---|---|---|---|---|"
 for r in $(seq "$rounds"); do
   psql -X -q -c "SELECT streetgen.drop_model('$model') FROM streetgen.model WHERE name = '$model'" >/dev/null
-  out=$(psql -X -q -At -v ON_ERROR_STOP=1 -v model="$model" <<SQL
+  out=$(psql -X -q -At -v ON_ERROR_STOP=1 -v model="$model" -v details="${DETAILS:-true}" <<SQL
 SELECT pg_backend_pid() AS pid \gset
 \setenv SGPID :pid
 \! bash "$repo/bench/anon_peak.sh" \$SGPID "$tmp/peak.kb" >/dev/null 2>&1 &
@@ -44,6 +45,7 @@ CREATE UNLOGGED TABLE streetgen_staging.mem_$name (kind text, source text, tags 
 CREATE TEMP VIEW _osm_ways AS SELECT source, tags, geom FROM streetgen_staging.mem_$name WHERE kind = 'way';
 SELECT streetgen.utm_srid(ST_SetSRID(ST_Extent(geom)::geometry, 4326))::text AS srid FROM _osm_ways \gset
 SELECT streetgen.create_model(:'model', :'srid'::integer) \g /dev/null
+UPDATE :"model".settings SET details = :'details' \g /dev/null
 SELECT loaded FROM streetgen.load_osm_ways(:'model', 'pg_temp._osm_ways') \g /dev/null
 \! awk '{ print \$14 + \$15 }' /proc/\$SGPID/stat
 SQL
