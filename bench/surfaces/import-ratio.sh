@@ -4,6 +4,8 @@
 # bench/peers/run-peers.sh, each in a folder of its own), and their ratio. Run it on a quiet
 # machine: netconvert is two to three times faster without other load, streetgen less so, and
 # ratios measured under load flatter streetgen. Prints the load average beside each file.
+# The first row is a file of one street (two nodes, one way; made here): both programs' fixed
+# cost, the floor under every file's time (FLOOR=0 leaves it out).
 #
 #   PGHOST=... PGPORT=... PGDATABASE=... [ROUNDS=3] [NCRUNS=3] bash bench/surfaces/import-ratio.sh FILE...
 #
@@ -21,7 +23,19 @@ drop_model() { psql -X -q -c "SELECT streetgen.drop_model('$model') FROM streetg
 trap 'drop_model || true; rm -rf "$tmp"' EXIT
 
 printf '%-26s %7s %10s %-20s %-12s %s\n' file axes import_s netconvert_s ratio load
-for file in "$@"; do
+files=("$@")
+if [ "${FLOOR:-1}" = 1 ]; then
+  cat >"$tmp/one-street.osm" <<'OSM'
+<?xml version='1.0' encoding='UTF-8'?>
+<osm version="0.6" generator="streetgen bench/surfaces/import-ratio.sh">
+  <node id="1" lat="51.18" lon="14.42"/>
+  <node id="2" lat="51.181" lon="14.42"/>
+  <way id="1"><nd ref="1"/><nd ref="2"/><tag k="highway" v="residential"/></way>
+</osm>
+OSM
+  files=("$tmp/one-street.osm" "${files[@]}")
+fi
+for file in "${files[@]}"; do
   best=""
   for _ in $(seq "$rounds"); do
     drop_model
