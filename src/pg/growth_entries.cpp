@@ -225,8 +225,8 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
                           "%zu/%zu/%zu/%zu/%zu, front %zu/%zu/%zu/%zu/%zu; splits snap %zu, contact %zu, front %zu; "
                           "mix refused at degree 2/3/4+ %zu/%zu/%zu, new T's refused %zu (%zu at the example's "
                           "junction density); fronts failed %zu: ahead "
-                          "node %zu, ahead split %zu, near node %zu (%zu off their heading refused), dead end %zu, "
-                          "pruned %zu; "
+                          "node %zu, ahead split %zu, near node %zu (%zu off their heading refused), dead end %zu "
+                          "(%zu cut back when finished), pruned %zu; "
                           "copies of a degree-3 "
                           "node ending at degree "
                           "1/2/3/4+ %zu/%zu/%zu/%zu, of a degree-4+ node %zu/%zu/%zu/%zu",
@@ -241,7 +241,7 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
                           stats.mix_refused[4], stats.new_ts_refused, stats.dense_ts_refused, stats.fronts_failed,
                           stats.fronts_ahead_node,
                           stats.fronts_ahead_split, stats.fronts_near_node, stats.fronts_off_heading_refused,
-                          stats.fronts_dead_end,
+                          stats.fronts_dead_end, stats.fronts_trimmed,
                           stats.fronts_pruned, stats.copy_result[3][1], stats.copy_result[3][2],
                           stats.copy_result[3][3], stats.copy_result[3][4], stats.copy_result[4][1],
                           stats.copy_result[4][2], stats.copy_result[4][3], stats.copy_result[4][4])));

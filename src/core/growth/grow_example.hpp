@@ -392,6 +392,9 @@ struct GrowStats {
   std::size_t fronts_failed = 0;       // fronts whose every draw failed
   std::size_t fronts_ahead_node = 0, fronts_ahead_split = 0, fronts_near_node = 0;  // closed by close_front
   std::size_t fronts_dead_end = 0, fronts_pruned = 0;  // left a dead end, or cut back
+  // Of the fronts left dead ends, those cut back when the growth had finished, the output then no
+  // longer short of the example's dead ends (trim_kept_fronts in grow_example.cpp).
+  std::size_t fronts_trimmed = 0;
   // Fronts whose step kept only a turning street (a corner, turning by more than 45°): kept while the
   // output was as ordered as its example, taken back (then a street straight on made, or the front
   // tried again). straight_front in grow_example.cpp.
