@@ -399,9 +399,9 @@ Point skewed_grid_point(int i, int j) {
 }
 
 // A 9 x 9 grid of 80 m blocks with its junctions moved by up to 20 m and T junctions on every
-// third column (the top-up does not join every failed front); with `spurs`, a 5 m dead-end spur
-// at every other T (under the minimum edge: no copy makes one).
-std::vector<ExampleEdge> skewed_t_grid(bool spurs) {
+// third column (the top-up does not join every failed front); with a `spur_period`, a dead-end
+// spur `spur_length` long at every T whose (i + j) is a multiple of it.
+std::vector<ExampleEdge> skewed_t_grid_with_spurs(int spur_period, double spur_length) {
   auto at = skewed_grid_point;
   std::vector<ExampleEdge> example;
   std::int64_t id = 0;
@@ -409,9 +409,9 @@ std::vector<ExampleEdge> skewed_t_grid(bool spurs) {
     for (int j = 0; j < 8; ++j) {
       example.push_back({{at(j, i), at(j + 1, i)}, "street", ++id});
       if (j % 3 == 0 && i > 0 && i < 8) {
-        if (spurs && (i + j) % 2 == 0) {
+        if (spur_period > 0 && (i + j) % spur_period == 0) {
           const Point a = at(i, j), b = at(i, j + 1);
-          example.push_back({{a, a + (5.0 / distance(a, b)) * (b - a)}, "street", ++id});
+          example.push_back({{a, a + (spur_length / distance(a, b)) * (b - a)}, "street", ++id});
         }
         continue;
       }
@@ -420,6 +420,8 @@ std::vector<ExampleEdge> skewed_t_grid(bool spurs) {
   }
   return example;
 }
+// With `spurs`, a 5 m dead-end spur at every other T (under the minimum edge: no copy makes one).
+std::vector<ExampleEdge> skewed_t_grid(bool spurs) { return skewed_t_grid_with_spurs(spurs ? 2 : 0, 5.0); }
 }  // namespace
 
 TEST(GrowExample, FrontsThatCanNeitherGrowNorJoinAreCutBack) {
@@ -1576,30 +1578,9 @@ TEST(GrowExample, FailedFrontsKeepTheExamplesDeadEndShare) {
 }
 
 namespace {
-}  // namespace
-
-namespace {
 // skewed_t_grid with a 30 m dead-end spur at every third T (long enough to be copied): the
 // example's street ends are 8 % dead ends.
-std::vector<ExampleEdge> skewed_t_grid_long_spurs() {
-  auto at = skewed_grid_point;
-  std::vector<ExampleEdge> example;
-  std::int64_t id = 0;
-  for (int i = 0; i <= 8; ++i) {
-    for (int j = 0; j < 8; ++j) {
-      example.push_back({{at(j, i), at(j + 1, i)}, "street", ++id});
-      if (j % 3 == 0 && i > 0 && i < 8) {
-        if ((i + j) % 3 == 0) {
-          const Point a = at(i, j), b = at(i, j + 1);
-          example.push_back({{a, a + (30.0 / distance(a, b)) * (b - a)}, "street", ++id});
-        }
-        continue;
-      }
-      example.push_back({{at(i, j), at(i, j + 1)}, "street", ++id});
-    }
-  }
-  return example;
-}
+std::vector<ExampleEdge> skewed_t_grid_long_spurs() { return skewed_t_grid_with_spurs(3, 30.0); }
 }  // namespace
 
 TEST(GrowExample, FailedFrontsLeftDeadEndsAreCutBackWhenTheOutputHasTheExamplesShare) {
