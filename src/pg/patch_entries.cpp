@@ -494,6 +494,9 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           stats.seam_relaxed, stats.seam_slid)));
   ereport(DEBUG1, (errmsg("grow_patches: corners: %zu gone on straight (the other street dropped), %zu gone on to a T",
                           stats.corners_straightened, stats.corners_completed)));
+  ereport(DEBUG1, (errmsg("grow_patches: front crossings: %zu draws refused (a front made a crossing its patch's "
+                          "junction is not, the output's crossing share at the example's %.3f)",
+                          stats.front_crossings_refused, stats.example_crossing_share)));
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();
   PG_RETURN_NULL();

@@ -354,6 +354,18 @@ class Grower {
         dead += d == 1;
       }
       ex.dead_end_share = ends > 0.0 ? dead / ends : 0.0;
+      // Patch growth: the crossing share of the patch streets' junctions, counted as the dead ends
+      // are (growth I's comes from the example as given, crossing_share_as_given).
+      if (params.use_patches) {
+        double junctions = 0.0, crossings = 0.0;
+        for (std::size_t i = 0; i < ex.nodes.size(); ++i) {
+          const std::size_t d = ex.nodes[i].halves.size();
+          if (d < 3 || ex.inside[i] <= crop_margin_) continue;
+          junctions += 1.0;
+          crossings += d > 3;
+        }
+        ex.crossing_share = junctions > 0.0 ? crossings / junctions : 0.0;
+      }
       // Nodes far off the copied line are left to the edge snap (a T ahead) or the end stays free:
       // such snaps turned the copied edge onto another street's node and closed small blocks
       // (tokyo's, strasbourg's). Not for a city of cul-de-sacs, whose dead ends and large blocks
@@ -387,6 +399,7 @@ class Grower {
     }
     if (!examples_.empty()) {
       stats_.dead_end_share = examples_[0].dead_end_share;
+      stats_.example_crossing_share = examples_[0].crossing_share;
       stats_.small_block = examples_[0].small_block;
       stats_.median_block = examples_[0].median_block;
     }
@@ -423,6 +436,8 @@ class Grower {
         break;
       }
       ++stats_.restarts;
+      out_junctions_ = 0;
+      out_crossings_ = 0;
       nodes_.clear();
       edges_.clear();
       attempts_.clear();
@@ -470,6 +485,9 @@ class Grower {
   static constexpr int kRestarts = 5;
   static constexpr int kMaxReseeds = 200;
   double new_length_ = 0.0;  // metres: the grown edges' length (length_cap), kept as they come and go
+  // The output's nodes of degree 3 or more and 4 or more (all of them, kept as edges come and go):
+  // PatchGrowParams::front_crossings compares their ratio with the example's crossing share.
+  std::size_t out_junctions_ = 0, out_crossings_ = 0;
 
   // One draw of a point in the region's box: true when it lies in the region, off obstacles and
   // water, farther than fill_gap_ from every street.
@@ -1349,6 +1367,9 @@ class Grower {
   // at_least_[d]: the counted nodes (mix_top_up_) with at least d edges, kept as edges come and go;
   // called before the node's edge list changes.
   void degree_up(std::uint32_t n) {
+    const std::size_t up = nodes_[n].edges.size() + 1;
+    out_junctions_ += up == 3;
+    out_crossings_ += up == 4;
     if (!mix_top_up_ || !counted_[n]) return;
     const std::size_t d = nodes_[n].edges.size() + 1;
     if (at_least_.size() <= d) at_least_.resize(d + 1, 0);
@@ -1361,6 +1382,9 @@ class Grower {
     return 0.5 * (counted_[a] + counted_[b]) * distance(nodes_[a].p, nodes_[b].p);
   }
   void degree_down(std::uint32_t n) {
+    const std::size_t down = nodes_[n].edges.size();
+    out_junctions_ -= down == 3;
+    out_crossings_ -= down == 4;
     if (!mix_top_up_ || !counted_[n]) return;
     --at_least_[nodes_[n].edges.size()];
   }
@@ -3506,6 +3530,9 @@ class Grower {
     const double cone = params_.patch.angle_window * kPi / 180.0;
     const std::vector<double>& more = ex().more;
     const double target = more.size() > 3 ? more[3] : 0.0;  // P(degree > 3 | degree >= 3)
+    // A join makes two crossings: with front_crossings, in a city of cul-de-sacs (a few crossings, so
+    // one pair is a large share of them), only while both bring the count nearer to the target.
+    const double nearer = params_.patch.front_crossings && cul_de_sac_city(example_dead_end_share_) ? 1.0 : 0.0;
     long junctions = 0, crossings = 0;
     for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
       if (is_pruned(v)) continue;
@@ -3546,7 +3573,7 @@ class Grower {
       std::size_t made = 0;
       for (const auto& [gap, v] : order) {
         poll_interrupts();
-        if (static_cast<double>(crossings) >= target * static_cast<double>(junctions)) return;
+        if (static_cast<double>(crossings) + nearer >= target * static_cast<double>(junctions)) return;
         if (new_edges_ + 1 > params_.max_edges) return;
         if (nodes_[v].edges.size() != 3) continue;  // an earlier join reached it
         const std::uint32_t lone = lone_street(v);
@@ -4615,6 +4642,12 @@ class Grower {
           return refuse(kRefJunctionMix);
         }
       }
+      // PatchGrowParams::front_crossings: the front made a crossing the patch's junction is not.
+      if (node == v && d0 < 4 && d1 >= 4 && front_crossing_refused(lp, anchor_key)) {
+        ++stats_.patch_illegal;
+        ++stats_.front_crossings_refused;
+        return refuse(kRefJunctionMix);
+      }
       for (std::size_t a = 0; a < angles.size(); ++a) {
         bool ok = angle_free(node, angles[a]);
         for (std::size_t b = a + 1; b < angles.size() && ok; ++b) {
@@ -4770,6 +4803,27 @@ class Grower {
     stats_.patches_b_placed += lp.style == 1;
     stats_.arterial_patches_placed += seeds_local;
     return true;
+  }
+
+  // PatchGrowParams::front_crossings: whether gluing patch lp with its vertex `anchor` on the front,
+  // which makes the front a node of degree 4 or more, is refused: when that vertex has fewer than 4
+  // streets in the patch (the front's other streets, from connectors that reached it before, make
+  // the crossing, not the example's junction), while one more crossing would not bring the output's
+  // share of crossings among its junctions nearer to the example's.
+  bool front_crossings_here() const {
+    return params_.patch.front_crossings && !(hierarchy_ && phase_arterial_) && !examples_.empty() &&
+           cul_de_sac_city(example_dead_end_share_);
+  }
+  bool front_crossing_refused(const LibPatch& lp, const MillimetreKey& anchor) {
+    if (!front_crossings_here()) return false;
+    int own = 0;
+    for (const LibEdge& e : lp.edges) {
+      own += MillimetreKey{std::llround(e.line.front().x * 1000.0), std::llround(e.line.front().y * 1000.0)} == anchor;
+      own += MillimetreKey{std::llround(e.line.back().x * 1000.0), std::llround(e.line.back().y * 1000.0)} == anchor;
+    }
+    if (own >= 4) return false;
+    const double ge = static_cast<double>(out_junctions_) + 1.0, gt = static_cast<double>(out_crossings_);
+    return gt + 0.5 > examples_[0].crossing_share * ge;
   }
 
   // Every point of the line (sampled every few metres) is within snap of the network.

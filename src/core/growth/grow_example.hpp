@@ -148,6 +148,18 @@ struct PatchGrowParams {
   // out: its growth dies out like a branching process, and the larger patches made it stop earlier
   // on two of three seeds (canberra seeds 4-6: street density -29 % to -50 %).
   bool size_redraw = true;
+  // Front crossings (patches33; a city of cul-de-sacs, local phase or one level): a patch whose
+  // junction lands on a front that already holds streets (connectors of earlier patches reached it)
+  // and so makes it a node of degree 4 or more, while the patch's own junction there has fewer than
+  // 4 streets, is refused while the output's share of crossings among its junctions is at or above
+  // the example's (one more would not bring it nearer); the front draws on. The junction-mix check
+  // held only for the nodes a patch merges into, not for its front: such fronts made 8-10 of the 12-13
+  // crossings canberra_south_large grew inside the hull shrunk by 50 m (seeds 1-3, the example 7;
+  // copies of its crossings 0-1). With it, continue_across joins a pair of T's only while both new
+  // crossings bring the count nearer to the example's. Not for the other examples: the output's share
+  // passes the example's early in the growth and the joins after it lose crossings (strasbourg: 4-5
+  // draws refused a growth, its final share 16-26 % under the example's). bench/patches, README.
+  bool front_crossings = true;
   // Refill (patch growth, after the local phase): when the queue empties while the grown streets
   // are shorter than `refill` x the example's street length per area of its hull x the region's
   // area, a random legal point farther from every street than the example's own widest gap (its
@@ -313,6 +325,8 @@ struct GrowStats {
   std::size_t patches_placed = 0;  // patch growth: fronts (and seeds) where a patch was glued
   std::size_t patch_candidates = 0;  // patches within max_distance, summed over fronts
   std::size_t patch_illegal = 0;   // drawn patches that failed a legality check
+  std::size_t front_crossings_refused = 0;  // PatchGrowParams::front_crossings: draws refused for a crossing at the front
+  double example_crossing_share = 0.0;      // patch growth: the patch streets' crossings among their junctions
   std::size_t patch_edges = 0;     // output segments copied from patches
   std::size_t patches_dropped = 0; // library patches that cross themselves (never used)
   std::size_t patches_b_placed = 0;  // interpolation: of patches_placed, those from the second library
