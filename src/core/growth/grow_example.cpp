@@ -3413,7 +3413,9 @@ class Grower {
       const std::uint32_t w = connect_end(v);
       reach_factor_ = 1.0;
       if (w == UINT32_MAX) continue;
-      if (gate_.on && (w >= before || nodes_[w].edges.size() == 3)) gate_.junctions += static_cast<double>(in_budget(w));
+      if (gate_.on && (w >= before || nodes_[w].edges.size() == 3)) {
+        gate_.junctions += static_cast<double>(in_budget(w));  // a split, or a node of degree 2 made a T
+      }
       dead -= in_budget(v);  // v: degree 1 -> 2
       street_ends -= in_budget(v);
       if (w >= before) {
