@@ -497,6 +497,8 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   ereport(DEBUG1, (errmsg("grow_patches: front crossings: %zu draws refused (a front made a crossing its patch's "
                           "junction is not, the output's crossing share at the example's %.3f)",
                           stats.front_crossings_refused, stats.example_crossing_share)));
+  ereport(DEBUG1, (errmsg("grow_patches: dangling joins: %zu refused (a junction over the example's per area)",
+                          stats.dangling_dense)));
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();
   PG_RETURN_NULL();

@@ -828,3 +828,37 @@ TEST(PatchDangling, FrontCrossingsFollowTheExamplesShare) {
   EXPECT_EQ(grid_on.stats.front_crossings_refused, 0u);
   expect_same_graph(grid_on, grid_off);
 }
+
+// Joins under the example's junctions: the walled uneven grid beside an existing network of 600
+// small T's (junctions far over the example's per area of the region shrunk by 50 m). The joins of
+// dead ends that would make a junction (a street split, a node of degree 2) are refused, those
+// onto a T or a dead end are not: fewer T's, no more junctions than without the joins' new ones,
+// planar, deterministic. In a city of cul-de-sacs (the bricks) the same graph as without the rule.
+TEST(PatchDangling, DanglingJoinsStayUnderTheExamplesJunctions) {
+  Fixture f;
+  GeomPtr wall;
+  GrowInput in = walled_uneven_grid(f, wall);
+  for (int i = 0; i < 25; ++i) {
+    for (int j = 0; j < 24; ++j) {
+      const double x = -1380.0 + 50.0 * i, y = -1380.0 + 25.0 * j;
+      in.existing.push_back({{x - 3.5, y}, {x, y}});
+      in.existing.push_back({{x, y}, {x + 3.5, y}});
+      in.existing.push_back({{x, y}, {x, y + 3.5}});
+    }
+  }
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::dangling_junctions);
+  EXPECT_EQ(off.stats.dangling_dense, 0u);
+  ASSERT_GT(on.stats.dangling_dense, 0u);
+  EXPECT_LT(on.stats.dangling_connected, off.stats.dangling_connected);
+  const auto [threes_off, fours_off] = junction_counts(off);
+  const auto [threes_on, fours_on] = junction_counts(on);
+  EXPECT_LT(threes_on, threes_off);
+  EXPECT_LT(threes_on + fours_on, threes_off + fours_off);
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
+
+  GrowInput culs = f.input(bricks_with_culs_de_sac());
+  auto [culs_off, culs_on] = f.grow_off_on(culs, &PatchGrowParams::dangling_junctions);
+  EXPECT_EQ(culs_on.stats.dangling_dense, 0u);
+  expect_same_graph(culs_on, culs_off);
+}

@@ -3388,9 +3388,24 @@ class Grower {
     }
     std::sort(ends.begin(), ends.end());
     const double share = budget_share();
+    gate_.on = params_.patch.dangling_junctions && !cul_de_sac_city(example_dead_end_share_) &&
+               example_junctions_per_area_ > 0.0;
+    gate_.junctions = 0.0;
+    if (gate_.on) {
+      for (std::uint32_t u = 0; u < nodes_.size(); ++u) {
+        if (!is_pruned(u) && nodes_[u].edges.size() >= 3 && in_budget(u)) gate_.junctions += 1.0;
+      }
+    }
     for (const auto& [gap, v] : ends) {
       poll_interrupts();
       if (static_cast<double>(dead) <= share * static_cast<double>(street_ends)) break;
+      gate_.end = v;
+      gate_.spare = false;
+      gate_.loss = -1.0;
+      if (gate_.on) {
+        const std::uint32_t j = junction_behind(v);
+        gate_.spare = j != v && nodes_[j].edges.size() >= 4;
+      }
       if (new_edges_ + 2 > params_.max_edges) break;  // a join and the piece of a split street
       if (nodes_[v].edges.size() != 1) continue;  // an earlier extension reached it
       const std::size_t before = nodes_.size();
@@ -3398,6 +3413,9 @@ class Grower {
       const std::uint32_t w = connect_end(v);
       reach_factor_ = 1.0;
       if (w == UINT32_MAX) continue;
+      if (gate_.on && (w >= before || nodes_[w].edges.size() == 3)) {
+        gate_.junctions += static_cast<double>(in_budget(w));  // a split, or a node of degree 2 made a T
+      }
       dead -= in_budget(v);  // v: degree 1 -> 2
       street_ends -= in_budget(v);
       if (w >= before) {
@@ -3413,6 +3431,45 @@ class Grower {
     const OEdge& edge = edges_[nodes_[v].edges[0]];
     return edge.level >= 0 && !edge.bridge && example_dead_end_.count(v) == 0 && bridge_end_.count(v) == 0;
   }
+  // PatchGrowParams::dangling_junctions: whether the current dead end's join to node w (of degree
+  // 2 makes a junction; UINT32_MAX: a street split, a junction) is refused.
+  bool dangling_dense(std::uint32_t w) {
+    if (!gate_.on || gate_.spare) return false;
+    if (w != UINT32_MAX && nodes_[w].edges.size() != 2) return false;
+    const double adds = w == UINT32_MAX ? 1.0 : static_cast<double>(in_budget(w));
+    const double target = example_junctions_per_area_ * area_inside() + 0.5;
+    if (adds == 0.0 || gate_.junctions + adds <= target) return false;
+    if (gate_.loss < 0.0) gate_.loss = cut_back_loss(gate_.end);
+    if (gate_.junctions - gate_.loss + adds <= target) return false;
+    ++stats_.dangling_dense;
+    return true;
+  }
+  // The junctions inside the budget margin the cut-backs after the joins (cut_corner_fronts) would
+  // take if they cut every corner front and crop end still a dead end, `except` aside: those whose
+  // street leaves a T there (3 -> 2 streets; from a crossing it stays a junction).
+  double cut_back_loss(std::uint32_t except) {
+    if (!avoid_corners()) return 0.0;
+    double loss = 0.0;
+    auto count = [&](std::uint32_t u) {
+      if (u == except || is_pruned(u) || nodes_[u].edges.size() != 1) return;
+      const std::uint32_t j = junction_behind(u);
+      if (j != u && nodes_[j].edges.size() == 3 && in_budget(j)) loss += 1.0;
+    };
+    for (std::uint32_t u : corner_front_) count(u);
+    if (params_.patch.cut_crop_ends) {
+      for (std::uint32_t u : crop_end_) {
+        if (corner_front_.count(u) == 0) count(u);
+      }
+    }
+    return loss;
+  }
+  struct DanglingGate {
+    bool on = false;
+    bool spare = false;        // the current dead end's street leaves a crossing: not gated
+    std::uint32_t end = 0;     // the current dead end
+    double junctions = 0.0;    // the network's junctions inside the budget margin, kept as joins come
+    double loss = -1.0;        // cut_back_loss for the current dead end (-1: not yet)
+  } gate_;
   // The class of a join: the street's own; with levels a local street, also where it continues an
   // arterial (as the local phase's fallback: arterial streets are the arterial patches' alone).
   int join_level(int level) const { return hierarchy_ && level_is_main(level) ? phase_level_[1] : level; }
@@ -3462,6 +3519,7 @@ class Grower {
       std::vector<std::pair<double, std::uint32_t>> near = nodes_ahead(v, dir);
       std::sort(near.begin(), near.end());
       for (const auto& [d, w] : near) {
+        if (dangling_dense(w)) continue;
         if (try_connect(v, w, join_level(edge.level))) {
           ++stats_.dangling_connected;
           return w;
@@ -3476,10 +3534,11 @@ class Grower {
       const double near_end = std::max(snap_, clearance_);
       if (distance(x, qa) <= near_end || distance(x, qb) <= near_end) {
         const std::uint32_t w = distance(x, qa) <= distance(x, qb) ? hit.a : hit.b;
-        if (w == back || !try_connect(v, w, join_level(edge.level))) return UINT32_MAX;
+        if (w == back || dangling_dense(w) || !try_connect(v, w, join_level(edge.level))) return UINT32_MAX;
         ++stats_.dangling_connected;
         return w;
       }
+      if (dangling_dense(UINT32_MAX)) return UINT32_MAX;
       const Point along = qb - qa, in = x - p;
       const double angle = std::abs(std::atan2(cross(along, in), dot(along, in)));
       if (std::min(angle, kPi - angle) < min_angle_ || distance(p, x) <= kContact) return UINT32_MAX;
@@ -3674,13 +3733,18 @@ class Grower {
   // kBudgetMargin from the region's boundary (an edge weighing half for each end that far in) above
   // the example's per area (example_metres_per_area_ times the region's area shrunk by kBudgetMargin),
   // or, making a junction there, its junctions above the example's per area by half a junction.
-  bool local_join_refused(std::uint32_t v, Point x, std::uint32_t w, bool adds) {
+  // m²: the region shrunk by kBudgetMargin (computed once).
+  double area_inside() {
     if (region_area_inside_ < 0.0) {
       GEOSContextHandle_t h = geos_.handle();
       GeomPtr inner = own(geos_, GEOSBuffer_r(h, region_geom_, -kBudgetMargin, 8), "region shrunk");
       region_area_inside_ = 0.0;
       if (GEOSArea_r(h, inner.get(), &region_area_inside_) == 0) geos_.fail("region area");
     }
+    return region_area_inside_;
+  }
+  bool local_join_refused(std::uint32_t v, Point x, std::uint32_t w, bool adds) {
+    area_inside();
     const double far_end = w == UINT32_MAX ? 1.0 : static_cast<double>(in_budget(w));
     const double metres = 0.5 * (static_cast<double>(in_budget(v)) + far_end) * distance(nodes_[v].p, x);
     if (metres_inside_ + metres > example_metres_per_area_ * region_area_inside_) {

@@ -82,6 +82,16 @@ struct PatchGrowParams {
   // straight on to the first street, ahead of it within half a mean street (Nishida et al.'s local
   // constraint, section 4.3.4).
   bool connect_dangling = true;
+  // Joins under the example's junctions (patches34; with connect_dangling, not in a city of
+  // cul-de-sacs): a join that makes a junction (onto a node of degree 2, or a street split) is
+  // refused while the network's junctions farther than 50 m from the region's boundary, less those
+  // the cut-backs to come will take (the corner fronts and crop ends still dead ends whose street
+  // leaves a T), would pass the example's per area by more than half a junction; the dead end is
+  // then cut back with the corner fronts, or stays. A dead end whose street leaves a crossing joins
+  // as before (its cut would lose the crossing). The joins made 16-33 of strasbourg's T's inside
+  // the hull shrunk by 50 m (its junctions 134-168 against the example's 140, 4-way share -15 to
+  // -22 %; bench/patches, README).
+  bool dangling_junctions = true;
   // After the joins (with connect_dangling): a T-junction whose lone street meets a T facing it
   // across the through street, within a mean street straight on, is joined to it, so both become
   // crossings, while the network has fewer 4-way junctions than the example's share (the example's
@@ -332,6 +342,7 @@ struct GrowStats {
   std::size_t patches_b_placed = 0;  // interpolation: of patches_placed, those from the second library
   std::size_t dangling_pruned = 0;   // prune_dangling: output segments cut back from dangling streets
   std::size_t dead_ends_kept = 0;    // prune_dangling: dead ends left (the example's, or blocked)
+  std::size_t dangling_dense = 0;  // PatchGrowParams::dangling_junctions: joins refused (a junction over the example's)
   std::size_t dangling_connected = 0;  // connect_dangling: streets extended to a node or street ahead
   std::size_t continued_across = 0;    // continue_across: T-junctions joined to the T facing them
   std::size_t local_tees_continued = 0;  // continue_local_tees: local T's gone on to the node or street ahead
