@@ -350,18 +350,15 @@ bool stage_in_one_pass(const osmium::io::File& file, const osmium::area::Assembl
 void stage_in_two_passes(const osmium::io::File& file, const osmium::area::AssemblerConfig& config, Rows& rows) {
     LocationIndex positive;
     LocationIndex negative;
+    LocationHandler locations{positive, negative}; // (sorts the indexes at the first way if need be)
+    locations.ignore_errors();
     ParkingRelations parking;
     {
         osmium::io::Reader reader{file, osmium::osm_entity_bits::node | osmium::osm_entity_bits::relation};
         while (osmium::memory::Buffer buffer = reader.read()) {
             for (const auto& item : buffer) {
                 if (item.type() == osmium::item_type::node) {
-                    const auto& node = static_cast<const osmium::Node&>(item);
-                    if (node.id() >= 0) {
-                        positive.set(static_cast<osmium::unsigned_object_id_type>(node.id()), node.location());
-                    } else {
-                        negative.set(static_cast<osmium::unsigned_object_id_type>(-node.id()), node.location());
-                    }
+                    locations.node(static_cast<const osmium::Node&>(item));
                 } else if (item.type() == osmium::item_type::relation) {
                     keep_if_parking_relation(static_cast<const osmium::Relation&>(item), parking);
                 }
@@ -369,11 +366,7 @@ void stage_in_two_passes(const osmium::io::File& file, const osmium::area::Assem
         }
         reader.close();
     }
-    positive.sort();
-    negative.sort();
 
-    LocationHandler locations{positive, negative};
-    locations.ignore_errors();
     MemberWays members;
     std::string geom;
     osmium::io::Reader reader{file, osmium::osm_entity_bits::way};

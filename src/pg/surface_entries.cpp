@@ -527,7 +527,7 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
   MemoryContextDelete(row_context);
   // The engine's heap is free now, but glibc keeps it mapped (freed as many small chunks, most
   // of them below the top of the heap). With details, the blocks come next and would stack their
-  // peak on it: handed back to the system, Reisterstown's import peaks at 64.3 MB (67-68 kept).
+  // peak on it: handed back to the system, Reisterstown's import peaks at 64.4-64.6 MB (67-68 kept).
   // Without details nothing after the store needs it (Reisterstown's surfaces-only peak is 54 MB
   // either way), and the trim itself is a madvise per free run of pages: 20-40 ms on München,
   // 120-150 ms on Reisterstown, each page faulting in again when the store reuses it.
