@@ -55,8 +55,10 @@ Datum _streetgen_faces_minus(PG_FUNCTION_ARGS) {
   auto rows = pg::OwnedResult<CutRows>::create();
   // The statements before this one (the faces' polygonization, the pieces' arrays) leave much of
   // the heap free but mapped (Reisterstown: about 10 MB), and the overlay's own allocations fill
-  // little of it: handed back to the system first, the blocks' peak does not stack on it.
-  malloc_trim(0);
+  // little of it: handed back to the system first, the blocks' peak does not stack on it. Not
+  // for an edit's few faces (see kTrimMinFaces).
+  const bool trimmed = faces.count >= pg::kTrimMinFaces;
+  if (trimmed) malloc_trim(0);
 
   pg::CallError error;
   pg::guarded_call(error, [&] {
@@ -90,10 +92,10 @@ Datum _streetgen_faces_minus(PG_FUNCTION_ARGS) {
   elog(DEBUG1,
        "streetgen: blocks of %zu faces, %zu (face, polygon) pairs by box, %zu faces by winding, %zu polygons clipped, "
        "%zu faces on the grid, at most %zu of the %zu pieces read at once; CPU seconds in winding %.3f, clips %.3f, "
-       "unions %.3f, differences %.3f, rounding %.3f, all %.3f",
+       "unions %.3f, differences %.3f, rounding %.3f, all %.3f; heap %s before",
        rows->stats.faces, rows->stats.candidate_pairs, rows->stats.winding_faces, rows->stats.clipped_pairs,
        rows->stats.grid_faces, rows->stats.pieces_held_at_most, rows->stats.pieces, rows->stats.winding_seconds, rows->stats.clip_seconds, rows->stats.union_seconds, rows->stats.difference_seconds, rows->stats.rounding_seconds,
-       rows->stats.total_seconds);
+       rows->stats.total_seconds, trimmed ? "trimmed" : "kept");
   auto* rsinfo = reinterpret_cast<ReturnSetInfo*>(fcinfo->resultinfo);
   for (std::size_t i = 0; i < rows->geoms.size(); ++i) {
     core::Bytes& g = rows->geoms[i];

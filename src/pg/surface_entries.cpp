@@ -531,7 +531,11 @@ Datum _streetgen_street_surfaces(PG_FUNCTION_ARGS) {
   // Without details nothing after the store needs it (Reisterstown's surfaces-only peak is 54 MB
   // either way), and the trim itself is a madvise per free run of pages: 20-40 ms on München,
   // 120-150 ms on Reisterstown, each page faulting in again when the store reuses it.
-  if (built_details) malloc_trim(0);
+  // An edit's local recompute (tens of axes) frees little, but the trim still walks the whole
+  // heap a city's run left fragmented: 300-450 madvise calls an edit on Reisterstown, for nothing.
+  const bool trim = built_details && axis_count >= pg::kTrimMinAxes;
+  if (trim) malloc_trim(0);
+  elog(DEBUG1, "streetgen: surfaces of %d axes, heap %s", axis_count, trim ? "trimmed" : "kept");
   PG_RETURN_NULL();
 }
 
