@@ -9,6 +9,7 @@
 #   OUT=/tmp/pics bash bench/patches/run.sh   where the PNGs go (default: build/bench-patches)
 #   BASELINE=0 bash bench/patches/run.sh      grow_patches only (no grow_example baseline: half the time)
 #   STRUCTURES=0 bash bench/patches/run.sh    without the roundabout / cul-de-sac uses (about 7 of 9 minutes)
+#   SIDES='1200 2600' bash bench/patches/run.sh   the speed part's square sides (m)
 #
 # 1. Realism: for each example, extract its patches, grow its convex hull from one seed at its
 #    centre with grow_patches and with grow_example (default params, max_edges 200000), and
@@ -35,6 +36,8 @@ out="${OUT:-$repo/build/bench-patches}"
 params="${PARAMS:-{\}}"
 extract_params="${EXTRACT_PARAMS:-{\}}"
 seeds="${SEEDS:-1 2 3}"
+# the speed part's square sides (m): about 30, 60, 300, 1,000 and 3,000 km of tokyo's streets
+sides="${SIDES:-850 1200 2600 4800 8300}"
 names="${NAMES:-tokyo canberra_south_large barcelona_east new-york strasbourg quito}"
 mkdir -p "$out"
 source "$repo/bench/lib.sh"
@@ -258,13 +261,25 @@ BEGIN
 END
 $$;
 SQL
-for side in 1200 2600 4800; do
-  psql -X -q -At -v ON_ERROR_STOP=1 -c "
+psql -X -q -v ON_ERROR_STOP=1 -c "CREATE TABLE speed (side double precision, method text, edges bigint, km double precision,
+                                                      seconds double precision)"
+for side in $sides; do
+  psql -X -q -At -v ON_ERROR_STOP=1 -c "INSERT INTO speed SELECT $side, 'patches', p.edges, p.km, p.seconds FROM square('patches', $side) p" \
+       -c "INSERT INTO speed SELECT $side, 'example', e.edges, e.km, e.seconds FROM square('example', $side) e" -c "
     SELECT format('side %s m: grow_patches %s edges %s km in %s s (%s km/s); grow_example %s km in %s s (%s km/s); ratio of speeds patches/example %s',
                   $side, p.edges, round(p.km::numeric, 1), round(p.seconds::numeric, 2), round((p.km / p.seconds)::numeric),
                   round(e.km::numeric, 1), round(e.seconds::numeric, 2), round((e.km / e.seconds)::numeric),
                   round(((p.km / p.seconds) / (e.km / e.seconds))::numeric, 2))
-      FROM square('patches', $side) p, square('example', $side) e"
+      FROM speed p, speed e WHERE p.side = $side AND p.method = 'patches' AND e.side = $side AND e.method = 'example'"
 done
+# The issue's cost growth from 30 km to 3,000 km: seconds per km at each size over those of the
+# smallest square (1.0: linear; above 1, each km costs more as the network grows).
+echo "cost growth: seconds per km over the smallest square's"
+psql -X -q -v ON_ERROR_STOP=1 -c "
+  SELECT s.method, s.side, s.edges, round(s.km::numeric) AS km, round(s.seconds::numeric, 2) AS seconds,
+         round((s.km / s.seconds)::numeric) AS km_per_s,
+         round(((s.seconds / s.km) / (f.seconds / f.km))::numeric, 2) AS cost_per_km_vs_smallest
+    FROM speed s CROSS JOIN LATERAL (SELECT * FROM speed f WHERE f.method = s.method ORDER BY f.side LIMIT 1) f
+   ORDER BY s.method DESC, s.side"
 echo "pictures: $out/*.png"
 echo "Road data: © OpenStreetMap contributors, ODbL 1.0 (example patches of Nishida et al. 2016)"
