@@ -497,6 +497,11 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   ereport(DEBUG1, (errmsg("grow_patches: front crossings: %zu draws refused (a front made a crossing its patch's "
                           "junction is not, the output's crossing share at the example's %.3f)",
                           stats.front_crossings_refused, stats.example_crossing_share)));
+  ereport(DEBUG1, (errmsg("grow_patches: front dead ends: %zu draws refused (a patch's own dead ends, the output's "
+                          "share of them at the example's %.3f), %zu fronts tried again without the rule; when the "
+                          "growth stopped %zu own dead ends, %zu junctions",
+                          stats.front_dead_ends_refused, stats.example_dead_end_share, stats.front_dead_ends_relaxed,
+                          stats.own_dead_ends_grown, stats.junctions_grown)));
   ereport(DEBUG1, (errmsg("grow_patches: dangling joins: %zu refused (a junction over the example's per area)",
                           stats.dangling_dense)));
   pg::emit_grown_rows(fcinfo, *rows);

@@ -862,3 +862,46 @@ TEST(PatchDangling, DanglingJoinsStayUnderTheExamplesJunctions) {
   EXPECT_EQ(culs_on.stats.dangling_dense, 0u);
   expect_same_graph(culs_on, culs_off);
 }
+
+// Front dead ends: the test on the counts. Canberra_south_large's library share, 0.2604: with 383
+// junctions, 134 own dead ends take one more, 135 do not (half a dead end's margin); with no
+// junction yet a dead end waits for two; a library without dead ends refuses every one.
+TEST(PatchDangling, FrontDeadEndsStopAtTheExamplesShare) {
+  EXPECT_FALSE(front_dead_end_refused(131, 383, 0.2604));
+  EXPECT_TRUE(front_dead_end_refused(140, 383, 0.2604));
+  EXPECT_FALSE(front_dead_end_refused(134, 383, 0.2604));  // 134.5 under 0.2604 x 517 = 134.6
+  EXPECT_TRUE(front_dead_end_refused(135, 383, 0.2604));   // 135.5 over 134.9
+  EXPECT_TRUE(front_dead_end_refused(0, 0, 0.2604));
+  EXPECT_TRUE(front_dead_end_refused(0, 1, 0.2604));
+  EXPECT_FALSE(front_dead_end_refused(0, 2, 0.2604));
+  EXPECT_TRUE(front_dead_end_refused(0, 1000, 0.0));
+}
+
+// Front dead ends in a growth: in a city of cul-de-sacs (the bricks, a cul-de-sac off every cross
+// street) draws bringing the example's own dead ends are refused while the output's share of them
+// is at the example's; the front draws on, and where the rule left it without a patch the draws are
+// tried again without it. When the growth stops the share is not above the example's (by one dead
+// end), the growth is planar and deterministic. An example that is no city of cul-de-sacs (the
+// uneven grid) grows as it did.
+TEST(PatchDangling, FrontDeadEndsFollowTheExamplesShare) {
+  Fixture f;
+  GrowInput in = f.input(bricks_with_culs_de_sac());
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::front_dead_ends);
+  EXPECT_EQ(off.stats.front_dead_ends_refused + off.stats.front_dead_ends_relaxed, 0u);
+  ASSERT_GT(on.stats.front_dead_ends_refused, 0u);
+  EXPECT_GT(on.stats.front_dead_ends_relaxed, 0u);  // (measured 49 refused, 2 fronts relaxed)
+  const double share = on.stats.example_dead_end_share;
+  EXPECT_GT(share, 0.15);
+  const double dead = static_cast<double>(on.stats.own_dead_ends_grown);
+  const double junctions = static_cast<double>(on.stats.junctions_grown);
+  ASSERT_GT(dead, 100.0);
+  EXPECT_LE(dead - 1.0, share * (dead + junctions));
+  EXPECT_NE(off.edges.size(), on.edges.size());
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
+
+  GrowInput grid = f.input(uneven_grid());
+  auto [grid_off, grid_on] = f.grow_off_on(grid, &PatchGrowParams::front_dead_ends);
+  EXPECT_EQ(grid_on.stats.front_dead_ends_refused, 0u);
+  expect_same_graph(grid_on, grid_off);
+}

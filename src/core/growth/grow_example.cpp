@@ -428,6 +428,9 @@ class Grower {
       }
       if (new_edges_ >= std::min<std::size_t>(kMinGrowth, params_.max_edges) || restart == kRestarts) {
         trim_kept_fronts();
+        stats_.own_dead_ends_grown = out_own_dead_ends_;
+        stats_.junctions_grown = out_junctions_;
+        stats_.example_dead_end_share = example_dead_end_share_;
         if (params_.use_patches && params_.patch.connect_dangling) connect_dangling();
         if (params_.use_patches && params_.patch.continue_across) continue_across();
         if (params_.use_patches && (avoid_corners() || cul_de_sac_crop_cuts())) cut_corner_fronts();
@@ -438,6 +441,7 @@ class Grower {
       ++stats_.restarts;
       out_junctions_ = 0;
       out_crossings_ = 0;
+      out_own_dead_ends_ = 0;
       nodes_.clear();
       edges_.clear();
       attempts_.clear();
@@ -488,6 +492,9 @@ class Grower {
   // The output's nodes of degree 3 or more and 4 or more (all of them, kept as edges come and go):
   // PatchGrowParams::front_crossings compares their ratio with the example's crossing share.
   std::size_t out_junctions_ = 0, out_crossings_ = 0;
+  // The output's dead ends copied from the example's own (example_dead_end_ nodes with one street),
+  // kept as edges come and go: PatchGrowParams::front_dead_ends compares their share with the example's.
+  std::size_t out_own_dead_ends_ = 0;
 
   // One draw of a point in the region's box: true when it lies in the region, off obstacles and
   // water, farther than fill_gap_ from every street.
@@ -1370,6 +1377,10 @@ class Grower {
     const std::size_t up = nodes_[n].edges.size() + 1;
     out_junctions_ += up == 3;
     out_crossings_ += up == 4;
+    if (up <= 2 && !example_dead_end_.empty() && example_dead_end_.count(n) != 0) {
+      if (up == 1) ++out_own_dead_ends_;
+      else --out_own_dead_ends_;
+    }
     if (!mix_top_up_ || !counted_[n]) return;
     const std::size_t d = nodes_[n].edges.size() + 1;
     if (at_least_.size() <= d) at_least_.resize(d + 1, 0);
@@ -1385,6 +1396,10 @@ class Grower {
     const std::size_t down = nodes_[n].edges.size();
     out_junctions_ -= down == 3;
     out_crossings_ -= down == 4;
+    if ((down == 1 || down == 2) && !example_dead_end_.empty() && example_dead_end_.count(n) != 0) {
+      if (down == 1) --out_own_dead_ends_;
+      else ++out_own_dead_ends_;
+    }
     if (!mix_top_up_ || !counted_[n]) return;
     --at_least_[nodes_[n].edges.size()];
   }
@@ -4214,6 +4229,16 @@ class Grower {
     }
     seam_hit_ = false;
     int tries = 0;
+    front_dead_end_hit_ = false;
+    // PatchGrowParams::front_dead_ends: when the rule refused a draw and none was placed, the draws
+    // again without it (the front keeps a patch: its fallback street would be a dead end too).
+    for (int dead_pass = 0; dead_pass < 2; ++dead_pass) {
+    if (dead_pass == 1) {
+      if (!front_dead_end_hit_) break;
+      front_dead_ends_off_ = true;
+      ++stats_.front_dead_ends_relaxed;
+      tries = 0;
+    }
     for (std::size_t i = 0; i < keyed_.size(); ++i) {
       if (tries++ >= params_.patch.tries) break;
       const std::uint32_t j = keyed_[i].second;
@@ -4224,6 +4249,7 @@ class Grower {
         ++stats_.size_placed[lp.size_class];
         if (seam_pass == 0 && seam_hit_) ++stats_.seam_refused;
         seam_limit_ = 0.0;
+        front_dead_ends_off_ = false;
         done_ = true;
         return;
       }
@@ -4239,6 +4265,8 @@ class Grower {
         ++stats_.size_redraws;
       }
     }
+    }  // dead_pass
+    front_dead_ends_off_ = false;
     if (seam_pass == 0 && seam_hit_) ++stats_.seam_refused;
     }  // seam_pass
     seam_limit_ = 0.0;
@@ -4762,6 +4790,13 @@ class Grower {
         }
       }
     }
+    // PatchGrowParams::front_dead_ends: the output has the example's share of its own dead ends.
+    if (front_dead_ends_refused(lp, plan)) {
+      ++stats_.patch_illegal;
+      ++stats_.front_dead_ends_refused;
+      front_dead_end_hit_ = true;
+      return refuse(kRefJunctionMix);
+    }
     // Legal: glue it.
     std::vector<std::uint32_t> fresh_id(fresh.size(), UINT32_MAX);
     auto node_id = [&](std::int64_t id) {
@@ -4817,7 +4852,13 @@ class Grower {
         prev = next;
         line_nodes_.push_back(next);
       }
-      if (lp.edges[pl.edge].role == PatchEdgeRole::dead_end) (lp.edges[pl.edge].cut ? crop_end_ : example_dead_end_).insert(prev);
+      if (lp.edges[pl.edge].role == PatchEdgeRole::dead_end) {
+        if (lp.edges[pl.edge].cut) {
+          crop_end_.insert(prev);
+        } else if (example_dead_end_.insert(prev).second && nodes_[prev].edges.size() == 1) {
+          ++out_own_dead_ends_;
+        }
+      }
       if (seeds_local) {  // the local junctions of the example along this arterial street
         const LibEdge& le = lp.edges[pl.edge];
         for (const auto& [vk, local] : le.local_seeds) {
@@ -4878,6 +4919,29 @@ class Grower {
     return params_.patch.front_crossings && !(hierarchy_ && phase_arterial_) && !examples_.empty() &&
            cul_de_sac_city(example_dead_end_share_);
   }
+  // PatchGrowParams::front_dead_ends: whether a patch whose plan brings dead ends of the example's
+  // own (dead-end edges not cut by the crop, ending on a new vertex, not clipped) is refused: while
+  // the output's share of such dead ends among its junctions and those dead ends is at the example's
+  // dead-end share or above (half a dead end's margin, as front_crossing_refused). Off in the relaxed
+  // second pass over a front's draws (front_dead_ends_off_).
+  bool front_dead_ends_here() const {
+    return params_.patch.front_dead_ends && !front_dead_ends_off_ && !(hierarchy_ && phase_arterial_) &&
+           !examples_.empty() && cul_de_sac_city(example_dead_end_share_);
+  }
+  template <class Plan>
+  bool front_dead_ends_refused(const LibPatch& lp, const Plan& plan) const {
+    if (!front_dead_ends_here()) return false;
+    bool brings = false;
+    for (const auto& pl : plan) {
+      const LibEdge& e = lp.edges[pl.edge];
+      brings = brings || (e.role == PatchEdgeRole::dead_end && !e.cut && pl.b < 0 && !pl.clipped);
+    }
+    if (!brings) return false;
+    return front_dead_end_refused(static_cast<long>(out_own_dead_ends_), static_cast<long>(out_junctions_),
+                                  example_dead_end_share_);
+  }
+  bool front_dead_ends_off_ = false;  // the relaxed pass over a front's draws
+  bool front_dead_end_hit_ = false;   // a draw at this front was refused by front_dead_ends
   bool front_crossing_refused(const LibPatch& lp, const MillimetreKey& anchor) {
     if (!front_crossings_here()) return false;
     int own = 0;
@@ -5457,6 +5521,11 @@ ContractedExample contract_short_segments(const std::vector<ExampleEdge>& exampl
   }
   if (out.edges.empty()) out.edges = example;  // nothing left: let build_examples report the example as given
   return out;
+}
+
+bool front_dead_end_refused(long own_dead_ends, long junctions, double example_share) {
+  const double dead = static_cast<double>(own_dead_ends);
+  return dead + 0.5 > example_share * (dead + static_cast<double>(junctions));
 }
 
 bool cut_nears_dead_end_budget(long dead, long street_ends, long dead_after, long street_ends_after, double share) {

@@ -170,6 +170,16 @@ struct PatchGrowParams {
   // passes the example's early in the growth and the joins after it lose crossings (strasbourg: 4-5
   // draws refused a growth, its final share 16-26 % under the example's). bench/patches, README.
   bool front_crossings = true;
+  // Front dead ends (patches36; a city of cul-de-sacs, local phase or one level): a patch that would
+  // bring dead ends of its own (dead-end edges of the example, not the crop's, ending on a new
+  // vertex) is refused while the output's share of such dead ends among its junctions and those
+  // dead ends is at or above the example's dead-end share; the front draws on, and when the rule
+  // left it without a patch its draws are tried again without the rule. Drawn by their Hausdorff
+  // distance alone, canberra_south_large's patches brought more cul-de-sacs per junction than the
+  // example has: its dead-end share +10 % (seeds 1-9, 122-176 of its 128-181 dead ends inside the
+  // hull shrunk by 50 m copies of the example's dead-end edges, which the joins leave alone); joining
+  // them afterwards split blocks the example keeps whole (patches34). bench/patches, README.
+  bool front_dead_ends = true;
   // Refill (patch growth, after the local phase): when the queue empties while the grown streets
   // are shorter than `refill` x the example's street length per area of its hull x the region's
   // area, a random legal point farther from every street than the example's own widest gap (its
@@ -337,6 +347,11 @@ struct GrowStats {
   std::size_t patch_illegal = 0;   // drawn patches that failed a legality check
   std::size_t front_crossings_refused = 0;  // PatchGrowParams::front_crossings: draws refused for a crossing at the front
   double example_crossing_share = 0.0;      // patch growth: the patch streets' crossings among their junctions
+  std::size_t front_dead_ends_refused = 0;  // PatchGrowParams::front_dead_ends: draws refused for their own dead ends
+  std::size_t front_dead_ends_relaxed = 0;  // fronts whose draws were tried again without that rule
+  std::size_t own_dead_ends_grown = 0;      // patch growth: the example's own dead ends copied, when the growth stopped
+  std::size_t junctions_grown = 0;          // and the output's junctions then (before the joins and cut-backs)
+  double example_dead_end_share = 0.0;      // patch growth: the patch library's own dead ends among its street ends
   std::size_t patch_edges = 0;     // output segments copied from patches
   std::size_t patches_dropped = 0; // library patches that cross themselves (never used)
   std::size_t patches_b_placed = 0;  // interpolation: of patches_placed, those from the second library
@@ -454,6 +469,12 @@ GrowResult grow_example(GeosContext& geos, const GrowInput& input, const GrowPar
 // after the cut: the count stops at the one nearest the share's target, not the first at or under it
 // (strasbourg: a target of 5.6 dead ends keeps 6, not 5). Only while over the target; a tie keeps it.
 bool cut_nears_dead_end_budget(long dead, long street_ends, long dead_after, long street_ends_after, double share);
+
+// PatchGrowParams::front_dead_ends: whether a draw that brings dead ends of the example's own is
+// refused, the output holding `own_dead_ends` such dead ends and `junctions` nodes of 3 or more
+// streets: while their share, own_dead_ends / (own_dead_ends + junctions), is at `example_share` or
+// above, by half a dead end (as the front crossings' test).
+bool front_dead_end_refused(long own_dead_ends, long junctions, double example_share);
 
 // The example as grow_example's node matching reads it: every segment (between consecutive
 // vertices, two-way streets mapped twice counted once) between two junctions (nodes of degree 3
