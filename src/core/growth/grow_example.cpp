@@ -1934,7 +1934,7 @@ class Grower {
   static std::vector<double> curvatures_of(const std::vector<const Polyline*>& streets) {
     std::vector<double> out;
     out.reserve(streets.size());
-    for (const Polyline* l : streets) out.push_back(curvature(*l));
+    for (const Polyline* l : streets) out.push_back(arc_curvature(*l));
     return out;
   }
 
