@@ -82,7 +82,7 @@ echo "== realism: grow each example's hull from its centre (grow_patches params 
 for seed in $seeds; do
 for name in $names; do
   psql -X -q -v ON_ERROR_STOP=1 <<SQL
-DO $$
+DO \$\$
 DECLARE
   t0 timestamptz := clock_timestamp();
 BEGIN
@@ -101,7 +101,7 @@ BEGIN
    WHERE r.name = '$name';
   INSERT INTO timing VALUES ('example', '$name', $seed, extract(epoch FROM clock_timestamp() - t0));
 END
-$$;
+\$\$;
 SQL
   if [ "$seed" = "$(echo $seeds | cut -d' ' -f1)" ]; then
     /usr/bin/python3 "$repo/bench/growth/plot.py" "host=$PGHOST port=$PGPORT user=postgres dbname=bench" \
