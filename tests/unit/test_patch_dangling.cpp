@@ -616,9 +616,6 @@ TEST(PatchDangling, LengthCapKeepsTheExamplesDensityPerHullArea) {
   // (the seams off, as measured: with them, seed 4 leaves 9 dead ends inside with the cap, 5 without)
   p.patch.seam_turn = 0.0;
   p.patch.seam_slide = false;
-  // (the fallback's streets straight, as measured: the grid's only curved streets are its corners'
-  // chains, bent 90 degrees, which made its statistical streets arcs and moved the figures below)
-  p.patch.fallback_curvature = false;
   const GrowParams defaults = p;
   p.patch.length_cap = 0.0;
   GrowResult off = grow_example(f.geos, in, p);
@@ -734,9 +731,7 @@ TEST(PatchDangling, SeamsTurnFewerPatchStreetsOnAnOrderedExample) {
 TEST(PatchDangling, CornersStraightenedOnAnOrderedExample) {
   Fixture f;
   GrowInput in = f.input(uneven_blocks());
-  GrowParams p = Fixture::patch_growth();
-  p.patch.fallback_curvature = false;  // (as measured: the grid's corner chains bend its statistical streets)
-  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::straight_corners, p);
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::straight_corners);
   EXPECT_EQ(off.stats.corners_straightened + off.stats.corners_completed, 0u);
   ASSERT_GT(on.stats.corners_straightened, 0u);
   EXPECT_LT(corner_count(on), corner_count(off));
@@ -747,7 +742,7 @@ TEST(PatchDangling, CornersStraightenedOnAnOrderedExample) {
   const double share_on = static_cast<double>(fours_on) / static_cast<double>(threes_on + fours_on);
   EXPECT_GE(share_on, std::min(share_off, 0.875) - 0.02);  // the guard counts inside the budget margin only
   EXPECT_EQ(crossings_without_node(on), 0);
-  expect_same_graph(grow_example(f.geos, in, p), on);
+  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
 
   const GrowResult unordered = grow_example(f.geos, f.input(spider_web()), Fixture::patch_growth());
   EXPECT_GT(unordered.stats.patches_placed, 0u);

@@ -199,8 +199,8 @@ TEST(PatchOperations, PruneDanglingLeavesNoDeadEndTheExampleDoesNotHave) {
   EXPECT_GT(pruned.edges.size(), kept.edges.size() / 2);
 }
 
-// The statistical fallback bends its streets by the example's curvature (Nishida et al.: procedural
-// growth from the length and curvature distributions). A grid of 100 m blocks whose every street is
+// fallback_curvature: the statistical fallback bends its streets by the example's curvature (Nishida
+// et al.: procedural growth from the length and curvature distributions). A grid of 100 m blocks whose every street is
 // an arc turning by 40 degrees (four segments): with each patch usable once, most of the network
 // is statistical. With fallback_curvature those streets turn at their shape points by about the
 // example's curvature per metre; without it they run straight. Planar and deterministic either way.
@@ -246,7 +246,7 @@ TEST(PatchOperations, FallbackStreetsBendByTheExamplesCurvature) {
   p.patch.max_uses = 1;
   p.patch.fallback_curvature = false;
   const GrowResult straight = grow_example(f.geos, in, p);
-  p.patch.fallback_curvature = true;  // (its default)
+  p.patch.fallback_curvature = true;
   const GrowResult bent = grow_example(f.geos, in, p);
 
   // The statistical streets' gentle turns: nodes of degree 2 between two statistical edges that

@@ -80,8 +80,10 @@ struct PatchGrowParams {
   bool prune_dangling = false;
   // The statistical fallback's streets bend by the example streets' curvature (Nishida et al.:
   // procedural growth from the length and curvature distributions): each takes the curvature of
-  // an example street drawn at random, times its length, as a circular arc; false: straight.
-  bool fallback_curvature = true;
+  // an example street drawn at random, times its length, as a circular arc; false: straight. Off
+  // by default: on, bench/patches' realism was worse on seeds 1-3 (per-pair median 3.10 -> 3.23 %,
+  // values past 15 % 9 -> 11: canberra's blocks and 4-way share; README).
+  bool fallback_curvature = false;
   // Before that: a street ending where the example's do not is extended to the closest node, or
   // straight on to the first street, ahead of it within half a mean street (Nishida et al.'s local
   // constraint, section 4.3.4).
