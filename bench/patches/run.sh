@@ -204,7 +204,7 @@ SELECT p.name,
        round(percentile_cont(0.5) WITHIN GROUP (ORDER BY p.used_len)::numeric, 1) AS used_connector_m,
        round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY p.stat_junctions))::numeric, 1) AS junctions_with_stat_pct
   FROM per_seed p GROUP BY p.name ORDER BY p.name;
-\echo main streets grown against the example's (grow_patches, per seed): main-street length, whole hull, grown / example
+\echo main streets grown against the example (grow_patches, per seed): main-street length, whole hull, grown over example
 WITH k AS (SELECT '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard)$' AS re),
      ex AS (SELECT e.name, sum(ST_Length(e.geom)) AS len FROM example e, k WHERE e.road_class ~ k.re GROUP BY e.name),
      gr AS (SELECT g.name, g.seed, sum(ST_Length(g.geom)) FILTER (WHERE g.road_class ~ k.re) AS len
