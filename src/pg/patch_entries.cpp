@@ -447,6 +447,12 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                             stats.arterial_front_refused, reasons, stats.arterial_conn_front, stats.arterial_conn_clipped,
                             stats.arterial_conn_merged, stats.arterial_conn_dropped, stats.arterial_dead_ends)));
   }
+  if (stats.arterial_fallback_budget > 0.0 || stats.fallback_local_seeds > 0) {
+    ereport(DEBUG1, (errmsg("grow_patches: arterial fallback: %zu statistical steps at arterial fronts (main streets up "
+                            "to %.0f m); %zu local seeds cut along fallback arterials, %zu of them grew the local fallback",
+                            stats.arterial_fallback, stats.arterial_fallback_budget, stats.fallback_local_seeds,
+                            stats.fallback_local_seeds_grown)));
+  }
   if (stats.arterial_refill_target > 0.0) {
     ereport(DEBUG1, (errmsg("grow_patches: arterial refill: main streets %.0f m aimed at, gap %.0f m, %.0f m when the "
                             "arterial phase first stopped, %.0f m at its end, %zu arterial seeds",

@@ -467,6 +467,7 @@ class Grower {
       use_level_shape();
       pending_local_.clear();
       local_hint_.clear();
+      fragment_seed_.clear();
       bridge_hint_.clear();
       bridge_landing_.clear();
       corner_front_.clear();
@@ -523,6 +524,41 @@ class Grower {
   bool arterial_refill_on() const {
     return params_.use_patches && hierarchy_ && phase_arterial_ && params_.patch.arterial_refill > 0.0 &&
            new_edges_ > 0 && !cul_de_sac_city(example_dead_end_share_);
+  }
+  // PatchGrowParams::arterial_fallback: the main-street length the arterial fallback grows up to (the
+  // example's per area of its hull, times the region's area and the param), computed once.
+  bool arterial_fallback_here(std::uint32_t v) {
+    if (!(params_.patch.arterial_fallback > 0.0) || nodes_[v].edges.size() != 1 || examples_.empty() ||
+        !(examples_[0].hull_area > 0.0)) {
+      return false;
+    }
+    if (!(arterial_fallback_budget_ >= 0.0)) {
+      double len = 0.0, gap = 0.0;
+      example_main_streets(len, gap);
+      arterial_fallback_budget_ = params_.patch.arterial_fallback * len / examples_[0].hull_area * region_area_;
+      stats_.arterial_fallback_budget = arterial_fallback_budget_;
+    }
+    return grown_main_length() < arterial_fallback_budget_;
+  }
+  double arterial_fallback_budget_ = NAN;
+  // PatchGrowParams::fallback_local_seeds: the arterial streets the fallback made (not bridges) are
+  // cut into fragments of the local level's mean street length; the cuts become local fronts.
+  void seed_along_fallback_arterials(std::vector<std::uint32_t>& cuts) {
+    const double spacing = level_stats_[1].length_mean;
+    if (!(spacing > 0.0)) return;
+    const std::size_t n = edges_.size();
+    for (std::uint32_t e = 0; e < n; ++e) {
+      const OEdge edge = edges_[e];
+      if (edge.level < 0 || edge.source >= 0 || edge.bridge || !level_is_main(edge.level)) continue;
+      const Point a = nodes_[edge.a].p, b = nodes_[edge.b].p;
+      const long parts = std::lround(distance(a, b) / spacing);
+      std::uint32_t cur = e;
+      for (long k = 1; k < parts && new_edges_ < params_.max_edges; ++k) {
+        const std::uint32_t m = split_edge(cur, a + (static_cast<double>(k) / static_cast<double>(parts)) * (b - a));
+        cur = static_cast<std::uint32_t>(edges_.size() - 1);  // the piece from m on to b
+        cuts.push_back(m);
+      }
+    }
   }
   double grown_main_length() const {
     double total = 0.0;
@@ -3907,7 +3943,17 @@ class Grower {
         ++stats_.local_seeds;
       }
     }
+    std::vector<std::uint32_t> cuts;
+    if (params_.patch.fallback_local_seeds) seed_along_fallback_arterials(cuts);
     std::vector<char> queued(nodes_.size(), 0);
+    for (std::uint32_t m : cuts) {
+      if (local_hint_.count(m) != 0) continue;
+      queued[m] = 1;
+      completed_[m] = 0;
+      unfinished_.push_back(m);
+      fragment_seed_.insert(m);
+      ++stats_.fallback_local_seeds;
+    }
     for (const OEdge& e : edges_) {
       if (e.level < 0 || e.source >= 0) continue;
       for (std::uint32_t n : {e.a, e.b}) {
@@ -3933,6 +3979,7 @@ class Grower {
   std::vector<double> level_degree_cdf_[2];
   std::vector<LocalSeed> pending_local_;
   std::unordered_map<std::uint32_t, LocalSeed> local_hint_;
+  std::unordered_set<std::uint32_t> fragment_seed_;  // local seeds cut along fallback arterials
   // The streets' degrees at their ends (each street once: a connector is in two patches), for
   // the fallback's target degree: P(degree <= k | degree >= 2).
   static std::vector<double> degree_cdf_of(const std::vector<const Polyline*>& streets) {
@@ -4290,11 +4337,26 @@ class Grower {
         return;
       }
     }
-    if (!params_.fallback || nodes_[v].edges.size() >= 2 ||
-        (hierarchy_ && phase_arterial_ && bridge_landing_.count(v) == 0)) {
+    // A local seed cut along a fallback arterial (PatchGrowParams::fallback_local_seeds) is a node
+    // of degree 2: where no local patch is legal there, the local fallback grows from it.
+    bool fragment = false;
+    if (!fragment_seed_.empty() && !phase_arterial_) {
+      auto it = fragment_seed_.find(v);
+      if (it != fragment_seed_.end()) {
+        fragment_seed_.erase(it);
+        fragment = nodes_[v].edges.size() == 2;
+      }
+    }
+    // PatchGrowParams::arterial_fallback: an arterial dead-end front with no legal arterial patch
+    // grows the parametric rule with the arterial level's statistics while the main streets are short.
+    const bool arterial_fallback = hierarchy_ && phase_arterial_ && arterial_fallback_here(v);
+    if (!params_.fallback || (nodes_[v].edges.size() >= 2 && !fragment) ||
+        (hierarchy_ && phase_arterial_ && bridge_landing_.count(v) == 0 && !arterial_fallback)) {
       done_ = true;
       return;
     }
+    stats_.arterial_fallback += arterial_fallback;
+    stats_.fallback_local_seeds_grown += fragment;
     // A front where a patch was refused for leaving a corner (so a node or street lies ahead within
     // a mean street): the fallback would only crowd the streets there; it is joined to them (or cut
     // back) after growth.

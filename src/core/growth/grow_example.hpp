@@ -222,6 +222,19 @@ struct PatchGrowParams {
   // strasbourg's own neighbouring patch was refused for it); min_angle still holds against the
   // streets already there and between patch vertices merged into one node.
   bool arterial_own_angles = true;
+  // Arterial fallback (levels; Nishida et al.'s procedural growth at an arterial front, section
+  // 4.3.3): a dead-end front of the arterial phase where no arterial patch is legal grows growth I's
+  // parametric rule with the arterial level's own street length statistics and junction mix (and
+  // its road class), under the usual local constraints, while the grown main streets are shorter
+  // than `arterial_fallback` x the example's main-street length per area of its hull x the region's
+  // area. Without it an arterial library too small for the region leaves its arterials' open ends
+  // as dead ends where the phase stops. 0: off (the arterial phase has no fallback).
+  double arterial_fallback = 0.0;
+  // Local seeds along the arterial streets the statistical fallback made (Nishida et al., section
+  // 4.4): each such street is cut into fragments of the local level's mean street length and the
+  // local phase starts at every cut, not only at the street's ends; where no local patch is legal
+  // at a cut, the local fallback grows from it (a degree-2 node otherwise gets none).
+  bool fallback_local_seeds = false;
 };
 
 struct GrowParams {
@@ -398,6 +411,10 @@ struct GrowStats {
   std::size_t size_redraws = 0;  // size_redraw: fronts whose later draws were put in the first draw's size class first
   std::size_t size_refusals[3][kPatchRefusals] = {};
   double size_cut[2] = {0.0, 0.0};  // the local patches' terciles (m)
+  std::size_t arterial_fallback = 0;          // levels: statistical steps at arterial fronts (PatchGrowParams::arterial_fallback)
+  double arterial_fallback_budget = 0.0;      // metres of main street the arterial fallback grows up to
+  std::size_t fallback_local_seeds = 0;       // levels: local seeds cut along the fallback's arterial streets
+  std::size_t fallback_local_seeds_grown = 0; // of them, fronts where the local fallback grew (no patch was legal)
   std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
   std::size_t ended_on_arterial = 0;  // levels: local streets whose new end was put on an arterial street
