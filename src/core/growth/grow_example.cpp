@@ -416,6 +416,7 @@ class Grower {
     // segments crowds itself out) starts again from the seeds with the next random draws.
     for (int restart = 0;; ++restart) {
       grow();
+      if (hierarchy_ && phase_arterial_ && params_.patch.arterial_fallback_deferred) arterial_fallback_pass();
       if (arterial_refill_on()) arterial_refill();
       if (start_local_phase()) grow();
       if (params_.use_patches && params_.patch.refill > 0.0 && new_edges_ >= kMinGrowth) refill();
@@ -468,6 +469,7 @@ class Grower {
       pending_local_.clear();
       local_hint_.clear();
       fragment_seed_.clear();
+      arterial_stopped_.clear();
       bridge_hint_.clear();
       bridge_landing_.clear();
       corner_front_.clear();
@@ -532,6 +534,10 @@ class Grower {
         !(examples_[0].hull_area > 0.0)) {
       return false;
     }
+    if (params_.patch.arterial_fallback_deferred && !arterial_fallback_now_) {
+      if (!cul_de_sac_city(example_dead_end_share_)) arterial_stopped_.push_back(v);
+      return false;
+    }
     if (!(arterial_fallback_budget_ >= 0.0)) {
       double len = 0.0, gap = 0.0;
       example_main_streets(len, gap);
@@ -541,6 +547,46 @@ class Grower {
     return grown_main_length() < arterial_fallback_budget_;
   }
   double arterial_fallback_budget_ = NAN;
+  bool arterial_fallback_now_ = false;          // the deferred pass (PatchGrowParams::arterial_fallback_deferred)
+  std::vector<std::uint32_t> arterial_stopped_;  // arterial fronts left dead ends before it
+  // PatchGrowParams::arterial_fallback_deferred: after the arterial phase's queue emptied, its fronts
+  // still dead ends (and its arterial streets the crop cut) are queued again with the fallback
+  // allowed, until the main streets reach the budget or no front is left.
+  void arterial_fallback_pass() {
+    arterial_fallback_now_ = true;
+    // The arterial streets the example's crop cut end in the open too (patches16: "their cut ends
+    // stop"): they go on like the fronts left dead ends.
+    if (!cul_de_sac_city(example_dead_end_share_)) {
+      std::vector<std::uint32_t> cut;
+      for (std::uint32_t v : crop_end_) {
+        if (!is_pruned(v) && nodes_[v].edges.size() == 1 && level_is_main(edges_[nodes_[v].edges[0]].level)) {
+          cut.push_back(v);
+        }
+      }
+      std::sort(cut.begin(), cut.end());
+      arterial_stopped_.insert(arterial_stopped_.end(), cut.begin(), cut.end());
+    }
+    std::vector<std::uint32_t> fronts;
+    while (!arterial_stopped_.empty() && new_edges_ < params_.max_edges) {
+      fronts.swap(arterial_stopped_);
+      arterial_stopped_.clear();
+      unfinished_.clear();
+      queue_head_ = 0;
+      for (std::uint32_t v : fronts) {
+        if (is_pruned(v) || nodes_[v].edges.size() != 1) continue;
+        completed_[v] = 0;
+        unfinished_.push_back(v);
+      }
+      if (unfinished_.empty() || !arterial_fallback_here(unfinished_[0]) ||
+          grown_main_length() >= arterial_fallback_budget_) {
+        break;
+      }
+      ++stats_.arterial_fallback_passes;
+      grow();
+    }
+    arterial_stopped_.clear();
+    arterial_fallback_now_ = false;
+  }
   // PatchGrowParams::fallback_local_seeds: the arterial streets the fallback made (not bridges) are
   // cut into fragments of the local level's mean street length; the cuts become local fronts.
   void seed_along_fallback_arterials(std::vector<std::uint32_t>& cuts) {
@@ -4370,6 +4416,10 @@ class Grower {
     // Levels: the local phase's streets are local streets, also where they continue an arterial.
     if (hierarchy_ && !phase_arterial_ && level_is_main(level)) level = phase_level_[1];
     apply_style_shape(t_here);
+    if (arterial_fallback && params_.patch.arterial_fallback_straight) {
+      if (target_degree_.size() < nodes_.size()) target_degree_.resize(nodes_.size(), 0);
+      target_degree_[v] = 2;  // straight on: parametric_step's lattice has the direction opposite the street
+    }
     parametric_step(v, level, guide_here_);
   }
   // Why an arterial front got no patch (DEBUG1): candidates all refused, or none drawn — then a

@@ -230,6 +230,14 @@ struct PatchGrowParams {
   // area. Without it an arterial library too small for the region leaves its arterials' open ends
   // as dead ends where the phase stops. 0: off (the arterial phase has no fallback).
   double arterial_fallback = 0.0;
+  // The arterial fallback continues a front's street straight on only (the junctions are the
+  // patches', which take over again at its new end): its lattice's branches at right angles to the
+  // front's street crossed the example's arterials' directions (barcelona's orientation order -41 %).
+  bool arterial_fallback_straight = true;
+  // The arterial fallback waits until the arterial phase's queue has emptied: only the fronts still
+  // dead ends then get it (and the fronts its streets bring, at once), so the patches take the
+  // space first. Not in a city of cul-de-sacs (its arterials are few and end in its local streets).
+  bool arterial_fallback_deferred = true;
   // Local seeds along the arterial streets the statistical fallback made (Nishida et al., section
   // 4.4): each such street is cut into fragments of the local level's mean street length and the
   // local phase starts at every cut, not only at the street's ends; where no local patch is legal
@@ -415,6 +423,7 @@ struct GrowStats {
   double arterial_fallback_budget = 0.0;      // metres of main street the arterial fallback grows up to
   std::size_t fallback_local_seeds = 0;       // levels: local seeds cut along the fallback's arterial streets
   std::size_t fallback_local_seeds_grown = 0; // of them, fronts where the local fallback grew (no patch was legal)
+  std::size_t arterial_fallback_passes = 0;   // arterial_fallback_deferred: passes over the fronts left dead ends
   std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
   std::size_t ended_on_arterial = 0;  // levels: local streets whose new end was put on an arterial street

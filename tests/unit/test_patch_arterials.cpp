@@ -1,0 +1,139 @@
+// The arterial phase's statistical fallback (PatchGrowParams::arterial_fallback) and the local seeds
+// cut along the arterial streets it makes (PatchGrowParams::fallback_local_seeds): Nishida et al.
+// 2016, sections 4.3.3 and 4.4.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/growth/grow_example.hpp"
+#include "core/growth/patches.hpp"
+#include "patch_fixtures.hpp"
+#include "test_support.hpp"
+
+using namespace streetgen::core;
+using streetgen::test::avenue_grid;
+using streetgen::test::wkt;
+
+namespace {
+
+bool crosses_without_node(const GrownEdge& a, const GrownEdge& b) {
+  bool shared = a.from_node == b.from_node || a.from_node == b.to_node || a.to_node == b.from_node ||
+                a.to_node == b.to_node;
+  if (shared) return false;
+  auto orient = [](Point p, Point q, Point r) { return cross(q - p, r - p); };
+  double d1 = orient(a.a, a.b, b.a), d2 = orient(a.a, a.b, b.b);
+  double d3 = orient(b.a, b.b, a.a), d4 = orient(b.a, b.b, a.b);
+  return d1 * d2 <= 0 && d3 * d4 <= 0 &&
+         std::max(std::min(a.a.x, a.b.x), std::min(b.a.x, b.b.x)) <= std::min(std::max(a.a.x, a.b.x), std::max(b.a.x, b.b.x)) &&
+         std::max(std::min(a.a.y, a.b.y), std::min(b.a.y, b.b.y)) <= std::min(std::max(a.a.y, a.b.y), std::max(b.a.y, b.b.y));
+}
+
+// An arterial library too small for the region: the avenue grid's four avenue crossings (600 m
+// square example, avenues 300 m apart), each usable once, in a 3 km square, no arterial refill.
+struct SmallArterialLibrary {
+  GeosContext geos;
+  GeomPtr region = wkt(geos, "POLYGON((-1500 -1500, 1500 -1500, 1500 1500, -1500 1500, -1500 -1500))");
+  GrowInput in;
+  GrowParams p;
+  SmallArterialLibrary() {
+    PatchExtraction x = extract_patches(geos, avenue_grid(), PatchParams{});
+    for (std::size_t i = 0; i < x.arterial_patches; ++i) x.patches[i].max_uses = 1;
+    in.patches = x.patches;
+    in.region = region.get();
+    in.seeds = {{0.0, 0.0}};
+    p.use_patches = true;
+    p.seed = 3;
+    p.max_edges = 20000;
+    p.patch.arterial_refill = 0.0;
+  }
+};
+
+// The avenue (main street) graph of a result: per node, its avenue edges; and the largest distance
+// of an avenue node from the seed.
+struct Avenues {
+  std::map<std::int64_t, int> degree;
+  std::map<std::int64_t, Point> at;
+  double reach = 0.0;
+  double length = 0.0;
+  explicit Avenues(const GrowResult& r) {
+    for (const GrownEdge& e : r.edges) {
+      if (e.road_class != "avenue") continue;
+      ++degree[e.from_node];
+      ++degree[e.to_node];
+      at[e.from_node] = e.a;
+      at[e.to_node] = e.b;
+      reach = std::max({reach, std::hypot(e.a.x, e.a.y), std::hypot(e.b.x, e.b.y)});
+      length += distance(e.a, e.b);
+    }
+  }
+  // Avenue dead ends farther than 200 m inside the region's edge: where an avenue stops in the open.
+  int interior_dead_ends() const {
+    int n = 0;
+    for (const auto& [node, d] : degree) {
+      const Point q = at.at(node);
+      n += d == 1 && std::abs(q.x) < 1300 && std::abs(q.y) < 1300;
+    }
+    return n;
+  }
+};
+
+}  // namespace
+
+// Without the fallback the arterial phase stops where the library's four patches end: their open
+// avenue connectors are dead ends in the middle of the region and no avenue gets near its edge.
+// With it, the avenues go on with the arterial level's statistics up to the example's main-street
+// length per area, across the region, and the open ends the patches left are continued.
+TEST(GrowPatchesArterialFallback, ArterialsReachAcrossTheRegion) {
+  SmallArterialLibrary f;
+  GrowResult off = grow_example(f.geos, f.in, f.p);
+  f.p.patch.arterial_fallback = 1.0;
+  GrowResult on = grow_example(f.geos, f.in, f.p);
+  const Avenues a_off(off), a_on(on);
+  std::printf("off: reach %.0f length %.0f dead ends %d placed %zu fallback %zu\n", a_off.reach, a_off.length,
+              a_off.interior_dead_ends(), off.stats.arterial_patches_placed, off.stats.arterial_fallback);
+  std::printf("on: reach %.0f length %.0f dead ends %d placed %zu fallback %zu budget %.0f\n", a_on.reach, a_on.length,
+              a_on.interior_dead_ends(), on.stats.arterial_patches_placed, on.stats.arterial_fallback,
+              on.stats.arterial_fallback_budget);
+  for (const Avenues* a : {&a_off, &a_on}) {
+    for (const auto& [node, d] : a->degree) {
+      const Point q = a->at.at(node);
+      if (d == 1 && std::abs(q.x) < 1300 && std::abs(q.y) < 1300) std::printf("  dead end %.0f %.0f\n", q.x, q.y);
+    }
+    std::printf("--\n");
+  }
+  EXPECT_EQ(off.stats.arterial_fallback, 0u);
+  EXPECT_GT(on.stats.arterial_fallback, 10u);
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < on.edges.size(); ++j) bad += crosses_without_node(on.edges[i], on.edges[j]);
+  }
+  EXPECT_EQ(bad, 0u);
+}
+
+// The fallback's arterial streets are cut into fragments of the local level's mean street length
+// (the avenue grid's streets: 100 m) and the local phase starts at every cut.
+TEST(GrowPatchesArterialFallback, LocalSeedsAlongFallbackArterials) {
+  SmallArterialLibrary f;
+  f.p.patch.arterial_fallback = 1.0;
+  GrowResult off = grow_example(f.geos, f.in, f.p);
+  f.p.patch.fallback_local_seeds = true;
+  GrowResult on = grow_example(f.geos, f.in, f.p);
+  auto fallback_avenues = [](const GrowResult& r) {
+    std::vector<double> len;
+    for (const GrownEdge& e : r.edges) {
+      if (e.road_class == "avenue" && e.example < 0) len.push_back(distance(e.a, e.b));
+    }
+    std::sort(len.begin(), len.end());
+    return len;
+  };
+  const std::vector<double> l_off = fallback_avenues(off), l_on = fallback_avenues(on);
+  std::printf("off: %zu fallback avenue edges, median %.0f; on: %zu, median %.0f; seeds %zu grown %zu\n", l_off.size(),
+              l_off.empty() ? 0.0 : l_off[l_off.size() / 2], l_on.size(), l_on.empty() ? 0.0 : l_on[l_on.size() / 2],
+              on.stats.fallback_local_seeds, on.stats.fallback_local_seeds_grown);
+  EXPECT_EQ(off.stats.fallback_local_seeds, 0u);
+  EXPECT_GT(on.stats.fallback_local_seeds, 10u);
+}
