@@ -56,7 +56,7 @@ enum GrowArg {
   // Operations: warping (guide), interpolation (a second library, t) and blending.
   kGGuide, kGGuideReach, kGPatchIdsB, kGRolesB, kGClassesB, kGGeomsB, kGMaxUsesB, kGArterialsB, kGT, kGBlendMode,
   kGBlendAngle, kGBlendX, kGBlendY, kGBlendSigma, kGPruneDangling, kGDirectionGrid, kGDirectionValues, kGConnectDangling,
-  kGArgs
+  kGArterialFallback, kGFallbackLocalSeeds, kGArgs
 };
 
 // One patch library's rows, read in phase 1 (palloc'd plain data).
@@ -286,7 +286,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       "bridge_distance", "bridge_turn", "guide", "guide_reach", "interpolate patch ids", "interpolate roles",
       "interpolate road classes", "interpolate patch edges", "interpolate max_uses", "interpolate arterials", "t",
       "blend", "blend_angle", "blend_points x", "blend_points y", "blend_sigma", "prune_dangling", "direction grid",
-      "direction", "connect_dangling"};
+      "direction", "connect_dangling", "arterial_fallback", "fallback_local_seeds"};
   for (int a = kGRegion; a < kGArgs; ++a) {
     if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && a != kGArterials && a != kGWater && a != kGDemGrid &&
         a != kGDemValues && a != kGGuide && !(a >= kGPatchIdsB && a <= kGArterialsB) && a != kGBlendX &&
@@ -351,6 +351,8 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   params.patch.prune_dangling = PG_GETARG_BOOL(kGPruneDangling);
   params.patch.connect_dangling = PG_GETARG_BOOL(kGConnectDangling);
   params.patch.continue_across = params.patch.connect_dangling;  // one SQL switch for both joins (README)
+  params.patch.arterial_fallback = PG_GETARG_FLOAT8(kGArterialFallback);
+  params.patch.fallback_local_seeds = PG_GETARG_BOOL(kGFallbackLocalSeeds);
   InitMaterializedSRF(fcinfo, 0);
   auto rows = pg::OwnedResult<std::vector<pg::GrownRow>>::create();
   core::GrowStats stats;

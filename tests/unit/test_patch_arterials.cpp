@@ -98,20 +98,33 @@ TEST(GrowPatchesArterialFallback, ArterialsReachAcrossTheRegion) {
   std::printf("on: reach %.0f length %.0f dead ends %d placed %zu fallback %zu budget %.0f\n", a_on.reach, a_on.length,
               a_on.interior_dead_ends(), on.stats.arterial_patches_placed, on.stats.arterial_fallback,
               on.stats.arterial_fallback_budget);
-  for (const Avenues* a : {&a_off, &a_on}) {
-    for (const auto& [node, d] : a->degree) {
-      const Point q = a->at.at(node);
-      if (d == 1 && std::abs(q.x) < 1300 && std::abs(q.y) < 1300) std::printf("  dead end %.0f %.0f\n", q.x, q.y);
-    }
-    std::printf("--\n");
-  }
   EXPECT_EQ(off.stats.arterial_fallback, 0u);
   EXPECT_GT(on.stats.arterial_fallback, 10u);
+  // Without it the avenues stop within the library's four crossings, their open ends dead ends in
+  // the middle of the region; with it they reach the region's edge and none is left in the open.
+  EXPECT_LT(a_off.reach, 800.0);
+  EXPECT_GE(a_off.interior_dead_ends(), 5);
+  EXPECT_GT(a_on.reach, 1400.0);
+  EXPECT_EQ(a_on.interior_dead_ends(), 0);
+  EXPECT_GT(a_on.length, 3.0 * a_off.length);
+  EXPECT_LE(a_on.length, on.stats.arterial_fallback_budget);
+  EXPECT_EQ(on.stats.arterial_patches_placed, off.stats.arterial_patches_placed);  // each patch once
   std::size_t bad = 0;
   for (std::size_t i = 0; i < on.edges.size(); ++i) {
     for (std::size_t j = i + 1; j < on.edges.size(); ++j) bad += crosses_without_node(on.edges[i], on.edges[j]);
   }
   EXPECT_EQ(bad, 0u);
+  GrowResult again = grow_example(f.geos, f.in, f.p);
+  ASSERT_EQ(again.edges.size(), on.edges.size());
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    EXPECT_EQ(again.edges[i].from_node, on.edges[i].from_node);
+    EXPECT_DOUBLE_EQ(again.edges[i].b.x, on.edges[i].b.x);
+  }
+  // Off by default: the default growth is the one without it.
+  SmallArterialLibrary d;
+  GrowResult def = grow_example(d.geos, d.in, d.p);
+  EXPECT_EQ(def.edges.size(), off.edges.size());
+  EXPECT_EQ(def.stats.arterial_fallback, 0u);
 }
 
 // The fallback's arterial streets are cut into fragments of the local level's mean street length
@@ -122,18 +135,41 @@ TEST(GrowPatchesArterialFallback, LocalSeedsAlongFallbackArterials) {
   GrowResult off = grow_example(f.geos, f.in, f.p);
   f.p.patch.fallback_local_seeds = true;
   GrowResult on = grow_example(f.geos, f.in, f.p);
-  auto fallback_avenues = [](const GrowResult& r) {
-    std::vector<double> len;
-    for (const GrownEdge& e : r.edges) {
-      if (e.road_class == "avenue" && e.example < 0) len.push_back(distance(e.a, e.b));
-    }
-    std::sort(len.begin(), len.end());
-    return len;
+  struct Along {
+    double longest = 0.0, length = 0.0;
+    int junctions = 0;  // nodes between two fallback avenue edges with a local street
   };
-  const std::vector<double> l_off = fallback_avenues(off), l_on = fallback_avenues(on);
-  std::printf("off: %zu fallback avenue edges, median %.0f; on: %zu, median %.0f; seeds %zu grown %zu\n", l_off.size(),
-              l_off.empty() ? 0.0 : l_off[l_off.size() / 2], l_on.size(), l_on.empty() ? 0.0 : l_on[l_on.size() / 2],
+  auto along = [](const GrowResult& r) {
+    Along a;
+    std::map<std::int64_t, int> fallback_avenue, street;
+    for (const GrownEdge& e : r.edges) {
+      if (e.road_class == "avenue" && e.example < 0) {
+        a.longest = std::max(a.longest, distance(e.a, e.b));
+        a.length += distance(e.a, e.b);
+        ++fallback_avenue[e.from_node];
+        ++fallback_avenue[e.to_node];
+      } else if (e.road_class == "street") {
+        ++street[e.from_node];
+        ++street[e.to_node];
+      }
+    }
+    for (const auto& [node, d] : fallback_avenue) a.junctions += d == 2 && street.count(node) != 0;
+    return a;
+  };
+  const Along a_off = along(off), a_on = along(on);
+  std::printf("off: longest %.0f length %.0f junctions %d; on: longest %.0f length %.0f junctions %d; seeds %zu grown %zu\n",
+              a_off.longest, a_off.length, a_off.junctions, a_on.longest, a_on.length, a_on.junctions,
               on.stats.fallback_local_seeds, on.stats.fallback_local_seeds_grown);
   EXPECT_EQ(off.stats.fallback_local_seeds, 0u);
   EXPECT_GT(on.stats.fallback_local_seeds, 10u);
+  EXPECT_DOUBLE_EQ(a_on.length, a_off.length);  // the same arterial phase
+  // Every fallback avenue is cut to about the local street length (a street of less than 1.5 of
+  // them stays whole; the joins after growth may continue an arterial T by up to a mean street).
+  EXPECT_GT(a_off.longest, 200.0);
+  EXPECT_LE(a_on.longest, 160.0);
+  // Local streets leave the fallback avenues about every local street length.
+  EXPECT_GT(a_on.junctions, a_off.junctions + 10);
+  const double spacing = a_on.length / a_on.junctions;
+  EXPECT_GT(spacing, 80.0);
+  EXPECT_LT(spacing, 130.0);
 }

@@ -538,6 +538,10 @@ class Grower {
       if (!cul_de_sac_city(example_dead_end_share_)) arterial_stopped_.push_back(v);
       return false;
     }
+    return arterial_fallback_short();
+  }
+  // Whether the grown main streets are still shorter than the arterial fallback's budget.
+  bool arterial_fallback_short() {
     if (!(arterial_fallback_budget_ >= 0.0)) {
       double len = 0.0, gap = 0.0;
       example_main_streets(len, gap);
@@ -553,6 +557,12 @@ class Grower {
   // still dead ends (and its arterial streets the crop cut) are queued again with the fallback
   // allowed, until the main streets reach the budget or no front is left.
   void arterial_fallback_pass() {
+    // (nothing changes where the budget is already reached: the growth is the one without it)
+    if (!(params_.patch.arterial_fallback > 0.0) || examples_.empty() || !(examples_[0].hull_area > 0.0) ||
+        cul_de_sac_city(example_dead_end_share_) || !arterial_fallback_short()) {
+      arterial_stopped_.clear();
+      return;
+    }
     arterial_fallback_now_ = true;
     // The arterial streets the example's crop cut end in the open too (patches16: "their cut ends
     // stop"): they go on like the fronts left dead ends.
@@ -577,10 +587,7 @@ class Grower {
         completed_[v] = 0;
         unfinished_.push_back(v);
       }
-      if (unfinished_.empty() || !arterial_fallback_here(unfinished_[0]) ||
-          grown_main_length() >= arterial_fallback_budget_) {
-        break;
-      }
+      if (unfinished_.empty() || !arterial_fallback_short()) break;
       ++stats_.arterial_fallback_passes;
       grow();
     }
