@@ -3575,7 +3575,8 @@ class Grower {
     double loss = -1.0;        // cut_back_loss for the current dead end (-1: not yet)
   } gate_;
   // The class of a join: the street's own; with levels a local street, also where it continues an
-  // arterial (as the local phase's fallback: arterial streets are the arterial patches' alone).
+  // arterial (as the local phase's fallback: arterial streets are the arterial patches' and, with
+  // PatchGrowParams::arterial_fallback, the arterial phase's own fallback's alone).
   int join_level(int level) const { return hierarchy_ && level_is_main(level) ? phase_level_[1] : level; }
   double connect_reach() const { return std::max(snap_, reach_factor_ * kConnectReach * street_stats_.length_mean); }
   double corner_reach_factor(std::uint32_t v) const { return corner_front_.count(v) != 0 ? 2.0 : 1.0; }
@@ -3753,7 +3754,8 @@ class Grower {
     }
     // Arterials: an arterial T (all three streets main) with no T facing it goes on straight to
     // the first street ahead, split there. The example's arterials run on through each other's
-    // junctions (the arterial phase has no statistical fallback to continue them). Local T's too
+    // junctions (the arterial phase's statistical fallback, PatchGrowParams::arterial_fallback, is off
+    // by default and continues dead ends only). Local T's too
     // (continue_local_tees), but only while the network is not denser than the example in street
     // length, nor, for a join that makes a junction, in junctions (local_join_refused): joining them
     // all measured denser networks (README; patches28: strasbourg's intersection density +17 to +31
@@ -4226,7 +4228,8 @@ class Grower {
     int level = 0;
     // Corners are refused only at a dead-end front with a node or street ahead within a mean
     // street (where the example would have had the junction), not at the edge of the growth, and
-    // not in the arterial phase (it has no fallback: its fronts would only stop).
+    // not in the arterial phase (its fallback, off by default and deferred, is no join: its fronts
+    // would only stop).
     if (avoid_corners() && nodes_[v].edges.size() == 1 && !(hierarchy_ && phase_arterial_)) {
       reach_factor_ = 2.0;
       corner_ahead_ = std::isfinite(gap_ahead(v));
@@ -4375,11 +4378,13 @@ class Grower {
     // A front that two patches already reached is connected: the fallback only continues streets
     // that would otherwise end where the example did not end them.
     // Levels: an arterial street no arterial patch continues ends there (the local phase fills
-    // around it): the fallback's straight arterials measured a grid over the whole region
-    // (canberra_south_large: street density +150 % instead of +55 %).
+    // around it) unless PatchGrowParams::arterial_fallback: the fallback's lattice at every
+    // arterial front measured a grid over the whole region (canberra_south_large: street density
+    // +150 % instead of +55 %, before the length cap), so that fallback is deferred until the
+    // arterial queue is empty, goes straight on only and stops at a main-street budget (patches38).
     // An arterial street ending here with water ahead (every patch was illegal over it): it goes
     // on across as a bridge (Nishida's local constraint of procedural growth), also in the
-    // arterial phase, which has no statistical fallback otherwise.
+    // arterial phase.
     if (bridges_on() && nodes_[v].edges.size() == 1 && level_is_main(level)) {
       const Point back = other_end(nodes_[v].edges[0], v);
       const double angle = std::atan2(p.y - back.y, p.x - back.x);
