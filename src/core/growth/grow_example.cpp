@@ -566,7 +566,7 @@ class Grower {
     arterial_fallback_now_ = true;
     // The arterial streets the example's crop cut end in the open too (patches16: "their cut ends
     // stop"): they go on like the fronts left dead ends.
-    if (!cul_de_sac_city(example_dead_end_share_)) {
+    if (params_.patch.arterial_fallback_crop_ends) {
       std::vector<std::uint32_t> cut;
       for (std::uint32_t v : crop_end_) {
         if (!is_pruned(v) && nodes_[v].edges.size() == 1 && level_is_main(edges_[nodes_[v].edges[0]].level)) {

@@ -238,6 +238,9 @@ struct PatchGrowParams {
   // dead ends then get it (and the fronts its streets bring, at once), so the patches take the
   // space first. Not in a city of cul-de-sacs (its arterials are few and end in its local streets).
   bool arterial_fallback_deferred = true;
+  // The deferred pass also continues the arterial streets the example's crop cut (patch dead-end
+  // edges ending on its hull: copied, they end in the open where the example's street went on).
+  bool arterial_fallback_crop_ends = true;
   // Local seeds along the arterial streets the statistical fallback made (Nishida et al., section
   // 4.4): each such street is cut into fragments of the local level's mean street length and the
   // local phase starts at every cut, not only at the street's ends; where no local patch is legal
