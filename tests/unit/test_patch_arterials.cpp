@@ -93,11 +93,6 @@ TEST(GrowPatchesArterialFallback, ArterialsReachAcrossTheRegion) {
   f.p.patch.arterial_fallback = 1.0;
   GrowResult on = grow_example(f.geos, f.in, f.p);
   const Avenues a_off(off), a_on(on);
-  std::printf("off: reach %.0f length %.0f dead ends %d placed %zu fallback %zu\n", a_off.reach, a_off.length,
-              a_off.interior_dead_ends(), off.stats.arterial_patches_placed, off.stats.arterial_fallback);
-  std::printf("on: reach %.0f length %.0f dead ends %d placed %zu fallback %zu budget %.0f\n", a_on.reach, a_on.length,
-              a_on.interior_dead_ends(), on.stats.arterial_patches_placed, on.stats.arterial_fallback,
-              on.stats.arterial_fallback_budget);
   EXPECT_EQ(off.stats.arterial_fallback, 0u);
   EXPECT_GT(on.stats.arterial_fallback, 10u);
   // Without it the avenues stop within the library's four crossings, their open ends dead ends in
@@ -157,9 +152,6 @@ TEST(GrowPatchesArterialFallback, LocalSeedsAlongFallbackArterials) {
     return a;
   };
   const Along a_off = along(off), a_on = along(on);
-  std::printf("off: longest %.0f length %.0f junctions %d; on: longest %.0f length %.0f junctions %d; seeds %zu grown %zu\n",
-              a_off.longest, a_off.length, a_off.junctions, a_on.longest, a_on.length, a_on.junctions,
-              on.stats.fallback_local_seeds, on.stats.fallback_local_seeds_grown);
   EXPECT_EQ(off.stats.fallback_local_seeds, 0u);
   EXPECT_GT(on.stats.fallback_local_seeds, 10u);
   EXPECT_DOUBLE_EQ(a_on.length, a_off.length);  // the same arterial phase
