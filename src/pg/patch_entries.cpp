@@ -451,9 +451,11 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   }
   if (stats.arterial_fallback_budget > 0.0 || stats.fallback_local_seeds > 0) {
     ereport(DEBUG1, (errmsg("grow_patches: arterial fallback: %zu statistical steps at arterial fronts (main streets up "
-                            "to %.0f m); %zu local seeds cut along fallback arterials, %zu of them grew the local fallback",
-                            stats.arterial_fallback, stats.arterial_fallback_budget, stats.fallback_local_seeds,
-                            stats.fallback_local_seeds_grown)));
+                            "to %.0f m; %zu dead ends queued again, %zu of them crop ends, %zu passes); %zu local seeds "
+                            "cut along fallback arterials, %zu of them grew the local fallback",
+                            stats.arterial_fallback, stats.arterial_fallback_budget, stats.arterial_fallback_fronts,
+                            stats.arterial_fallback_crop_ends, stats.arterial_fallback_passes,
+                            stats.fallback_local_seeds, stats.fallback_local_seeds_grown)));
   }
   if (stats.arterial_refill_target > 0.0) {
     ereport(DEBUG1, (errmsg("grow_patches: arterial refill: main streets %.0f m aimed at, gap %.0f m, %.0f m when the "

@@ -574,6 +574,7 @@ class Grower {
         }
       }
       std::sort(cut.begin(), cut.end());
+      stats_.arterial_fallback_crop_ends += cut.size();
       arterial_stopped_.insert(arterial_stopped_.end(), cut.begin(), cut.end());
     }
     std::vector<std::uint32_t> fronts;
@@ -587,6 +588,7 @@ class Grower {
         completed_[v] = 0;
         unfinished_.push_back(v);
       }
+      if (stats_.arterial_fallback_passes == 0) stats_.arterial_fallback_fronts += unfinished_.size();
       if (unfinished_.empty() || !arterial_fallback_short()) break;
       ++stats_.arterial_fallback_passes;
       grow();

@@ -427,6 +427,8 @@ struct GrowStats {
   std::size_t fallback_local_seeds = 0;       // levels: local seeds cut along the fallback's arterial streets
   std::size_t fallback_local_seeds_grown = 0; // of them, fronts where the local fallback grew (no patch was legal)
   std::size_t arterial_fallback_passes = 0;   // arterial_fallback_deferred: passes over the fronts left dead ends
+  std::size_t arterial_fallback_fronts = 0;   // arterial_fallback_deferred: fronts left dead ends queued again
+  std::size_t arterial_fallback_crop_ends = 0;  // of them, ends of arterial streets the example's crop cut
   std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
   std::size_t ended_on_arterial = 0;  // levels: local streets whose new end was put on an arterial street
