@@ -470,6 +470,7 @@ class Grower {
       local_hint_.clear();
       fragment_seed_.clear();
       arterial_stopped_.clear();
+      fallback_depth_.clear();
       bridge_hint_.clear();
       bridge_landing_.clear();
       corner_front_.clear();
@@ -538,8 +539,13 @@ class Grower {
       if (!cul_de_sac_city(example_dead_end_share_)) arterial_stopped_.push_back(v);
       return false;
     }
+    if (params_.patch.arterial_fallback_steps > 0 && v < fallback_depth_.size() &&
+        fallback_depth_[v] >= params_.patch.arterial_fallback_steps) {
+      return false;
+    }
     return arterial_fallback_short();
   }
+  std::vector<int> fallback_depth_;  // per node: fallback streets in a row that led to it (arterial_fallback_steps)
   // Whether the grown main streets are still shorter than the arterial fallback's budget.
   bool arterial_fallback_short() {
     if (!(arterial_fallback_budget_ >= 0.0)) {
@@ -4434,7 +4440,12 @@ class Grower {
       if (target_degree_.size() < nodes_.size()) target_degree_.resize(nodes_.size(), 0);
       target_degree_[v] = 2;  // straight on: parametric_step's lattice has the direction opposite the street
     }
+    const std::size_t nodes_before = nodes_.size();
     parametric_step(v, level, guide_here_);
+    if (arterial_fallback && params_.patch.arterial_fallback_steps > 0) {
+      fallback_depth_.resize(nodes_.size(), 0);
+      for (std::size_t n = nodes_before; n < nodes_.size(); ++n) fallback_depth_[n] = fallback_depth_[v] + 1;
+    }
   }
   // Why an arterial front got no patch (DEBUG1): candidates all refused, or none drawn — then a
   // second look at the connectors in its streets' directions, without the reach filter, tells

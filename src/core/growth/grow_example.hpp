@@ -241,6 +241,9 @@ struct PatchGrowParams {
   // The deferred pass also continues the arterial streets the example's crop cut (patch dead-end
   // edges ending on its hull: copied, they end in the open where the example's street went on).
   bool arterial_fallback_crop_ends = true;
+  // At most this many fallback streets in a row from a front the deferred pass queued again (the
+  // arterial patches may take over in between, which starts the count again); 0: no limit.
+  int arterial_fallback_steps = 0;
   // Local seeds along the arterial streets the statistical fallback made (Nishida et al., section
   // 4.4): each such street is cut into fragments of the local level's mean street length and the
   // local phase starts at every cut, not only at the street's ends; where no local patch is legal
