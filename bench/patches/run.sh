@@ -10,6 +10,7 @@
 #   BASELINE=0 bash bench/patches/run.sh      grow_patches only (no grow_example baseline: half the time)
 #   STRUCTURES=0 bash bench/patches/run.sh    without the roundabout / cul-de-sac uses (about 7 of 9 minutes)
 #   SIDES='1200 2600' bash bench/patches/run.sh   the speed part's square sides (m)
+#   DEBUG1=1 bash bench/patches/run.sh        grow_patches' DEBUG1 counts (arterial fronts, fallback, ...) into $OUT/debug1.log
 #
 # 1. Realism: for each example, extract its patches, grow its convex hull from one seed at its
 #    centre with grow_patches and with grow_example (default params, max_edges 200000), and
@@ -81,7 +82,10 @@ SQL
 echo "== realism: grow each example's hull from its centre (grow_patches params $params; grow_example defaults)"
 for seed in $seeds; do
 for name in $names; do
-  psql -X -q -v ON_ERROR_STOP=1 <<SQL
+  # DEBUG1=1: grow_patches' DEBUG1 counts (why the arterial phase stops, ...) into $out/debug1.log
+  if [ "${DEBUG1:-0}" = 1 ]; then echo "== $name seed $seed" >> "$out/debug1.log"; fi
+  PGOPTIONS="-c client_min_messages=$([ "${DEBUG1:-0}" = 1 ] && echo debug1 || echo warning)" \
+  psql -X -q -v ON_ERROR_STOP=1 2>> "$([ "${DEBUG1:-0}" = 1 ] && echo "$out/debug1.log" || echo /dev/stderr)" <<SQL
 DO \$\$
 DECLARE
   t0 timestamptz := clock_timestamp();
@@ -201,6 +205,14 @@ SELECT p.name,
        round(percentile_cont(0.5) WITHIN GROUP (ORDER BY p.used_len)::numeric, 1) AS used_connector_m,
        round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY p.stat_junctions))::numeric, 1) AS junctions_with_stat_pct
   FROM per_seed p GROUP BY p.name ORDER BY p.name;
+\echo main streets grown against the example (grow_patches, per seed): main-street length, whole hull, grown over example
+WITH k AS (SELECT '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard)$' AS re),
+     ex AS (SELECT e.name, sum(ST_Length(e.geom)) AS len FROM example e, k WHERE e.road_class ~ k.re GROUP BY e.name),
+     gr AS (SELECT g.name, g.seed, sum(ST_Length(g.geom)) FILTER (WHERE g.road_class ~ k.re) AS len
+              FROM grown g, k WHERE g.method = 'patches' GROUP BY g.name, g.seed)
+SELECT gr.name, round((ex.len / 1000)::numeric, 1) AS example_main_km,
+       string_agg(gr.seed || ': ' || round((coalesce(gr.len, 0) / ex.len)::numeric, 2), ', ' ORDER BY gr.seed) AS grown_over_example
+  FROM gr JOIN ex USING (name) GROUP BY gr.name, ex.len ORDER BY gr.name;
 \echo orientation order by level (grow_patches, median over seeds; degree-2 chains merged, inside the hull shrunk by 50 m): main and local streets apart, example and grown
 WITH k AS (SELECT '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard)$' AS re),
      lv AS (SELECT r.name, s.seed, r.geom,

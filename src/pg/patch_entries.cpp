@@ -56,8 +56,7 @@ enum GrowArg {
   // Operations: warping (guide), interpolation (a second library, t) and blending.
   kGGuide, kGGuideReach, kGPatchIdsB, kGRolesB, kGClassesB, kGGeomsB, kGMaxUsesB, kGArterialsB, kGT, kGBlendMode,
   kGBlendAngle, kGBlendX, kGBlendY, kGBlendSigma, kGPruneDangling, kGDirectionGrid, kGDirectionValues, kGConnectDangling,
-  kGFallbackCurvature,
-  kGArgs
+  kGFallbackCurvature, kGArterialFallback, kGFallbackLocalSeeds, kGArgs
 };
 
 // One patch library's rows, read in phase 1 (palloc'd plain data).
@@ -287,7 +286,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       "bridge_distance", "bridge_turn", "guide", "guide_reach", "interpolate patch ids", "interpolate roles",
       "interpolate road classes", "interpolate patch edges", "interpolate max_uses", "interpolate arterials", "t",
       "blend", "blend_angle", "blend_points x", "blend_points y", "blend_sigma", "prune_dangling", "direction grid",
-      "direction", "connect_dangling", "fallback_curvature"};
+      "direction", "connect_dangling", "fallback_curvature", "arterial_fallback", "fallback_local_seeds"};
   for (int a = kGRegion; a < kGArgs; ++a) {
     if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && a != kGArterials && a != kGWater && a != kGDemGrid &&
         a != kGDemValues && a != kGGuide && !(a >= kGPatchIdsB && a <= kGArterialsB) && a != kGBlendX &&
@@ -353,6 +352,8 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   params.patch.connect_dangling = PG_GETARG_BOOL(kGConnectDangling);
   params.patch.fallback_curvature = PG_GETARG_BOOL(kGFallbackCurvature);
   params.patch.continue_across = params.patch.connect_dangling;  // one SQL switch for both joins (README)
+  params.patch.arterial_fallback = PG_GETARG_FLOAT8(kGArterialFallback);
+  params.patch.fallback_local_seeds = PG_GETARG_BOOL(kGFallbackLocalSeeds);
   InitMaterializedSRF(fcinfo, 0);
   auto rows = pg::OwnedResult<std::vector<pg::GrownRow>>::create();
   core::GrowStats stats;
@@ -448,6 +449,14 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                             stats.arterial_front_used_up, stats.arterial_front_reach, stats.arterial_front_hausdorff,
                             stats.arterial_front_refused, reasons, stats.arterial_conn_front, stats.arterial_conn_clipped,
                             stats.arterial_conn_merged, stats.arterial_conn_dropped, stats.arterial_dead_ends)));
+  }
+  if (stats.arterial_fallback_budget > 0.0 || stats.fallback_local_seeds > 0) {
+    ereport(DEBUG1, (errmsg("grow_patches: arterial fallback: %zu statistical steps at arterial fronts (main streets up "
+                            "to %.0f m; %zu dead ends queued again, %zu of them crop ends, %zu passes); %zu local seeds "
+                            "cut along fallback arterials, %zu of them grew the local fallback",
+                            stats.arterial_fallback, stats.arterial_fallback_budget, stats.arterial_fallback_fronts,
+                            stats.arterial_fallback_crop_ends, stats.arterial_fallback_passes,
+                            stats.fallback_local_seeds, stats.fallback_local_seeds_grown)));
   }
   if (stats.arterial_refill_target > 0.0) {
     ereport(DEBUG1, (errmsg("grow_patches: arterial refill: main streets %.0f m aimed at, gap %.0f m, %.0f m when the "

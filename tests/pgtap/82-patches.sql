@@ -276,6 +276,32 @@ SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT geom FROM ex'
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
                    (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
                    '{"levels": 1}')$$, '22023', 'levels must be true or false', 'grow_patches: levels not a boolean (22023)');
+-- arterial_fallback: tokyo's arterial phase stops at 0.56-0.74 x its example's main-street length
+-- (bench/patches, seeds 1-9); with the fallback, its arterial fronts left dead ends (and its
+-- arterial streets the crop cut) go on straight: more main street, some of it statistical.
+CREATE TEMP TABLE art AS
+SELECT f, g.* FROM region r, unnest(ARRAY[0, 1]) AS f,
+       streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', r.geom, r.centre, NULL,
+                              jsonb_build_object('seed', 1, 'max_edges', 200000, 'arterial_fallback', f)) AS g
+ WHERE r.name = 'tokyo';
+SELECT ok((SELECT sum(ST_Length(geom)) FILTER (WHERE f = 1) > 1.1 * sum(ST_Length(geom)) FILTER (WHERE f = 0)
+             FROM art WHERE road_class ~ '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard)$'),
+          'arterial_fallback: more than 1.1 x the main-street length without it (tokyo)');
+SELECT is((SELECT count(*) FROM art a JOIN art b ON a.f = 1 AND b.f = 1 AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
+          0::bigint, 'arterial_fallback: planar');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"arterial_fallback": -1}')$$, '22023', 'arterial_fallback must be a number >= 0',
+                 'grow_patches: negative arterial_fallback (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"arterial_fallback": "on"}')$$, '22023', 'arterial_fallback must be a number >= 0',
+                 'grow_patches: arterial_fallback not a number (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"fallback_local_seeds": 1}')$$, '22023', 'fallback_local_seeds must be true or false',
+                 'grow_patches: fallback_local_seeds not a boolean (22023)');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE false', 'POLYGON((0 0, 100 0, 100 100, 0 0))',
                    'POINT(50 20)')$$, '22023', 'patches has no rows', 'grow_patches: an empty patch table (22023)');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT patch_id, ''inner'' AS role, geom FROM pt WHERE name = ''tokyo''',

@@ -416,6 +416,7 @@ class Grower {
     // segments crowds itself out) starts again from the seeds with the next random draws.
     for (int restart = 0;; ++restart) {
       grow();
+      if (hierarchy_ && phase_arterial_ && params_.patch.arterial_fallback_deferred) arterial_fallback_pass();
       if (arterial_refill_on()) arterial_refill();
       if (start_local_phase()) grow();
       if (params_.use_patches && params_.patch.refill > 0.0 && new_edges_ >= kMinGrowth) refill();
@@ -467,6 +468,9 @@ class Grower {
       use_level_shape();
       pending_local_.clear();
       local_hint_.clear();
+      fragment_seed_.clear();
+      arterial_stopped_.clear();
+      fallback_depth_.clear();
       bridge_hint_.clear();
       bridge_landing_.clear();
       corner_front_.clear();
@@ -523,6 +527,99 @@ class Grower {
   bool arterial_refill_on() const {
     return params_.use_patches && hierarchy_ && phase_arterial_ && params_.patch.arterial_refill > 0.0 &&
            new_edges_ > 0 && !cul_de_sac_city(example_dead_end_share_);
+  }
+  // PatchGrowParams::arterial_fallback: the main-street length the arterial fallback grows up to (the
+  // example's per area of its hull, times the region's area and the param), computed once.
+  bool arterial_fallback_here(std::uint32_t v) {
+    if (!(params_.patch.arterial_fallback > 0.0) || nodes_[v].edges.size() != 1 || examples_.empty() ||
+        !(examples_[0].hull_area > 0.0)) {
+      return false;
+    }
+    if (params_.patch.arterial_fallback_deferred && !arterial_fallback_now_) {
+      if (!cul_de_sac_city(example_dead_end_share_)) arterial_stopped_.push_back(v);
+      return false;
+    }
+    if (params_.patch.arterial_fallback_steps > 0 && v < fallback_depth_.size() &&
+        fallback_depth_[v] >= params_.patch.arterial_fallback_steps) {
+      return false;
+    }
+    return arterial_fallback_short();
+  }
+  std::vector<int> fallback_depth_;  // per node: fallback streets in a row that led to it (arterial_fallback_steps)
+  // Whether the grown main streets are still shorter than the arterial fallback's budget.
+  bool arterial_fallback_short() {
+    if (!(arterial_fallback_budget_ >= 0.0)) {
+      double len = 0.0, gap = 0.0;
+      example_main_streets(len, gap);
+      arterial_fallback_budget_ = params_.patch.arterial_fallback * len / examples_[0].hull_area * region_area_;
+      stats_.arterial_fallback_budget = arterial_fallback_budget_;
+    }
+    return grown_main_length() < arterial_fallback_budget_;
+  }
+  double arterial_fallback_budget_ = NAN;
+  bool arterial_fallback_now_ = false;          // the deferred pass (PatchGrowParams::arterial_fallback_deferred)
+  std::vector<std::uint32_t> arterial_stopped_;  // arterial fronts left dead ends before it
+  // PatchGrowParams::arterial_fallback_deferred: after the arterial phase's queue emptied, its fronts
+  // still dead ends (and its arterial streets the crop cut) are queued again with the fallback
+  // allowed, until the main streets reach the budget or no front is left.
+  void arterial_fallback_pass() {
+    // (nothing changes where the budget is already reached: the growth is the one without it)
+    if (!(params_.patch.arterial_fallback > 0.0) || examples_.empty() || !(examples_[0].hull_area > 0.0) ||
+        cul_de_sac_city(example_dead_end_share_) || !arterial_fallback_short()) {
+      arterial_stopped_.clear();
+      return;
+    }
+    arterial_fallback_now_ = true;
+    // The arterial streets the example's crop cut end in the open too (patches16: "their cut ends
+    // stop"): they go on like the fronts left dead ends.
+    if (params_.patch.arterial_fallback_crop_ends) {
+      std::vector<std::uint32_t> cut;
+      for (std::uint32_t v : crop_end_) {
+        if (!is_pruned(v) && nodes_[v].edges.size() == 1 && level_is_main(edges_[nodes_[v].edges[0]].level)) {
+          cut.push_back(v);
+        }
+      }
+      std::sort(cut.begin(), cut.end());
+      stats_.arterial_fallback_crop_ends += cut.size();
+      arterial_stopped_.insert(arterial_stopped_.end(), cut.begin(), cut.end());
+    }
+    std::vector<std::uint32_t> fronts;
+    while (!arterial_stopped_.empty() && new_edges_ < params_.max_edges) {
+      fronts.swap(arterial_stopped_);
+      arterial_stopped_.clear();
+      unfinished_.clear();
+      queue_head_ = 0;
+      for (std::uint32_t v : fronts) {
+        if (is_pruned(v) || nodes_[v].edges.size() != 1) continue;
+        completed_[v] = 0;
+        unfinished_.push_back(v);
+      }
+      if (stats_.arterial_fallback_passes == 0) stats_.arterial_fallback_fronts += unfinished_.size();
+      if (unfinished_.empty() || !arterial_fallback_short()) break;
+      ++stats_.arterial_fallback_passes;
+      grow();
+    }
+    arterial_stopped_.clear();
+    arterial_fallback_now_ = false;
+  }
+  // PatchGrowParams::fallback_local_seeds: the arterial streets the fallback made (not bridges) are
+  // cut into fragments of the local level's mean street length; the cuts become local fronts.
+  void seed_along_fallback_arterials(std::vector<std::uint32_t>& cuts) {
+    const double spacing = level_stats_[1].length_mean;
+    if (!(spacing > 0.0)) return;
+    const std::size_t n = edges_.size();
+    for (std::uint32_t e = 0; e < n; ++e) {
+      const OEdge edge = edges_[e];
+      if (edge.level < 0 || edge.source >= 0 || edge.bridge || !level_is_main(edge.level)) continue;
+      const Point a = nodes_[edge.a].p, b = nodes_[edge.b].p;
+      const long parts = std::lround(distance(a, b) / spacing);
+      std::uint32_t cur = e;
+      for (long k = 1; k < parts && new_edges_ < params_.max_edges; ++k) {
+        const std::uint32_t m = split_edge(cur, a + (static_cast<double>(k) / static_cast<double>(parts)) * (b - a));
+        cur = static_cast<std::uint32_t>(edges_.size() - 1);  // the piece from m on to b
+        cuts.push_back(m);
+      }
+    }
   }
   double grown_main_length() const {
     double total = 0.0;
@@ -3585,7 +3682,8 @@ class Grower {
     double loss = -1.0;        // cut_back_loss for the current dead end (-1: not yet)
   } gate_;
   // The class of a join: the street's own; with levels a local street, also where it continues an
-  // arterial (as the local phase's fallback: arterial streets are the arterial patches' alone).
+  // arterial (as the local phase's fallback: arterial streets are the arterial patches' and, with
+  // PatchGrowParams::arterial_fallback, the arterial phase's own fallback's alone).
   int join_level(int level) const { return hierarchy_ && level_is_main(level) ? phase_level_[1] : level; }
   double connect_reach() const { return std::max(snap_, reach_factor_ * kConnectReach * street_stats_.length_mean); }
   double corner_reach_factor(std::uint32_t v) const { return corner_front_.count(v) != 0 ? 2.0 : 1.0; }
@@ -3763,7 +3861,8 @@ class Grower {
     }
     // Arterials: an arterial T (all three streets main) with no T facing it goes on straight to
     // the first street ahead, split there. The example's arterials run on through each other's
-    // junctions (the arterial phase has no statistical fallback to continue them). Local T's too
+    // junctions (the arterial phase's statistical fallback, PatchGrowParams::arterial_fallback, is off
+    // by default and continues dead ends only). Local T's too
     // (continue_local_tees), but only while the network is not denser than the example in street
     // length, nor, for a join that makes a junction, in junctions (local_join_refused): joining them
     // all measured denser networks (README; patches28: strasbourg's intersection density +17 to +31
@@ -4010,7 +4109,17 @@ class Grower {
         ++stats_.local_seeds;
       }
     }
+    std::vector<std::uint32_t> cuts;
+    if (params_.patch.fallback_local_seeds) seed_along_fallback_arterials(cuts);
     std::vector<char> queued(nodes_.size(), 0);
+    for (std::uint32_t m : cuts) {
+      if (local_hint_.count(m) != 0) continue;
+      queued[m] = 1;
+      completed_[m] = 0;
+      unfinished_.push_back(m);
+      fragment_seed_.insert(m);
+      ++stats_.fallback_local_seeds;
+    }
     for (const OEdge& e : edges_) {
       if (e.level < 0 || e.source >= 0) continue;
       for (std::uint32_t n : {e.a, e.b}) {
@@ -4036,6 +4145,7 @@ class Grower {
   std::vector<double> level_degree_cdf_[2];
   std::vector<LocalSeed> pending_local_;
   std::unordered_map<std::uint32_t, LocalSeed> local_hint_;
+  std::unordered_set<std::uint32_t> fragment_seed_;  // local seeds cut along fallback arterials
   // The streets' degrees at their ends (each street once: a connector is in two patches), for
   // the fallback's target degree: P(degree <= k | degree >= 2).
   static std::vector<double> degree_cdf_of(const std::vector<const Polyline*>& streets) {
@@ -4229,7 +4339,8 @@ class Grower {
     int level = 0;
     // Corners are refused only at a dead-end front with a node or street ahead within a mean
     // street (where the example would have had the junction), not at the edge of the growth, and
-    // not in the arterial phase (it has no fallback: its fronts would only stop).
+    // not in the arterial phase (its fallback, off by default and deferred, is no join: its fronts
+    // would only stop).
     if (avoid_corners() && nodes_[v].edges.size() == 1 && !(hierarchy_ && phase_arterial_)) {
       reach_factor_ = 2.0;
       corner_ahead_ = std::isfinite(gap_ahead(v));
@@ -4378,11 +4489,13 @@ class Grower {
     // A front that two patches already reached is connected: the fallback only continues streets
     // that would otherwise end where the example did not end them.
     // Levels: an arterial street no arterial patch continues ends there (the local phase fills
-    // around it): the fallback's straight arterials measured a grid over the whole region
-    // (canberra_south_large: street density +150 % instead of +55 %).
+    // around it) unless PatchGrowParams::arterial_fallback: the fallback's lattice at every
+    // arterial front measured a grid over the whole region (canberra_south_large: street density
+    // +150 % instead of +55 %, before the length cap), so that fallback is deferred until the
+    // arterial queue is empty, goes straight on only and stops at a main-street budget (patches38).
     // An arterial street ending here with water ahead (every patch was illegal over it): it goes
     // on across as a bridge (Nishida's local constraint of procedural growth), also in the
-    // arterial phase, which has no statistical fallback otherwise.
+    // arterial phase.
     if (bridges_on() && nodes_[v].edges.size() == 1 && level_is_main(level)) {
       const Point back = other_end(nodes_[v].edges[0], v);
       const double angle = std::atan2(p.y - back.y, p.x - back.x);
@@ -4393,11 +4506,26 @@ class Grower {
         return;
       }
     }
-    if (!params_.fallback || nodes_[v].edges.size() >= 2 ||
-        (hierarchy_ && phase_arterial_ && bridge_landing_.count(v) == 0)) {
+    // A local seed cut along a fallback arterial (PatchGrowParams::fallback_local_seeds) is a node
+    // of degree 2: where no local patch is legal there, the local fallback grows from it.
+    bool fragment = false;
+    if (!fragment_seed_.empty() && !phase_arterial_) {
+      auto it = fragment_seed_.find(v);
+      if (it != fragment_seed_.end()) {
+        fragment_seed_.erase(it);
+        fragment = nodes_[v].edges.size() == 2;
+      }
+    }
+    // PatchGrowParams::arterial_fallback: an arterial dead-end front with no legal arterial patch
+    // grows the parametric rule with the arterial level's statistics while the main streets are short.
+    const bool arterial_fallback = hierarchy_ && phase_arterial_ && arterial_fallback_here(v);
+    if (!params_.fallback || (nodes_[v].edges.size() >= 2 && !fragment) ||
+        (hierarchy_ && phase_arterial_ && bridge_landing_.count(v) == 0 && !arterial_fallback)) {
       done_ = true;
       return;
     }
+    stats_.arterial_fallback += arterial_fallback;
+    stats_.fallback_local_seeds_grown += fragment;
     // A front where a patch was refused for leaving a corner (so a node or street lies ahead within
     // a mean street): the fallback would only crowd the streets there; it is joined to them (or cut
     // back) after growth.
@@ -4411,7 +4539,16 @@ class Grower {
     // Levels: the local phase's streets are local streets, also where they continue an arterial.
     if (hierarchy_ && !phase_arterial_ && level_is_main(level)) level = phase_level_[1];
     apply_style_shape(t_here);
+    if (arterial_fallback && params_.patch.arterial_fallback_straight) {
+      if (target_degree_.size() < nodes_.size()) target_degree_.resize(nodes_.size(), 0);
+      target_degree_[v] = 2;  // straight on: parametric_step's lattice has the direction opposite the street
+    }
+    const std::size_t nodes_before = nodes_.size();
     parametric_step(v, level, guide_here_);
+    if (arterial_fallback && params_.patch.arterial_fallback_steps > 0) {
+      fallback_depth_.resize(nodes_.size(), 0);
+      for (std::size_t n = nodes_before; n < nodes_.size(); ++n) fallback_depth_[n] = fallback_depth_[v] + 1;
+    }
   }
   // Why an arterial front got no patch (DEBUG1): candidates all refused, or none drawn — then a
   // second look at the connectors in its streets' directions, without the reach filter, tells

@@ -228,6 +228,33 @@ struct PatchGrowParams {
   // strasbourg's own neighbouring patch was refused for it); min_angle still holds against the
   // streets already there and between patch vertices merged into one node.
   bool arterial_own_angles = true;
+  // Arterial fallback (levels; Nishida et al.'s procedural growth at an arterial front, section
+  // 4.3.3): a dead-end front of the arterial phase where no arterial patch is legal grows growth I's
+  // parametric rule with the arterial level's own street length statistics and junction mix (and
+  // its road class), under the usual local constraints, while the grown main streets are shorter
+  // than `arterial_fallback` x the example's main-street length per area of its hull x the region's
+  // area. Without it an arterial library too small for the region leaves its arterials' open ends
+  // as dead ends where the phase stops. 0: off (the arterial phase has no fallback).
+  double arterial_fallback = 0.0;
+  // The arterial fallback continues a front's street straight on only (the junctions are the
+  // patches', which take over again at its new end): its lattice's branches at right angles to the
+  // front's street crossed the example's arterials' directions (barcelona's orientation order -41 %).
+  bool arterial_fallback_straight = true;
+  // The arterial fallback waits until the arterial phase's queue has emptied: only the fronts still
+  // dead ends then get it (and the fronts its streets bring, at once), so the patches take the
+  // space first. Not in a city of cul-de-sacs (its arterials are few and end in its local streets).
+  bool arterial_fallback_deferred = true;
+  // The deferred pass also continues the arterial streets the example's crop cut (patch dead-end
+  // edges ending on its hull: copied, they end in the open where the example's street went on).
+  bool arterial_fallback_crop_ends = true;
+  // At most this many fallback streets in a row from a front the deferred pass queued again (the
+  // arterial patches may take over in between, which starts the count again); 0: no limit.
+  int arterial_fallback_steps = 0;
+  // Local seeds along the arterial streets the statistical fallback made (Nishida et al., section
+  // 4.4): each such street is cut into fragments of the local level's mean street length and the
+  // local phase starts at every cut, not only at the street's ends; where no local patch is legal
+  // at a cut, the local fallback grows from it (a degree-2 node otherwise gets none).
+  bool fallback_local_seeds = false;
 };
 
 struct GrowParams {
@@ -405,6 +432,13 @@ struct GrowStats {
   std::size_t size_redraws = 0;  // size_redraw: fronts whose later draws were put in the first draw's size class first
   std::size_t size_refusals[3][kPatchRefusals] = {};
   double size_cut[2] = {0.0, 0.0};  // the local patches' terciles (m)
+  std::size_t arterial_fallback = 0;          // levels: statistical steps at arterial fronts (PatchGrowParams::arterial_fallback)
+  double arterial_fallback_budget = 0.0;      // metres of main street the arterial fallback grows up to
+  std::size_t fallback_local_seeds = 0;       // levels: local seeds cut along the fallback's arterial streets
+  std::size_t fallback_local_seeds_grown = 0; // of them, fronts where the local fallback grew (no patch was legal)
+  std::size_t arterial_fallback_passes = 0;   // arterial_fallback_deferred: passes over the fronts left dead ends
+  std::size_t arterial_fallback_fronts = 0;   // arterial_fallback_deferred: fronts left dead ends queued again
+  std::size_t arterial_fallback_crop_ends = 0;  // of them, ends of arterial streets the example's crop cut
   std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
   std::size_t ended_on_arterial = 0;  // levels: local streets whose new end was put on an arterial street

@@ -1,0 +1,167 @@
+// The arterial phase's statistical fallback (PatchGrowParams::arterial_fallback) and the local seeds
+// cut along the arterial streets it makes (PatchGrowParams::fallback_local_seeds): Nishida et al.
+// 2016, sections 4.3.3 and 4.4.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/growth/grow_example.hpp"
+#include "core/growth/patches.hpp"
+#include "patch_fixtures.hpp"
+#include "test_support.hpp"
+
+using namespace streetgen::core;
+using streetgen::test::avenue_grid;
+using streetgen::test::wkt;
+
+namespace {
+
+bool crosses_without_node(const GrownEdge& a, const GrownEdge& b) {
+  bool shared = a.from_node == b.from_node || a.from_node == b.to_node || a.to_node == b.from_node ||
+                a.to_node == b.to_node;
+  if (shared) return false;
+  auto orient = [](Point p, Point q, Point r) { return cross(q - p, r - p); };
+  double d1 = orient(a.a, a.b, b.a), d2 = orient(a.a, a.b, b.b);
+  double d3 = orient(b.a, b.b, a.a), d4 = orient(b.a, b.b, a.b);
+  return d1 * d2 <= 0 && d3 * d4 <= 0 &&
+         std::max(std::min(a.a.x, a.b.x), std::min(b.a.x, b.b.x)) <= std::min(std::max(a.a.x, a.b.x), std::max(b.a.x, b.b.x)) &&
+         std::max(std::min(a.a.y, a.b.y), std::min(b.a.y, b.b.y)) <= std::min(std::max(a.a.y, a.b.y), std::max(b.a.y, b.b.y));
+}
+
+// An arterial library too small for the region: the avenue grid's four avenue crossings (600 m
+// square example, avenues 300 m apart), each usable once, in a 3 km square, no arterial refill.
+struct SmallArterialLibrary {
+  GeosContext geos;
+  GeomPtr region = wkt(geos, "POLYGON((-1500 -1500, 1500 -1500, 1500 1500, -1500 1500, -1500 -1500))");
+  GrowInput in;
+  GrowParams p;
+  SmallArterialLibrary() {
+    PatchExtraction x = extract_patches(geos, avenue_grid(), PatchParams{});
+    for (std::size_t i = 0; i < x.arterial_patches; ++i) x.patches[i].max_uses = 1;
+    in.patches = x.patches;
+    in.region = region.get();
+    in.seeds = {{0.0, 0.0}};
+    p.use_patches = true;
+    p.seed = 3;
+    p.max_edges = 20000;
+    p.patch.arterial_refill = 0.0;
+  }
+};
+
+// The avenue (main street) graph of a result: per node, its avenue edges; and the largest distance
+// of an avenue node from the seed.
+struct Avenues {
+  std::map<std::int64_t, int> degree;
+  std::map<std::int64_t, Point> at;
+  double reach = 0.0;
+  double length = 0.0;
+  explicit Avenues(const GrowResult& r) {
+    for (const GrownEdge& e : r.edges) {
+      if (e.road_class != "avenue") continue;
+      ++degree[e.from_node];
+      ++degree[e.to_node];
+      at[e.from_node] = e.a;
+      at[e.to_node] = e.b;
+      reach = std::max({reach, std::hypot(e.a.x, e.a.y), std::hypot(e.b.x, e.b.y)});
+      length += distance(e.a, e.b);
+    }
+  }
+  // Avenue dead ends farther than 200 m inside the region's edge: where an avenue stops in the open.
+  int interior_dead_ends() const {
+    int n = 0;
+    for (const auto& [node, d] : degree) {
+      const Point q = at.at(node);
+      n += d == 1 && std::abs(q.x) < 1300 && std::abs(q.y) < 1300;
+    }
+    return n;
+  }
+};
+
+}  // namespace
+
+// Without the fallback the arterial phase stops where the library's four patches end: their open
+// avenue connectors are dead ends in the middle of the region and no avenue gets near its edge.
+// With it, the avenues go on with the arterial level's statistics up to the example's main-street
+// length per area, across the region, and the open ends the patches left are continued.
+TEST(GrowPatchesArterialFallback, ArterialsReachAcrossTheRegion) {
+  SmallArterialLibrary f;
+  GrowResult off = grow_example(f.geos, f.in, f.p);
+  f.p.patch.arterial_fallback = 1.0;
+  GrowResult on = grow_example(f.geos, f.in, f.p);
+  const Avenues a_off(off), a_on(on);
+  EXPECT_EQ(off.stats.arterial_fallback, 0u);
+  EXPECT_GT(on.stats.arterial_fallback, 10u);
+  // Without it the avenues stop within the library's four crossings, their open ends dead ends in
+  // the middle of the region; with it they reach the region's edge and none is left in the open.
+  EXPECT_LT(a_off.reach, 800.0);
+  EXPECT_GE(a_off.interior_dead_ends(), 5);
+  EXPECT_GT(a_on.reach, 1400.0);
+  EXPECT_EQ(a_on.interior_dead_ends(), 0);
+  EXPECT_GT(a_on.length, 3.0 * a_off.length);
+  EXPECT_LE(a_on.length, on.stats.arterial_fallback_budget);
+  EXPECT_EQ(on.stats.arterial_patches_placed, off.stats.arterial_patches_placed);  // each patch once
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < on.edges.size(); ++j) bad += crosses_without_node(on.edges[i], on.edges[j]);
+  }
+  EXPECT_EQ(bad, 0u);
+  GrowResult again = grow_example(f.geos, f.in, f.p);
+  ASSERT_EQ(again.edges.size(), on.edges.size());
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    EXPECT_EQ(again.edges[i].from_node, on.edges[i].from_node);
+    EXPECT_DOUBLE_EQ(again.edges[i].b.x, on.edges[i].b.x);
+  }
+  // Off by default: the default growth is the one without it.
+  SmallArterialLibrary d;
+  GrowResult def = grow_example(d.geos, d.in, d.p);
+  EXPECT_EQ(def.edges.size(), off.edges.size());
+  EXPECT_EQ(def.stats.arterial_fallback, 0u);
+}
+
+// The fallback's arterial streets are cut into fragments of the local level's mean street length
+// (the avenue grid's streets: 100 m) and the local phase starts at every cut.
+TEST(GrowPatchesArterialFallback, LocalSeedsAlongFallbackArterials) {
+  SmallArterialLibrary f;
+  f.p.patch.arterial_fallback = 1.0;
+  GrowResult off = grow_example(f.geos, f.in, f.p);
+  f.p.patch.fallback_local_seeds = true;
+  GrowResult on = grow_example(f.geos, f.in, f.p);
+  struct Along {
+    double longest = 0.0, length = 0.0;
+    int junctions = 0;  // nodes between two fallback avenue edges with a local street
+  };
+  auto along = [](const GrowResult& r) {
+    Along a;
+    std::map<std::int64_t, int> fallback_avenue, street;
+    for (const GrownEdge& e : r.edges) {
+      if (e.road_class == "avenue" && e.example < 0) {
+        a.longest = std::max(a.longest, distance(e.a, e.b));
+        a.length += distance(e.a, e.b);
+        ++fallback_avenue[e.from_node];
+        ++fallback_avenue[e.to_node];
+      } else if (e.road_class == "street") {
+        ++street[e.from_node];
+        ++street[e.to_node];
+      }
+    }
+    for (const auto& [node, d] : fallback_avenue) a.junctions += d == 2 && street.count(node) != 0;
+    return a;
+  };
+  const Along a_off = along(off), a_on = along(on);
+  EXPECT_EQ(off.stats.fallback_local_seeds, 0u);
+  EXPECT_GT(on.stats.fallback_local_seeds, 10u);
+  EXPECT_DOUBLE_EQ(a_on.length, a_off.length);  // the same arterial phase
+  // Every fallback avenue is cut to about the local street length (a street of less than 1.5 of
+  // them stays whole; the joins after growth may continue an arterial T by up to a mean street).
+  EXPECT_GT(a_off.longest, 200.0);
+  EXPECT_LE(a_on.longest, 160.0);
+  // Local streets leave the fallback avenues about every local street length.
+  EXPECT_GT(a_on.junctions, a_off.junctions + 10);
+  const double spacing = a_on.length / a_on.junctions;
+  EXPECT_GT(spacing, 80.0);
+  EXPECT_LT(spacing, 130.0);
+}
