@@ -222,6 +222,27 @@ struct PatchGrowParams {
   // strasbourg's own neighbouring patch was refused for it); min_angle still holds against the
   // streets already there and between patch vertices merged into one node.
   bool arterial_own_angles = true;
+  // Teng & Bidarra (2017, section 3.3, Algorithm 2): breadth-first bridging. At a front of one
+  // street (local phase, or one level), before the depth-first draw: the other open fronts (nodes of
+  // one street, not yet finished) in line of sight within the library's largest pair distance plus
+  // snap are paired with the library's pairs of junctions (connector inner ends, the vertices a
+  // front receives; pair distances computed once per library) whose distance is within snap of the
+  // fronts' distance; each solution (both orientations) is rated 1 - |d_patch - d_graph| / d_graph,
+  // and the best rated legal one (every check of place_patch_at, up to `tries`) is placed turned so
+  // its two junctions land on the two fronts (the mismatch taken up by the merge within snap, and by
+  // seam_slide where it applies); at each end the connector nearest the front's street (within
+  // angle_window) doubles it and is left out. Off by default (bench/patches, README).
+  bool bridge_fronts = false;
+  // Teng & Bidarra (2017, section 3.2, "Patches on main streets"): how the local phase starts.
+  // seeds: from the example's local junctions along the arterial patches (Nishida's section 4.4).
+  // initial: each cell the main streets bound is initialised with patches tagged initial (a straight
+  // main street and a local attachment) at seed points spaced along the grown main streets (the
+  // example's spacing of local junctions along its main streets), sides alternating (the other side
+  // where one is refused): the patch is translated to the seed (a shape node of the street) and turned
+  // so that its main street lies along the grown one, its main streets left out; local growth goes on
+  // from its connectors. Needs levels (main streets grown first).
+  enum class CellInit { seeds, initial };
+  CellInit cell_init = CellInit::seeds;
 };
 
 struct GrowParams {
@@ -398,6 +419,12 @@ struct GrowStats {
   std::size_t size_redraws = 0;  // size_redraw: fronts whose later draws were put in the first draw's size class first
   std::size_t size_refusals[3][kPatchRefusals] = {};
   double size_cut[2] = {0.0, 0.0};  // the local patches' terciles (m)
+  // Teng & Bidarra: PatchGrowParams::bridge_fronts: fronts joined to another front by one patch,
+  // the solutions tried (placements attempted), the library's junction pairs; cell_init initial: seed
+  // points along the main streets, initial patches placed there, the spacing used (m).
+  std::size_t fronts_bridged = 0, bridge_tries = 0, bridge_pairs = 0;
+  std::size_t initial_seed_points = 0, initial_placed = 0;
+  double initial_spacing = 0.0;
   std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
   std::size_t ended_on_arterial = 0;  // levels: local streets whose new end was put on an arterial street
