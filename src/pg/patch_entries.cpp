@@ -58,7 +58,7 @@ enum GrowArg {
   kGGuide, kGGuideReach, kGPatchIdsB, kGRolesB, kGClassesB, kGGeomsB, kGMaxUsesB, kGArterialsB, kGT, kGBlendMode,
   kGBlendAngle, kGBlendX, kGBlendY, kGBlendSigma, kGPruneDangling, kGDirectionGrid, kGDirectionValues, kGConnectDangling,
   // Teng & Bidarra: the first library's patches tagged initial, breadth-first bridging, cell initialisation.
-  kGInitials, kGBridgeFronts, kGCellInit,
+  kGInitials, kGBridgeFronts, kGCellInit, kGMaxTurn,
   kGArgs
 };
 
@@ -298,7 +298,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       "bridge_distance", "bridge_turn", "guide", "guide_reach", "interpolate patch ids", "interpolate roles",
       "interpolate road classes", "interpolate patch edges", "interpolate max_uses", "interpolate arterials", "t",
       "blend", "blend_angle", "blend_points x", "blend_points y", "blend_sigma", "prune_dangling", "direction grid",
-      "direction", "connect_dangling", "initials", "bridge_fronts", "cell_init"};
+      "direction", "connect_dangling", "initials", "bridge_fronts", "cell_init", "max_turn"};
   for (int a = kGRegion; a < kGArgs; ++a) {
     if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && a != kGArterials && a != kGWater && a != kGDemGrid &&
         a != kGDemValues && a != kGGuide && !(a >= kGPatchIdsB && a <= kGArterialsB) && a != kGBlendX &&
@@ -364,6 +364,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   params.patch.connect_dangling = PG_GETARG_BOOL(kGConnectDangling);
   params.patch.continue_across = params.patch.connect_dangling;  // one SQL switch for both joins (README)
   params.patch.bridge_fronts = PG_GETARG_BOOL(kGBridgeFronts);
+  params.patch.max_turn = PG_GETARG_FLOAT8(kGMaxTurn);
   {
     const char* cell_init = TextDatumGetCString(PG_GETARG_DATUM(kGCellInit));
     if (strcmp(cell_init, "seeds") == 0) {
@@ -529,9 +530,13 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   ereport(DEBUG1, (errmsg("grow_patches: dangling joins: %zu refused (a junction over the example's per area)",
                           stats.dangling_dense)));
   ereport(DEBUG1, (errmsg("grow_patches: teng-bidarra: %zu fronts bridged (%zu placements tried, %zu junction pairs "
-                          "in the library); %zu initial patches placed at %zu seed points (spacing %.0f m)",
-                          stats.fronts_bridged, stats.bridge_tries, stats.bridge_pairs, stats.initial_placed,
-                          stats.initial_seed_points, stats.initial_spacing)));
+                          "in the library; turned under 5, 5-20, 20+ degrees: %zu, %zu, %zu); %zu initial patches "
+                          "placed at %zu seed points (spacing %.0f m; turned under 5, 5-20, 20+ degrees: %zu, %zu, "
+                          "%zu)",
+                          stats.fronts_bridged, stats.bridge_tries, stats.bridge_pairs, stats.bridge_turns[0],
+                          stats.bridge_turns[1], stats.bridge_turns[2], stats.initial_placed,
+                          stats.initial_seed_points, stats.initial_spacing, stats.initial_turns[0],
+                          stats.initial_turns[1], stats.initial_turns[2])));
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();
   PG_RETURN_NULL();

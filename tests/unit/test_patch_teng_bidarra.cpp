@@ -62,8 +62,9 @@ struct TwoFronts {
   }
 };
 
-GrowParams bridge_params(bool on) {
+GrowParams bridge_params(bool on, double max_turn = 180.0) {
   GrowParams p;
+  p.patch.max_turn = max_turn;
   p.use_patches = true;
   p.seed = 1;
   p.snap = 10.0;
@@ -85,15 +86,16 @@ int patch_edges_between(const GrowResult& r, Point a, Point b, double tol) {
 }  // namespace
 
 // Two fronts 120 m apart on a line at 30 degrees, a library patch whose junctions are 126 m apart
-// (within the 10 m snap): the patch is turned and placed with its junctions on both fronts, its
-// inner street joining them, the connectors along their streets left out, one new street north
-// of each (turned too).
+// (within the 10 m snap): with max_turn 180 (Teng & Bidarra's free rotation) the patch is turned
+// and placed with its junctions on both fronts, its inner street joining them, the connectors along
+// their streets left out, one new street north of each (turned too).
 TEST(TengBidarra, BridgeJoinsTwoFrontsWithAFittingPatch) {
   TwoFronts f;
   const double angle = kPi / 6.0;
   GrowInput in = f.input(120.0, angle, 126.0);
   GrowResult r = grow_example(f.geos, in, bridge_params(true));
   EXPECT_EQ(r.stats.fronts_bridged, 1u);
+  EXPECT_EQ(r.stats.bridge_turns[2], 1u) << "turned by 30 degrees";
   EXPECT_EQ(r.stats.bridge_pairs, 1u);
   EXPECT_GE(r.stats.bridge_tries, 1u);
   ASSERT_EQ(r.edges.size(), 3u);
@@ -113,6 +115,17 @@ TEST(TengBidarra, BridgeJoinsTwoFrontsWithAFittingPatch) {
   GrowResult off = grow_example(f.geos, in, bridge_params(false));
   EXPECT_EQ(off.stats.fronts_bridged, 0u);
   EXPECT_EQ(off.stats.bridge_pairs, 0u);
+  // max_turn 5 (the default): the patch would be turned by 30 degrees from the library's frame.
+  GrowResult stiff = grow_example(f.geos, in, bridge_params(true, 5.0));
+  EXPECT_EQ(stiff.stats.fronts_bridged, 0u);
+  EXPECT_EQ(patch_edges_between(stiff, f.v, f.w, 10.0), 0);
+  // Fronts along the library's own axis: bridged within max_turn 5, no turn.
+  TwoFronts g;
+  GrowInput along = g.input(120.0, 0.0, 126.0);
+  GrowResult straight = grow_example(g.geos, along, bridge_params(true, 5.0));
+  EXPECT_EQ(straight.stats.fronts_bridged, 1u);
+  EXPECT_EQ(straight.stats.bridge_turns[0], 1u);
+  EXPECT_EQ(patch_edges_between(straight, g.v, g.w, 10.0), 1);
 }
 
 // The same fronts, but the library's junctions are 145 m apart: 25 m off, beyond the 10 m snap.

@@ -908,6 +908,9 @@ class Grower {
       if (!(pp.t >= 0.0 && pp.t <= 1.0)) {
         throw_invalid_argument("t must be in [0, 1]", "It is " + std::to_string(pp.t) + ".");
       }
+      if (!(pp.max_turn >= 0.0 && pp.max_turn <= 180.0)) {
+        throw_invalid_argument("max_turn must be in [0, 180] degrees", "It is " + std::to_string(pp.max_turn) + ".");
+      }
       if (!std::isfinite(pp.clearance) || pp.clearance < 0.0) {
         throw_invalid_argument("clearance must be a finite number > 0", "It is " + std::to_string(pp.clearance) + " m.");
       }
@@ -3938,11 +3941,13 @@ class Grower {
     Point a, b;
   };
   std::vector<BridgePair> bridge_pairs_;
+  double max_turn_ = kPi;  // PatchGrowParams::max_turn in radians
   double bridge_reach_ = 0.0;           // the largest pair distance (m)
   std::uint32_t bridge_skip_ = UINT32_MAX;  // place_patch_at: a second connector left out (the far front's)
   void prepare_bridge_pairs() {
     bridge_pairs_.clear();
     bridge_reach_ = 0.0;
+    max_turn_ = params_.patch.max_turn * kPi / 180.0;
     if (!params_.patch.bridge_fronts) return;
     auto key = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
     for (std::uint32_t i = 0; i < library_.size(); ++i) {
@@ -4016,13 +4021,20 @@ class Grower {
       if (connected_by_street(v, w) || first_contact(p, q, v, w).found) continue;  // one street; no line of sight
       auto it = std::lower_bound(bridge_pairs_.begin(), bridge_pairs_.end(), dg - snap_,
                                  [](const BridgePair& x, double d) { return x.d < d; });
+      const double graph_angle = std::atan2(q.y - p.y, q.x - p.x);
       for (; it != bridge_pairs_.end() && it->d <= dg + snap_; ++it) {
         const LibPatch& lp = library_[it->patch];
         if ((lp.max_uses > 0 && lp.uses >= lp.max_uses) || !in_phase(lp)) continue;
         const double rating = 1.0 - std::abs(it->d - dg) / dg;
         const auto pair = static_cast<std::uint32_t>(it - bridge_pairs_.begin());
-        solutions.push_back({rating, w, pair, false});
-        solutions.push_back({rating, w, pair, true});
+        for (bool flip : {false, true}) {
+          // Turned at most max_turn from the front's frame (the warp there), as the depth-first
+          // draw leaves its patches (PatchGrowParams::max_turn).
+          const Point a = flip ? it->b : it->a, b = flip ? it->a : it->b;
+          const double turn = graph_angle - std::atan2(b.y - a.y, b.x - a.x);
+          if (std::abs(wrap(turn - warp_)) > max_turn_ + 1e-9) continue;
+          solutions.push_back({rating, w, pair, flip});
+        }
       }
     }
     if (solutions.empty()) return false;
@@ -4056,6 +4068,8 @@ class Grower {
       bridge_skip_ = UINT32_MAX;
       if (ok) {
         ++stats_.fronts_bridged;
+        const double turn = std::abs(wrap(warp_)) * 180.0 / kPi;
+        ++stats_.bridge_turns[turn < 5.0 ? 0 : turn < 20.0 ? 1 : 2];
         set_warp_angle(saved);
         return true;
       }
@@ -4195,6 +4209,9 @@ class Grower {
           const InitialAnchor& ia = initial_[k];
           const LibPatch& lp = library_[ia.patch];
           if (lp.max_uses > 0 && lp.uses >= lp.max_uses) continue;
+          // Only patches whose main street lies within max_turn of the grown one's direction (mod
+          // 180 degrees) in the library's frame (PatchGrowParams::max_turn).
+          if (std::abs(std::remainder(theta - ia.angle, kPi)) > max_turn_ + 1e-9) continue;
           if (tries++ >= params_.patch.tries) break;
           // A crossing (side 0) covers both sides: its second attempt is the patch turned half round.
           const bool flip = ia.side == 0 ? attempt == 1 : ia.side != want;
@@ -4202,6 +4219,8 @@ class Grower {
           refusal_ = kRefNone;
           if (place_patch(n, ia.patch, ia.junction, UINT32_MAX, true)) {
             ++stats_.initial_placed;
+            const double t = std::abs(wrap(warp_)) * 180.0 / kPi, turn = std::min(t, 180.0 - t);
+            ++stats_.initial_turns[turn < 5.0 ? 0 : turn < 20.0 ? 1 : 2];
             placed = true;
             break;
           }
