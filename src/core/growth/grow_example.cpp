@@ -3940,6 +3940,9 @@ class Grower {
     std::uint32_t patch;
     Point a, b;
   };
+  // Bridging and initial patches keep the seam rule of the depth-first draws (PatchGrowParams::seam_turn),
+  // without its relaxed second pass: a merge that turns a patch street more is refused.
+  double seam_limit_here() { return params_.patch.seam_turn > 0.0 && seams_here() ? params_.patch.seam_turn : 0.0; }
   std::vector<BridgePair> bridge_pairs_;
   double max_turn_ = kPi;  // PatchGrowParams::max_turn in radians
   double bridge_reach_ = 0.0;           // the largest pair distance (m)
@@ -4064,7 +4067,9 @@ class Grower {
       ++tries;
       ++stats_.bridge_tries;
       refusal_ = kRefNone;
+      seam_limit_ = seam_limit_here();
       const bool ok = place_patch(v, bp.patch, a, skip_a);
+      seam_limit_ = 0.0;
       bridge_skip_ = UINT32_MAX;
       if (ok) {
         ++stats_.fronts_bridged;
@@ -4217,7 +4222,10 @@ class Grower {
           const bool flip = ia.side == 0 ? attempt == 1 : ia.side != want;
           set_warp_angle(theta - ia.angle + (flip ? kPi : 0.0));
           refusal_ = kRefNone;
-          if (place_patch(n, ia.patch, ia.junction, UINT32_MAX, true)) {
+          seam_limit_ = seam_limit_here();
+          const bool ok = place_patch(n, ia.patch, ia.junction, UINT32_MAX, true);
+          seam_limit_ = 0.0;
+          if (ok) {
             ++stats_.initial_placed;
             const double t = std::abs(wrap(warp_)) * 180.0 / kPi, turn = std::min(t, 180.0 - t);
             ++stats_.initial_turns[turn < 5.0 ? 0 : turn < 20.0 ? 1 : 2];
