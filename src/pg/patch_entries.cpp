@@ -530,11 +530,12 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   ereport(DEBUG1, (errmsg("grow_patches: dangling joins: %zu refused (a junction over the example's per area)",
                           stats.dangling_dense)));
   ereport(DEBUG1, (errmsg("grow_patches: teng-bidarra: %zu fronts bridged (%zu placements tried, %zu junction pairs "
-                          "in the library; turned under 5, 5-20, 20+ degrees: %zu, %zu, %zu); %zu initial patches "
+                          "in the library; turned under 5, 5-20, 20+ degrees: %zu, %zu, %zu; %zu of their junctions "
+                          "crossings in their patch); %zu initial patches "
                           "placed at %zu seed points (spacing %.0f m; turned under 5, 5-20, 20+ degrees: %zu, %zu, "
                           "%zu)",
                           stats.fronts_bridged, stats.bridge_tries, stats.bridge_pairs, stats.bridge_turns[0],
-                          stats.bridge_turns[1], stats.bridge_turns[2], stats.initial_placed,
+                          stats.bridge_turns[1], stats.bridge_turns[2], stats.bridge_crossing_ends, stats.initial_placed,
                           stats.initial_seed_points, stats.initial_spacing, stats.initial_turns[0],
                           stats.initial_turns[1], stats.initial_turns[2])));
   pg::emit_grown_rows(fcinfo, *rows);

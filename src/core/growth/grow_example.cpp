@@ -4075,6 +4075,13 @@ class Grower {
         ++stats_.fronts_bridged;
         const double turn = std::abs(wrap(warp_)) * 180.0 / kPi;
         ++stats_.bridge_turns[turn < 5.0 ? 0 : turn < 20.0 ? 1 : 2];
+        for (Point end : {a, b}) {
+          int streets = 0;
+          for (const LibEdge& e : lp.edges) {
+            streets += (distance(e.line.front(), end) <= kContact ? 1 : 0) + (distance(e.line.back(), end) <= kContact ? 1 : 0);
+          }
+          stats_.bridge_crossing_ends += streets >= 4;
+        }
         set_warp_angle(saved);
         return true;
       }

@@ -228,10 +228,11 @@ struct PatchGrowParams {
   // snap are paired with the library's pairs of junctions (connector inner ends, the vertices a
   // front receives; pair distances computed once per library) whose distance is within snap of the
   // fronts' distance; each solution (both orientations) is rated 1 - |d_patch - d_graph| / d_graph,
-  // and the best rated legal one (every check of place_patch_at, up to `tries`) is placed turned so
-  // its two junctions land on the two fronts (the mismatch taken up by the merge within snap, and by
-  // seam_slide where it applies); at each end the connector nearest the front's street (within
-  // angle_window) doubles it and is left out. Off by default (bench/patches, README).
+  // and the best rated legal one (every check of place_patch_at, the seam rule where it applies, up
+  // to `tries`) is placed turned so its two junctions land on the two fronts (the mismatch taken up
+  // by the merge within snap, and by seam_slide where it applies), turned at most max_turn; at each
+  // end the connector nearest the front's street (within angle_window) doubles it and is left out.
+  // Off by default: it failed the merge rule (bench/patches, README, patches37).
   bool bridge_fronts = false;
   // Teng & Bidarra (2017, section 3.2, "Patches on main streets"): how the local phase starts.
   // seeds: from the example's local junctions along the arterial patches (Nishida's section 4.4).
@@ -239,8 +240,10 @@ struct PatchGrowParams {
   // main street and a local attachment) at seed points spaced along the grown main streets (the
   // example's spacing of local junctions along its main streets), sides alternating (the other side
   // where one is refused): the patch is translated to the seed (a shape node of the street) and turned
-  // so that its main street lies along the grown one, its main streets left out; local growth goes on
-  // from its connectors. Needs levels (main streets grown first).
+  // so that its main street lies along the grown one (only patches within max_turn of it; the seam
+  // rule where it applies), its main streets left out; local growth goes on from its connectors.
+  // Needs levels (main streets grown first). Default seeds: initial failed the merge rule (README,
+  // patches37).
   enum class CellInit { seeds, initial };
   CellInit cell_init = CellInit::seeds;
   // Both (bridge_fronts, cell_init initial): a patch is turned at most this far (degrees) from the
@@ -429,7 +432,8 @@ struct GrowStats {
   // the solutions tried (placements attempted), the library's junction pairs; cell_init initial: seed
   // points along the main streets, initial patches placed there, the spacing used (m).
   std::size_t fronts_bridged = 0, bridge_tries = 0, bridge_pairs = 0;
-  std::size_t bridge_turns[3] = {};  // bridges placed by their turn from the library's frame: under 5, 5-20, 20+ degrees
+  std::size_t bridge_turns[3] = {};
+  std::size_t bridge_crossing_ends = 0;  // of the bridges' two junctions each, those with 4 or more streets in their patch  // bridges placed by their turn from the library's frame: under 5, 5-20, 20+ degrees
   std::size_t initial_seed_points = 0, initial_placed = 0;
   std::size_t initial_turns[3] = {};  // initial patches placed by their turn from the library's frame (mod 180): under 5, 5-20, 20+
   double initial_spacing = 0.0;
