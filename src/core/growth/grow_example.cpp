@@ -3975,7 +3975,9 @@ class Grower {
     stats_.bridge_pairs = bridge_pairs_.size();
   }
   // The connector of patch lp leaving its junction `end` (placed on node n at `at`, under the current
-  // warp) nearest in direction to n's street, within `window`: it doubles that street.
+  // warp) nearest in direction to n's street, within `window`, and within max_distance of it by the
+  // Hausdorff distance as the depth-first draw compares them (a street a patch made whole, else over
+  // the shorter length): it doubles that street. UINT32_MAX: none fits.
   std::uint32_t doubling_connector(const LibPatch& lp, Point end, Point at, std::uint32_t n, double window) {
     const MillimetreKey k{std::llround(end.x * 1000.0), std::llround(end.y * 1000.0)};
     const Polyline street = chain(n, nodes_[n].edges[0], 3.0 * street_stats_.length_mean);
@@ -3993,7 +3995,13 @@ class Grower {
         best = c;
       }
     }
-    return best;
+    if (best == UINT32_MAX) return best;
+    const Polyline& line = lp.edges[best].line;
+    const bool whole = edges_[nodes_[n].edges[0]].source >= 0;
+    const double s = whole ? std::max(length(street), length(line)) : std::min(length(street), length(line));
+    Polyline placed = substring(line, 0.0, s);
+    for (Point& x : placed) x = warped(x, end, at);
+    return hausdorff(placed, substring(street, 0.0, s), max_distance_) <= max_distance_ ? best : UINT32_MAX;
   }
   // Algorithm 2: the other open fronts (one street, not finished) in line of sight of front v within
   // the largest pair distance plus snap, each against the pairs within snap of its distance; the
@@ -4062,8 +4070,11 @@ class Grower {
       node_tree_.query(bgi::nearest(BPoint(at_b.x, at_b.y), 1), std::back_inserter(point_hits_));
       if (point_hits_.empty() || point_hits_[0].second != s.w || distance(q, at_b) > snap_) continue;
       const LibPatch& lp = library_[bp.patch];
+      // Each front's street continues one of the patch's connectors, as at a depth-first front.
       const std::uint32_t skip_a = doubling_connector(lp, a, p, v, window);
+      if (skip_a == UINT32_MAX) continue;
       bridge_skip_ = doubling_connector(lp, b, at_b, s.w, window);
+      if (bridge_skip_ == UINT32_MAX) continue;
       ++tries;
       ++stats_.bridge_tries;
       refusal_ = kRefNone;
@@ -4140,19 +4151,25 @@ class Grower {
       }
       if (found) initial_.push_back(best);
     }
-    // The example's spacing of local junctions along its main streets (the arterial patches' local
-    // seeds per metre of their main streets; a connector is in both its patches, its seeds too).
+    // The example's spacing of local junctions along its main streets: its main streets' length over
+    // the local junctions on them (the arterial patches' main streets and local seeds, each street and
+    // each junction once: a connector is in both its patches).
     double main_length = 0.0;
-    std::size_t seeds = 0;
+    std::set<std::tuple<MillimetreKey, MillimetreKey, long long>> streets;
+    std::set<MillimetreKey> junctions;
     for (const LibPatch& lp : library_) {
       if (!lp.arterial) continue;
       for (const LibEdge& e : lp.edges) {
         if (!level_is_main(e.level)) continue;
-        main_length += length(e.line);
-        seeds += e.local_seeds.size();
+        const MillimetreKey a = key(e.line.front()), b = key(e.line.back());
+        if (streets.emplace(std::min(a, b), std::max(a, b), std::llround(length(e.line) * 100.0)).second) {
+          main_length += length(e.line);
+        }
+        for (const auto& [k, local] : e.local_seeds) junctions.insert(key(e.line[k]));
       }
     }
-    initial_spacing_ = seeds > 0 ? main_length / static_cast<double>(seeds) : 2.0 * level_stats_[1].length_mean;
+    initial_spacing_ = !junctions.empty() ? main_length / static_cast<double>(junctions.size())
+                                          : 2.0 * level_stats_[1].length_mean;
     stats_.initial_spacing = initial_spacing_;
   }
   bool main_edge(std::uint32_t e) const { return edges_[e].level >= 0 && level_is_main(edges_[e].level); }
