@@ -312,6 +312,14 @@ SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE 
                    (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
                    '{"cell_init": true}')$$, '22023', 'cell_init must be ''seeds'' or ''initial''',
                  'grow_patches: cell_init not a string (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"bridge_fronts": true, "max_turn": 200}')$$, '22023', 'max_turn must be a number in [0, 180] (degrees)',
+                 'grow_patches: max_turn over 180 (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"cell_init": "initial", "cell_spacing": 0}')$$, '22023', 'cell_spacing must be a number > 0',
+                 'grow_patches: cell_spacing 0 (22023)');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE false', 'POLYGON((0 0, 100 0, 100 100, 0 0))',
                    'POINT(50 20)')$$, '22023', 'patches has no rows', 'grow_patches: an empty patch table (22023)');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT patch_id, ''inner'' AS role, geom FROM pt WHERE name = ''tokyo''',

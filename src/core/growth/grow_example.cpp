@@ -908,6 +908,9 @@ class Grower {
       if (!(pp.t >= 0.0 && pp.t <= 1.0)) {
         throw_invalid_argument("t must be in [0, 1]", "It is " + std::to_string(pp.t) + ".");
       }
+      if (!std::isfinite(pp.cell_spacing) || pp.cell_spacing <= 0.0) {
+        throw_invalid_argument("cell_spacing must be a finite number > 0", "It is " + std::to_string(pp.cell_spacing) + ".");
+      }
       if (!(pp.max_turn >= 0.0 && pp.max_turn <= 180.0)) {
         throw_invalid_argument("max_turn must be in [0, 180] degrees", "It is " + std::to_string(pp.max_turn) + ".");
       }
@@ -4170,6 +4173,7 @@ class Grower {
     }
     initial_spacing_ = !junctions.empty() ? main_length / static_cast<double>(junctions.size())
                                           : 2.0 * level_stats_[1].length_mean;
+    initial_spacing_ *= params_.patch.cell_spacing;
     stats_.initial_spacing = initial_spacing_;
   }
   bool main_edge(std::uint32_t e) const { return edges_[e].level >= 0 && level_is_main(edges_[e].level); }

@@ -231,7 +231,8 @@ struct PatchGrowParams {
   // and the best rated legal one (every check of place_patch_at, the seam rule where it applies, up
   // to `tries`) is placed turned so its two junctions land on the two fronts (the mismatch taken up
   // by the merge within snap, and by seam_slide where it applies), turned at most max_turn; at each
-  // end the connector nearest the front's street (within angle_window) doubles it and is left out.
+  // end the connector nearest the front's street (within angle_window, and within max_distance of it
+  // by the Hausdorff distance as the depth-first draw compares them) doubles it and is left out.
   // Off by default: it failed the merge rule (bench/patches, README, patches37).
   bool bridge_fronts = false;
   // Teng & Bidarra (2017, section 3.2, "Patches on main streets"): how the local phase starts.
@@ -252,6 +253,7 @@ struct PatchGrowParams {
   // examples, 60-90 % of the bridges and 40-75 % of the initial patches were then turned by 20
   // degrees or more, and the grids lost their orientation order (bench/patches, README).
   double max_turn = 5.0;
+  double cell_spacing = 1.0;  // cell_init initial's seed spacing over the example's (above)
 };
 
 struct GrowParams {
