@@ -219,3 +219,29 @@ TEST(TengBidarra, CellInitPlacesInitialPatchesAlongTheMainStreets) {
   EXPECT_EQ(seeds.stats.initial_seed_points, 0u);
   EXPECT_GT(seeds.stats.local_seeds, 0u);
 }
+
+// max_turn outside [0, 180] degrees and a cell_spacing that is not > 0 are rejected (22023 in SQL).
+TEST(TengBidarra, BadParametersAreRejected) {
+  TwoFronts f;
+  GrowInput in = f.input(120.0, 0.0, 120.0);
+  auto message = [&](const GrowParams& params) -> std::string {
+    try {
+      grow_example(f.geos, in, params);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::invalid_argument);
+      return e.what();
+    }
+    return "accepted";
+  };
+  GrowParams p = bridge_params(true);
+  EXPECT_EQ(message(p), "accepted");
+  p.patch.max_turn = 181.0;
+  EXPECT_NE(message(p).find("max_turn must be in [0, 180]"), std::string::npos);
+  p.patch.max_turn = NAN;
+  EXPECT_NE(message(p).find("max_turn must be in [0, 180]"), std::string::npos);
+  p = bridge_params(true);
+  p.patch.cell_spacing = 0.0;
+  EXPECT_NE(message(p).find("cell_spacing must be a finite number > 0"), std::string::npos);
+  p.patch.cell_spacing = INFINITY;
+  EXPECT_NE(message(p).find("cell_spacing must be a finite number > 0"), std::string::npos);
+}
