@@ -23,7 +23,8 @@
 #    the mean connector length of the library and of the patches used, and the share of junctions
 #    with a statistical street (fallback or join).
 #    And the orientation order of the main and the local streets apart (example, grown): which level
-#    loses the example's order.
+#    loses the example's order. And the streets' bends: turn per km and the share of streets that
+#    bend by 10 degrees or more as a whole, the example's against the statistical fallback's.
 # 2. Speed: km of road per second of one SQL call (one core) for squares grown from tokyo, for
 #    grow_patches and for grow_example in the same run, and their ratio; a 300 km square is the
 #    issue's benchmark (< 3 s).
@@ -215,6 +216,29 @@ WITH k AS (SELECT '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|
 SELECT name, round(min(ex_main)::numeric, 3) AS ex_main, round(percentile_cont(0.5) WITHIN GROUP (ORDER BY gr_main)::numeric, 3) AS grown_main,
        round(min(ex_local)::numeric, 3) AS ex_local, round(percentile_cont(0.5) WITHIN GROUP (ORDER BY gr_local)::numeric, 3) AS grown_local
   FROM lv GROUP BY name ORDER BY name;
+\echo street bends (grow_patches, median over seeds; degree-2 chains merged): turn per km (all the turns at shape points) and the share of streets that bend as a whole by 10 degrees or more (chord under 0.99873 of the length, as an arc turning by 10 degrees), the example's streets against the statistical fallback's (origin grow_parametric, its joins included)
+CREATE FUNCTION pg_temp.turn(g geometry) RETURNS double precision LANGUAGE sql IMMUTABLE AS $$
+  WITH p AS (SELECT (d).path[1] AS i, (d).geom AS pt FROM ST_DumpPoints(g) AS d),
+       s AS (SELECT i, ST_Azimuth(pt, lead(pt) OVER (ORDER BY i)) AS az FROM p),
+       t AS (SELECT az - lag(az) OVER (ORDER BY i) AS d FROM s WHERE az IS NOT NULL)
+  SELECT coalesce(sum(abs(mod((d + 3 * pi())::numeric, (2 * pi())::numeric) - pi()::numeric)), 0)::double precision
+    FROM t WHERE d IS NOT NULL $$;
+WITH ex AS (SELECT name, (ST_Dump(ST_LineMerge(ST_Collect(geom)))).geom AS g FROM example GROUP BY name),
+     gr AS (SELECT name, seed, (ST_Dump(ST_LineMerge(ST_Collect(geom)))).geom AS g
+              FROM grown WHERE method = 'patches' AND origin = 'grow_parametric' GROUP BY name, seed),
+     exs AS (SELECT name, 1000 * sum(pg_temp.turn(g)) / sum(ST_Length(g)) AS per_km,
+                    avg((ST_Distance(ST_StartPoint(g), ST_EndPoint(g)) < 0.99873 * ST_Length(g))::int) AS bent
+               FROM ex GROUP BY name),
+     grs AS (SELECT name, seed, 1000 * sum(pg_temp.turn(g)) / nullif(sum(ST_Length(g)), 0) AS per_km,
+                    avg((ST_Distance(ST_StartPoint(g), ST_EndPoint(g)) < 0.99873 * ST_Length(g))::int) AS bent,
+                    count(*) AS streets
+               FROM gr GROUP BY name, seed)
+SELECT e.name, round(e.per_km::numeric, 2) AS example_rad_per_km,
+       round(percentile_cont(0.5) WITHIN GROUP (ORDER BY g.per_km)::numeric, 2) AS fallback_rad_per_km,
+       round((100 * e.bent)::numeric, 1) AS example_bent_pct,
+       round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY g.bent))::numeric, 1) AS fallback_bent_pct,
+       percentile_cont(0.5) WITHIN GROUP (ORDER BY g.streets) AS fallback_streets
+  FROM exs e LEFT JOIN grs g USING (name) GROUP BY e.name, e.per_km, e.bent ORDER BY e.name;
 CREATE INDEX ON grown USING gist (geom);
 ANALYZE grown;
 SELECT method, (SELECT count(*) FROM grown g2 WHERE g2.method = m.method) AS edges_checked,

@@ -57,6 +57,7 @@ enum GrowArg {
   // Operations: warping (guide), interpolation (a second library, t) and blending.
   kGGuide, kGGuideReach, kGPatchIdsB, kGRolesB, kGClassesB, kGGeomsB, kGMaxUsesB, kGArterialsB, kGT, kGBlendMode,
   kGBlendAngle, kGBlendX, kGBlendY, kGBlendSigma, kGPruneDangling, kGDirectionGrid, kGDirectionValues, kGConnectDangling,
+  kGFallbackCurvature,
   // Teng & Bidarra: the first library's patches tagged initial, breadth-first bridging, cell initialisation.
   kGInitials, kGBridgeFronts, kGCellInit, kGMaxTurn, kGCellSpacing,
   kGArgs
@@ -298,7 +299,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       "bridge_distance", "bridge_turn", "guide", "guide_reach", "interpolate patch ids", "interpolate roles",
       "interpolate road classes", "interpolate patch edges", "interpolate max_uses", "interpolate arterials", "t",
       "blend", "blend_angle", "blend_points x", "blend_points y", "blend_sigma", "prune_dangling", "direction grid",
-      "direction", "connect_dangling", "initials", "bridge_fronts", "cell_init", "max_turn", "cell_spacing"};
+      "direction", "connect_dangling", "fallback_curvature", "initials", "bridge_fronts", "cell_init", "max_turn", "cell_spacing"};
   for (int a = kGRegion; a < kGArgs; ++a) {
     if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && a != kGArterials && a != kGWater && a != kGDemGrid &&
         a != kGDemValues && a != kGGuide && !(a >= kGPatchIdsB && a <= kGArterialsB) && a != kGBlendX &&
@@ -362,6 +363,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   params.blend.sigma = PG_GETARG_FLOAT8(kGBlendSigma);
   params.patch.prune_dangling = PG_GETARG_BOOL(kGPruneDangling);
   params.patch.connect_dangling = PG_GETARG_BOOL(kGConnectDangling);
+  params.patch.fallback_curvature = PG_GETARG_BOOL(kGFallbackCurvature);
   params.patch.continue_across = params.patch.connect_dangling;  // one SQL switch for both joins (README)
   params.patch.bridge_fronts = PG_GETARG_BOOL(kGBridgeFronts);
   params.patch.max_turn = PG_GETARG_FLOAT8(kGMaxTurn);

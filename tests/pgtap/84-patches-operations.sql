@@ -217,6 +217,26 @@ SELECT is((SELECT count(*) FROM joined a JOIN joined b ON a.connect AND b.connec
             WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
           0::bigint, 'connect_dangling: planar');
 
+-- fallback_curvature (off by default): canberra's statistical streets bend by its streets'
+-- curvature as arcs, whose inner points are nodes of degree 2 turning by at most 15 degrees between
+-- two grow_parametric edges; without it such gentle turns are rare (joins and snaps). Planar.
+CREATE TEMP TABLE curved AS
+SELECT c AS curvature, g.* FROM sq, unnest(ARRAY[false, true]) AS c,
+       streetgen.grow_patches('SELECT * FROM pt WHERE name = ''canberra_south_large''', sq.geom, 'POINT(0 0)', NULL,
+                              jsonb_build_object('seed', 5, 'max_edges', 2500, 'fallback_curvature', c)) AS g;
+CREATE TEMP TABLE gentle AS
+WITH ends AS (SELECT curvature, from_node AS node, origin, ST_Azimuth(ST_StartPoint(geom), ST_EndPoint(geom)) AS away FROM curved
+              UNION ALL
+              SELECT curvature, to_node, origin, ST_Azimuth(ST_EndPoint(geom), ST_StartPoint(geom)) FROM curved),
+     pairs AS (SELECT curvature, node, min(away) AS a1, max(away) AS a2 FROM ends GROUP BY curvature, node
+                HAVING count(*) = 2 AND bool_and(origin = 'grow_parametric'))
+SELECT curvature, count(*) FILTER (WHERE degrees(abs(pi() - abs(a2 - a1))) BETWEEN 1 AND 16) AS n FROM pairs GROUP BY curvature;
+SELECT ok((SELECT n FROM gentle WHERE curvature) > 2 * coalesce((SELECT n FROM gentle WHERE NOT curvature), 0) + 10,
+          'fallback_curvature: the statistical streets bend gently at many more shape points than without');
+SELECT is((SELECT count(*) FROM curved a JOIN curved b ON a.curvature AND b.curvature AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
+          0::bigint, 'fallback_curvature: planar');
+
 -- ---- Determinism ------------------------------------------------------------------------------
 -- The same seed gives the same rows with every operation on (guide, interpolate with blend, prune).
 CREATE FUNCTION pg_temp.ops(seed integer) RETURNS TABLE (id bigint, origin text, geom geometry) LANGUAGE sql AS $$
@@ -293,6 +313,8 @@ SELECT throws_ok($$SELECT pg_temp.bad('{"prune_dangling": "yes"}')$$, '22023', '
                  'prune_dangling not a boolean (22023)');
 SELECT throws_ok($$SELECT pg_temp.bad('{"connect_dangling": 1}')$$, '22023', 'connect_dangling must be true or false',
                  'connect_dangling not a boolean (22023)');
+SELECT throws_ok($$SELECT pg_temp.bad('{"fallback_curvature": "arc"}')$$, '22023', 'fallback_curvature must be true or false',
+                 'fallback_curvature not a boolean (22023)');
 SELECT throws_ok($$SELECT pg_temp.bad('{"warp": true}')$$, '22023', NULL, 'an unknown params key (22023)');
 -- Blend gradient works (a defined result).
 SELECT ok((SELECT pg_temp.bad('{"blend": "gradient", "blend_angle": 90, "interpolate": "SELECT * FROM pt WHERE name = ''canberra_south_large''"}')) > 0,

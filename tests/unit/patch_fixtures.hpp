@@ -4,6 +4,8 @@
 #include <map>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "core/growth/grow_example.hpp"
 #include "core/growth/patches.hpp"
 
@@ -42,6 +44,34 @@ inline int interior_dead_ends(const core::GrowResult& r) {
     n += d == 1 && std::abs(q.x) < 1300 && std::abs(q.y) < 1300;
   }
   return n;
+}
+
+inline bool crosses_without_node(const core::GrownEdge& a, const core::GrownEdge& b) {
+  if (a.from_node == b.from_node || a.from_node == b.to_node || a.to_node == b.from_node || a.to_node == b.to_node) {
+    return false;
+  }
+  auto orient = [](core::Point p, core::Point q, core::Point r) { return core::cross(q - p, r - p); };
+  const double d1 = orient(a.a, a.b, b.a), d2 = orient(a.a, a.b, b.b);
+  const double d3 = orient(b.a, b.b, a.a), d4 = orient(b.a, b.b, a.b);
+  return d1 * d2 < 0 && d3 * d4 < 0;
+}
+
+// Pairs of grown edges that cross without a shared node: 0 for a planar growth.
+inline long crossings_without_node(const core::GrowResult& r) {
+  long n = 0;
+  for (std::size_t i = 0; i < r.edges.size(); ++i) {
+    for (std::size_t j = i + 1; j < r.edges.size(); ++j) n += crosses_without_node(r.edges[i], r.edges[j]);
+  }
+  return n;
+}
+
+// The same graph, edge for edge (a growth run again with the same seed).
+inline void expect_same_graph(const core::GrowResult& again, const core::GrowResult& first) {
+  ASSERT_EQ(again.edges.size(), first.edges.size());
+  for (std::size_t i = 0; i < first.edges.size(); ++i) {
+    EXPECT_EQ(again.edges[i].from_node, first.edges[i].from_node);
+    EXPECT_EQ(again.edges[i].to_node, first.edges[i].to_node);
+  }
 }
 
 }  // namespace streetgen::test

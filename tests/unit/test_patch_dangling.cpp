@@ -14,6 +14,8 @@
 
 using namespace streetgen::core;
 using streetgen::test::avenue_grid;
+using streetgen::test::crossings_without_node;
+using streetgen::test::expect_same_graph;
 using streetgen::test::interior_dead_ends;
 using streetgen::test::wkt;
 
@@ -100,34 +102,6 @@ std::vector<PatchInputEdge> spider_web() {
     }
   }
   return out;
-}
-
-bool crosses_without_node(const GrownEdge& a, const GrownEdge& b) {
-  if (a.from_node == b.from_node || a.from_node == b.to_node || a.to_node == b.from_node || a.to_node == b.to_node) {
-    return false;
-  }
-  auto orient = [](Point p, Point q, Point r) { return cross(q - p, r - p); };
-  const double d1 = orient(a.a, a.b, b.a), d2 = orient(a.a, a.b, b.b);
-  const double d3 = orient(b.a, b.b, a.a), d4 = orient(b.a, b.b, a.b);
-  return d1 * d2 < 0 && d3 * d4 < 0;
-}
-
-// Pairs of grown edges that cross without a shared node: 0 for a planar growth.
-long crossings_without_node(const GrowResult& r) {
-  long n = 0;
-  for (std::size_t i = 0; i < r.edges.size(); ++i) {
-    for (std::size_t j = i + 1; j < r.edges.size(); ++j) n += crosses_without_node(r.edges[i], r.edges[j]);
-  }
-  return n;
-}
-
-// The same graph, edge for edge (a growth run again with the same seed).
-void expect_same_graph(const GrowResult& again, const GrowResult& first) {
-  ASSERT_EQ(again.edges.size(), first.edges.size());
-  for (std::size_t i = 0; i < first.edges.size(); ++i) {
-    EXPECT_EQ(again.edges[i].from_node, first.edges[i].from_node);
-    EXPECT_EQ(again.edges[i].to_node, first.edges[i].to_node);
-  }
 }
 
 struct Fixture {

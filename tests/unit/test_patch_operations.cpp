@@ -13,6 +13,8 @@
 
 using namespace streetgen::core;
 using streetgen::test::avenue_grid;
+using streetgen::test::crossings_without_node;
+using streetgen::test::expect_same_graph;
 using streetgen::test::interior_dead_ends;
 using streetgen::test::wkt;
 
@@ -195,4 +197,95 @@ TEST(PatchOperations, PruneDanglingLeavesNoDeadEndTheExampleDoesNotHave) {
   EXPECT_GT(pruned.stats.dangling_pruned, 10u);
   EXPECT_LT(pruned.edges.size(), kept.edges.size());
   EXPECT_GT(pruned.edges.size(), kept.edges.size() / 2);
+}
+
+// fallback_curvature: the statistical fallback bends its streets by the example's curvature (Nishida
+// et al.: procedural growth from the length and curvature distributions). A grid of 100 m blocks whose every street is
+// an arc turning by 40 degrees (four segments): with each patch usable once, most of the network
+// is statistical. With fallback_curvature those streets turn at their shape points by about the
+// example's curvature per metre; without it they run straight. Planar and deterministic either way.
+TEST(PatchOperations, FallbackStreetsBendByTheExamplesCurvature) {
+  Fixture f;
+  const double turn = 40.0 * kPi / 180.0;
+  auto arc = [&](Point a, Point b, int side) {
+    // four segments along the circular arc from a to b that turns by `turn` (bulging to `side`)
+    const Point d = b - a;
+    const double chord = std::hypot(d.x, d.y), heading = std::atan2(d.y, d.x);
+    double along = 0.0;  // the segments' projections on the chord, per unit length
+    for (int i = 0; i < 4; ++i) along += std::cos(turn * ((i + 0.5) / 4.0 - 0.5));
+    const double step = chord / along;
+    std::vector<Point> line{a};
+    Point q = a;
+    for (int i = 0; i < 4; ++i) {
+      const double h = heading + side * turn * ((i + 0.5) / 4.0 - 0.5);
+      q = q + step * Point{std::cos(h), std::sin(h)};
+      line.push_back(q);
+    }
+    line.back() = b;  // (equal up to rounding)
+    return line;
+  };
+  std::vector<PatchInputEdge> example;
+  std::int64_t id = 0;
+  for (int i = 0; i <= 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+      const int side = (i + j) % 2 ? 1 : -1;
+      example.push_back({arc({j * 100.0, i * 100.0}, {(j + 1) * 100.0, i * 100.0}, side), "street", ++id, false});
+      example.push_back({arc({i * 100.0, j * 100.0}, {i * 100.0, (j + 1) * 100.0}, side), "street", ++id, false});
+    }
+  }
+  double example_curvature = 0.0;
+  for (const PatchInputEdge& e : example) example_curvature += curvature(e.line) / static_cast<double>(example.size());
+  ASSERT_GT(example_curvature, 0.003);  // (40 degrees over about 100 m: 0.007 rad/m)
+
+  GrowInput in = f.input();
+  in.patches = extract_patches(f.geos, example, PatchParams{}).patches;
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 3;
+  p.max_edges = 1500;
+  p.patch.max_uses = 1;
+  p.patch.fallback_curvature = false;
+  const GrowResult straight = grow_example(f.geos, in, p);
+  p.patch.fallback_curvature = true;
+  const GrowResult bent = grow_example(f.geos, in, p);
+
+  // The statistical streets' gentle turns: nodes of degree 2 between two statistical edges that
+  // turn by 1-16 degrees (an arc's shape points turn by at most 15; joins and snaps, which also
+  // leave such nodes, mostly turn by more or not at all), and their turn per metre of statistical
+  // street.
+  struct Turns {
+    int gentle = 0;
+    double per_metre = 0.0;
+  };
+  auto gentle_turns = [](const GrowResult& r) {
+    std::map<std::int64_t, std::vector<const GrownEdge*>> at;
+    double length = 0.0;
+    for (const GrownEdge& e : r.edges) {
+      at[e.from_node].push_back(&e);
+      at[e.to_node].push_back(&e);
+      if (e.example < 0) length += distance(e.a, e.b);
+    }
+    Turns t;
+    for (const auto& [node, edges] : at) {
+      if (edges.size() != 2 || edges[0]->example >= 0 || edges[1]->example >= 0) continue;
+      auto away = [node = node](const GrownEdge* e) { return e->from_node == node ? e->b - e->a : e->a - e->b; };
+      const Point u = away(edges[0]), v = away(edges[1]);
+      const double turn = kPi - std::acos(std::clamp(dot(u, v) / (norm(u) * norm(v)), -1.0, 1.0));
+      if (turn < 1.0 * kPi / 180.0 || turn > 16.0 * kPi / 180.0) continue;
+      ++t.gentle;
+      t.per_metre += turn;
+    }
+    if (length > 0.0) t.per_metre /= length;
+    return t;
+  };
+  EXPECT_EQ(straight.stats.fallback_curved, 0u);
+  ASSERT_GT(bent.stats.fallback, 50u);
+  EXPECT_GT(bent.stats.fallback_curved, 20u);
+  const Turns off = gentle_turns(straight), on = gentle_turns(bent);
+  EXPECT_GT(on.gentle, 4 * off.gentle + 20);
+  EXPECT_LT(off.per_metre, 0.2 * example_curvature);
+  EXPECT_GT(on.per_metre, 0.4 * example_curvature);
+  EXPECT_LT(on.per_metre, 1.5 * example_curvature);
+  EXPECT_EQ(crossings_without_node(bent), 0);
+  expect_same_graph(grow_example(f.geos, in, p), bent);
 }

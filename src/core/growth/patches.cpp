@@ -184,6 +184,19 @@ double curvature(const Polyline& line) {
   return sum / len;
 }
 
+double arc_curvature(const Polyline& line) {
+  const double len = length(line);
+  if (!(len > 0.0) || line.size() < 3) return 0.0;
+  // An arc turning by T has chord / length = sin(T/2) / (T/2), decreasing on [0, 2 pi]: bisection.
+  const double ratio = std::clamp(distance(line.front(), line.back()) / len, 0.0, 1.0);
+  double lo = 0.0, hi = kPi;  // half the turn
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (std::sin(mid) / mid > ratio ? lo : hi) = mid;
+  }
+  return 2.0 * lo / len;
+}
+
 StreetStatistics street_statistics(const std::vector<const Polyline*>& streets) {
   StreetStatistics s;
   if (streets.empty()) return s;

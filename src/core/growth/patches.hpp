@@ -90,5 +90,9 @@ struct StreetStatistics {
 };
 StreetStatistics street_statistics(const std::vector<const Polyline*>& streets);
 double curvature(const Polyline& line);
+// The curvature (radians per metre) of the circular arc with the line's length and chord: how much
+// the street bends as a whole. Unlike curvature(), a straight street digitised with small zigzags
+// (whose turns add up) has about none.
+double arc_curvature(const Polyline& line);
 
 }  // namespace streetgen::core
