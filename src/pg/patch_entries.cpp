@@ -1,6 +1,7 @@
 // Patch-based growth (growing networks II): extract_patches turns an example into patch rows with
 // semantic tags; grow_patches grows a network from such rows. sql/82-patches.sql reads the
 // queries and the params jsonb; src/core/growth/patches.cpp and grow_example.cpp hold the method.
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -56,7 +57,10 @@ enum GrowArg {
   // Operations: warping (guide), interpolation (a second library, t) and blending.
   kGGuide, kGGuideReach, kGPatchIdsB, kGRolesB, kGClassesB, kGGeomsB, kGMaxUsesB, kGArterialsB, kGT, kGBlendMode,
   kGBlendAngle, kGBlendX, kGBlendY, kGBlendSigma, kGPruneDangling, kGDirectionGrid, kGDirectionValues, kGConnectDangling,
-  kGFallbackCurvature, kGArterialFallback, kGFallbackLocalSeeds, kGArgs
+  kGFallbackCurvature, kGArterialFallback, kGFallbackLocalSeeds,
+  // Teng & Bidarra: the first library's patches tagged initial, breadth-first bridging, cell initialisation.
+  kGInitials, kGBridgeFronts, kGCellInit, kGMaxTurn, kGCellSpacing,
+  kGArgs
 };
 
 // One patch library's rows, read in phase 1 (palloc'd plain data).
@@ -66,6 +70,7 @@ struct EdgeArg {
   const char* road_class;
   int max_uses;
   bool arterial;
+  bool initial;  // the patch is tagged initial
   pg::ByteView geom;
 };
 struct LibraryArg {
@@ -75,18 +80,21 @@ struct LibraryArg {
 };
 
 LibraryArg read_library(FunctionCallInfo fcinfo, int a_ids, int a_roles, int a_classes, int a_geoms, int a_uses,
-                        int a_arterials, const char* what) {
+                        int a_arterials, const char* what, int a_initials = -1) {
   pg::ArrayArg pids = pg::array_arg(fcinfo, a_ids, INT8OID, "patch ids");
   pg::ArrayArg roles = pg::array_arg(fcinfo, a_roles, TEXTOID, "roles");
   pg::ArrayArg classes = pg::array_arg(fcinfo, a_classes, TEXTOID, "road classes");
   pg::ArrayArg geoms = pg::array_arg(fcinfo, a_geoms, BYTEAOID, "patch edges");
   pg::ArrayArg uses = pg::array_arg(fcinfo, a_uses, INT4OID, "max_uses");
   pg::ArrayArg arterials = pg::array_arg(fcinfo, a_arterials, BOOLOID, "arterials");
+  pg::ArrayArg initials{};
+  if (a_initials >= 0) initials = pg::array_arg(fcinfo, a_initials, BOOLOID, "initials");
   pg::require_same_length(geoms, "patch edges", pids, "patch ids");
   pg::require_same_length(geoms, "patch edges", roles, "roles");
   if (classes.count != 0) pg::require_same_length(geoms, "patch edges", classes, "road classes");
   if (uses.count != 0) pg::require_same_length(geoms, "patch edges", uses, "max_uses");
   if (arterials.count != 0) pg::require_same_length(geoms, "patch edges", arterials, "arterials");
+  if (initials.count != 0) pg::require_same_length(geoms, "patch edges", initials, "initials");
   LibraryArg lib;
   lib.what = what;
   lib.count = geoms.count;
@@ -128,6 +136,7 @@ LibraryArg read_library(FunctionCallInfo fcinfo, int a_ids, int a_roles, int a_c
                                 static_cast<long long>(e.patch_id), e.max_uses)));
     }
     e.arterial = arterials.count != 0 && !arterials.nulls[i] && DatumGetBool(arterials.values[i]);
+    e.initial = initials.count != 0 && !initials.nulls[i] && DatumGetBool(initials.values[i]);
     e.geom = pg::byte_view(geoms.values[i]);
   }
   return lib;
@@ -153,7 +162,11 @@ void build_patches(core::GeosContext& geos, const LibraryArg& lib, std::vector<c
     }
     core::Patch& patch = out[it->second];
     patch.max_uses = std::max(patch.max_uses, e.max_uses);
-    if (e.arterial && patch.tags.empty()) patch.tags.emplace_back("arterial");
+    for (const char* tag : {e.arterial ? "arterial" : nullptr, e.initial ? "initial" : nullptr}) {
+      if (tag != nullptr && std::find(patch.tags.begin(), patch.tags.end(), tag) == patch.tags.end()) {
+        patch.tags.emplace_back(tag);
+      }
+    }
     core::PatchEdge pe;
     pe.line = std::move(lines[0]);
     pe.role = e.role;
@@ -286,15 +299,16 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       "bridge_distance", "bridge_turn", "guide", "guide_reach", "interpolate patch ids", "interpolate roles",
       "interpolate road classes", "interpolate patch edges", "interpolate max_uses", "interpolate arterials", "t",
       "blend", "blend_angle", "blend_points x", "blend_points y", "blend_sigma", "prune_dangling", "direction grid",
-      "direction", "connect_dangling", "fallback_curvature", "arterial_fallback", "fallback_local_seeds"};
+      "direction", "connect_dangling", "fallback_curvature", "arterial_fallback", "fallback_local_seeds", "initials",
+      "bridge_fronts", "cell_init", "max_turn", "cell_spacing"};
   for (int a = kGRegion; a < kGArgs; ++a) {
     if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && a != kGArterials && a != kGWater && a != kGDemGrid &&
         a != kGDemValues && a != kGGuide && !(a >= kGPatchIdsB && a <= kGArterialsB) && a != kGBlendX &&
-        a != kGBlendY && a != kGDirectionGrid && a != kGDirectionValues && PG_ARGISNULL(a)) {
+        a != kGBlendY && a != kGDirectionGrid && a != kGDirectionValues && a != kGInitials && PG_ARGISNULL(a)) {
       pg::raise_null_argument(names[a]);
     }
   }
-  LibraryArg lib = read_library(fcinfo, kGPatchIds, kGRoles, kGClasses, kGGeoms, kGMaxUses, kGArterials, "");
+  LibraryArg lib = read_library(fcinfo, kGPatchIds, kGRoles, kGClasses, kGGeoms, kGMaxUses, kGArterials, "", kGInitials);
   LibraryArg lib_b = read_library(fcinfo, kGPatchIdsB, kGRolesB, kGClassesB, kGGeomsB, kGMaxUsesB, kGArterialsB,
                                   "interpolate ");
   pg::ArrayArg blend_xs = pg::array_arg(fcinfo, kGBlendX, FLOAT8OID, "blend_points x");
@@ -354,6 +368,20 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   params.patch.continue_across = params.patch.connect_dangling;  // one SQL switch for both joins (README)
   params.patch.arterial_fallback = PG_GETARG_FLOAT8(kGArterialFallback);
   params.patch.fallback_local_seeds = PG_GETARG_BOOL(kGFallbackLocalSeeds);
+  params.patch.bridge_fronts = PG_GETARG_BOOL(kGBridgeFronts);
+  params.patch.max_turn = PG_GETARG_FLOAT8(kGMaxTurn);
+  params.patch.cell_spacing = PG_GETARG_FLOAT8(kGCellSpacing);
+  {
+    const char* cell_init = TextDatumGetCString(PG_GETARG_DATUM(kGCellInit));
+    if (strcmp(cell_init, "seeds") == 0) {
+      params.patch.cell_init = core::PatchGrowParams::CellInit::seeds;
+    } else if (strcmp(cell_init, "initial") == 0) {
+      params.patch.cell_init = core::PatchGrowParams::CellInit::initial;
+    } else {
+      ereport(ERROR, (errcode(ERRCODE_INVALID_PARAMETER_VALUE), errmsg("cell_init must be 'seeds' or 'initial'"),
+                      errdetail("It is %s.", quote_literal_cstr(cell_init))));
+    }
+  }
   InitMaterializedSRF(fcinfo, 0);
   auto rows = pg::OwnedResult<std::vector<pg::GrownRow>>::create();
   core::GrowStats stats;
@@ -515,6 +543,15 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           stats.own_dead_ends_grown, stats.junctions_grown)));
   ereport(DEBUG1, (errmsg("grow_patches: dangling joins: %zu refused (a junction over the example's per area)",
                           stats.dangling_dense)));
+  ereport(DEBUG1, (errmsg("grow_patches: teng-bidarra: %zu fronts bridged (%zu placements tried, %zu junction pairs "
+                          "in the library; turned under 5, 5-20, 20+ degrees: %zu, %zu, %zu; %zu of their junctions "
+                          "crossings in their patch); %zu initial patches "
+                          "placed at %zu seed points (spacing %.0f m; turned under 5, 5-20, 20+ degrees: %zu, %zu, "
+                          "%zu)",
+                          stats.fronts_bridged, stats.bridge_tries, stats.bridge_pairs, stats.bridge_turns[0],
+                          stats.bridge_turns[1], stats.bridge_turns[2], stats.bridge_crossing_ends, stats.initial_placed,
+                          stats.initial_seed_points, stats.initial_spacing, stats.initial_turns[0],
+                          stats.initial_turns[1], stats.initial_turns[2])));
   pg::emit_grown_rows(fcinfo, *rows);
   rows.release();
   PG_RETURN_NULL();

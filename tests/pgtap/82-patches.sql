@@ -200,6 +200,30 @@ SELECT is((SELECT count(*) FROM grown g
 SELECT ok((SELECT min(id) FROM pg_temp.grow('tokyo', '{"seed": 7, "max_edges": 3000, "levels": false}')
              AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry)
             WHERE road_class = 'street') <= 20, 'levels false: streets grow from the start');
+-- Teng & Bidarra: breadth-first bridging (bridge_fronts) and cell initialisation with initial
+-- patches (cell_init). Their defaults are the rows above; on, planar networks inside the region.
+SELECT is((SELECT count(*) FROM (
+             SELECT ST_AsEWKB(geom) FROM grown WHERE name = 'tokyo'
+             EXCEPT ALL
+             SELECT ST_AsEWKB(geom) FROM pg_temp.grow('tokyo', '{"seed": 7, "max_edges": 3000, "bridge_fronts": false, "cell_init": "seeds"}')
+               AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry)) d),
+          0::bigint, 'bridge_fronts false and cell_init seeds are the defaults');
+CREATE TEMP TABLE tb AS
+SELECT 'bridge_fronts'::text AS variant, g.* FROM pg_temp.grow('tokyo', '{"seed": 7, "max_edges": 3000, "bridge_fronts": true}')
+  AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry)
+UNION ALL
+SELECT 'cell_init', g.* FROM pg_temp.grow('tokyo', '{"seed": 7, "max_edges": 3000, "cell_init": "initial"}')
+  AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry);
+SELECT ok((SELECT bool_and(n >= 1000) AND count(*) = 2 FROM (SELECT count(*) AS n FROM tb GROUP BY variant) c),
+          'bridge_fronts true, cell_init initial: each grows at least 1000 edges');
+SELECT is((SELECT count(*) FROM tb a JOIN tb b ON a.variant = b.variant AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
+            WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))), 0::bigint,
+          'bridge_fronts true, cell_init initial: no crossing without a node');
+SELECT is((SELECT count(*) FROM tb, region r WHERE r.name = 'tokyo' AND NOT ST_CoveredBy(tb.geom, r.geom)), 0::bigint,
+          'bridge_fronts true, cell_init initial: inside the region');
+SELECT ok((SELECT count(*) FROM (SELECT ST_AsEWKB(geom) FROM tb WHERE variant = 'cell_init'
+                                 EXCEPT SELECT ST_AsEWKB(geom) FROM grown WHERE name = 'tokyo') d) > 100,
+          'cell_init initial starts the local streets elsewhere than the example''s local seeds');
 -- Determinism.
 SELECT is((SELECT count(*) FROM (
              (SELECT id, from_node, to_node, road_class, origin, ST_AsEWKB(geom) FROM grown WHERE name = 'canberra_south_large'
@@ -302,6 +326,26 @@ SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE 
                    (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
                    '{"fallback_local_seeds": 1}')$$, '22023', 'fallback_local_seeds must be true or false',
                  'grow_patches: fallback_local_seeds not a boolean (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"bridge_fronts": "yes"}')$$, '22023', 'bridge_fronts must be true or false',
+                 'grow_patches: bridge_fronts not a boolean (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"cell_init": "cells"}')$$, '22023', 'cell_init must be ''seeds'' or ''initial''',
+                 'grow_patches: an unknown cell_init (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"cell_init": true}')$$, '22023', 'cell_init must be ''seeds'' or ''initial''',
+                 'grow_patches: cell_init not a string (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"bridge_fronts": true, "max_turn": 200}')$$, '22023', 'max_turn must be a number in [0, 180] (degrees)',
+                 'grow_patches: max_turn over 180 (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"cell_init": "initial", "cell_spacing": 0}')$$, '22023', 'cell_spacing must be a number > 0',
+                 'grow_patches: cell_spacing 0 (22023)');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE false', 'POLYGON((0 0, 100 0, 100 100, 0 0))',
                    'POINT(50 20)')$$, '22023', 'patches has no rows', 'grow_patches: an empty patch table (22023)');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT patch_id, ''inner'' AS role, geom FROM pt WHERE name = ''tokyo''',

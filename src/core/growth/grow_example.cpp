@@ -1005,6 +1005,12 @@ class Grower {
       if (!(pp.t >= 0.0 && pp.t <= 1.0)) {
         throw_invalid_argument("t must be in [0, 1]", "It is " + std::to_string(pp.t) + ".");
       }
+      if (!std::isfinite(pp.cell_spacing) || pp.cell_spacing <= 0.0) {
+        throw_invalid_argument("cell_spacing must be a finite number > 0", "It is " + std::to_string(pp.cell_spacing) + ".");
+      }
+      if (!(pp.max_turn >= 0.0 && pp.max_turn <= 180.0)) {
+        throw_invalid_argument("max_turn must be in [0, 180] degrees", "It is " + std::to_string(pp.max_turn) + ".");
+      }
       if (!std::isfinite(pp.clearance) || pp.clearance < 0.0) {
         throw_invalid_argument("clearance must be a finite number > 0", "It is " + std::to_string(pp.clearance) + " m.");
       }
@@ -2834,6 +2840,7 @@ class Grower {
     bool arterial = false;  // levels: grown in the first phase
     int size_class = 0;     // tercile of the mean connector length among the patches of its phase
     int style = 0;          // interpolation: 0 the first library, 1 the second (GrowInput::patches_b)
+    bool initial = false;   // tagged initial (Teng & Bidarra): a straight main street and a local attachment
   };
   struct LibConnector {
     std::uint32_t patch, edge;
@@ -3064,6 +3071,7 @@ class Grower {
         LibPatch lp{p.id, {}, {}, p.max_uses > 0 ? p.max_uses : params_.patch.max_uses};
         lp.style = style;
         lp.arterial = params_.patch.levels && std::find(p.tags.begin(), p.tags.end(), "arterial") != p.tags.end();
+        lp.initial = std::find(p.tags.begin(), p.tags.end(), "initial") != p.tags.end();
         for (const PatchEdge& e : p.edges) {
           if (e.line.size() < 2) continue;
           if (e.role == PatchEdgeRole::isolated) {  // never placed; counted in the dead-end budget
@@ -3138,6 +3146,8 @@ class Grower {
     prepare_levels();
     prepare_styles();
     prepare_size_classes();
+    prepare_bridge_pairs();
+    prepare_initial();
   }
   static double mean_connector_length(const LibPatch& lp) {
     double sum = 0.0;
@@ -4101,6 +4111,8 @@ class Grower {
     use_level_shape();
     unfinished_.clear();
     queue_head_ = 0;
+    const bool cells = params_.patch.cell_init == PatchGrowParams::CellInit::initial;
+    if (cells) pending_local_.clear();  // Teng & Bidarra's initial patches instead (init_cells)
     for (const LocalSeed& ls : pending_local_) {
       if (ls.node >= nodes_.size()) continue;
       if (local_hint_.emplace(ls.node, ls).second) {
@@ -4131,7 +4143,339 @@ class Grower {
       }
     }
     pending_local_.clear();
+    if (cells) init_cells();
     return !unfinished_.empty();
+  }
+
+  // ---- Teng & Bidarra (2017): breadth-first bridging and cell initialisation ------------------
+  // A pair of junctions of one library patch (connector inner ends: the vertices a front receives),
+  // at distance d; sorted by d (PatchGrowParams::bridge_fronts).
+  struct BridgePair {
+    double d;
+    std::uint32_t patch;
+    Point a, b;
+  };
+  // Bridging and initial patches keep the seam rule of the depth-first draws (PatchGrowParams::seam_turn),
+  // without its relaxed second pass: a merge that turns a patch street more is refused.
+  double seam_limit_here() { return params_.patch.seam_turn > 0.0 && seams_here() ? params_.patch.seam_turn : 0.0; }
+  std::vector<BridgePair> bridge_pairs_;
+  double max_turn_ = kPi;  // PatchGrowParams::max_turn in radians
+  double bridge_reach_ = 0.0;           // the largest pair distance (m)
+  std::uint32_t bridge_skip_ = UINT32_MAX;  // place_patch_at: a second connector left out (the far front's)
+  void prepare_bridge_pairs() {
+    bridge_pairs_.clear();
+    bridge_reach_ = 0.0;
+    max_turn_ = params_.patch.max_turn * kPi / 180.0;
+    if (!params_.patch.bridge_fronts) return;
+    auto key = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
+    for (std::uint32_t i = 0; i < library_.size(); ++i) {
+      const LibPatch& lp = library_[i];
+      if (hierarchy_ && lp.arterial) continue;  // bridging is the local phase's (or one level's)
+      std::vector<Point> ends;
+      std::set<MillimetreKey> seen;
+      for (std::uint32_t c : lp.connectors) {
+        const Point q = lp.edges[c].line.front();
+        if (seen.insert(key(q)).second) ends.push_back(q);
+      }
+      for (std::size_t x = 0; x < ends.size(); ++x) {
+        for (std::size_t y = x + 1; y < ends.size(); ++y) {
+          const double d = distance(ends[x], ends[y]);
+          if (d > kContact) bridge_pairs_.push_back({d, i, ends[x], ends[y]});
+        }
+      }
+    }
+    std::stable_sort(bridge_pairs_.begin(), bridge_pairs_.end(),
+                     [](const BridgePair& x, const BridgePair& y) { return x.d < y.d; });
+    if (!bridge_pairs_.empty()) bridge_reach_ = bridge_pairs_.back().d;
+    stats_.bridge_pairs = bridge_pairs_.size();
+  }
+  // The connector of patch lp leaving its junction `end` (placed on node n at `at`, under the current
+  // warp) nearest in direction to n's street, within `window`, and within max_distance of it by the
+  // Hausdorff distance as the depth-first draw compares them (a street a patch made whole, else over
+  // the shorter length): it doubles that street. UINT32_MAX: none fits.
+  std::uint32_t doubling_connector(const LibPatch& lp, Point end, Point at, std::uint32_t n, double window) {
+    const MillimetreKey k{std::llround(end.x * 1000.0), std::llround(end.y * 1000.0)};
+    const Polyline street = chain(n, nodes_[n].edges[0], 3.0 * street_stats_.length_mean);
+    const Point sq = point_at(street, std::min(length(street), probe_));
+    const double street_angle = std::atan2(sq.y - at.y, sq.x - at.x);
+    std::uint32_t best = UINT32_MAX;
+    double best_d = window;
+    for (std::uint32_t c : lp.connectors) {
+      const Polyline& line = lp.edges[c].line;
+      if (MillimetreKey{std::llround(line[0].x * 1000.0), std::llround(line[0].y * 1000.0)} != k) continue;
+      const Point q = warped(point_at(line, std::min(length(line), probe_)), end, at);
+      const double d = std::abs(wrap(std::atan2(q.y - at.y, q.x - at.x) - street_angle));
+      if (d <= best_d) {
+        best_d = d;
+        best = c;
+      }
+    }
+    if (best == UINT32_MAX) return best;
+    const Polyline& line = lp.edges[best].line;
+    const bool whole = edges_[nodes_[n].edges[0]].source >= 0;
+    const double s = whole ? std::max(length(street), length(line)) : std::min(length(street), length(line));
+    Polyline placed = substring(line, 0.0, s);
+    for (Point& x : placed) x = warped(x, end, at);
+    return hausdorff(placed, substring(street, 0.0, s), max_distance_) <= max_distance_ ? best : UINT32_MAX;
+  }
+  // Algorithm 2: the other open fronts (one street, not finished) in line of sight of front v within
+  // the largest pair distance plus snap, each against the pairs within snap of its distance; the
+  // solutions by rating 1 - |d_patch - d_graph| / d_graph, the best legal one placed.
+  bool bridge_front(std::uint32_t v) {
+    if (bridge_pairs_.empty() || nodes_[v].edges.size() != 1) return false;
+    const Point p = nodes_[v].p;
+    const int level_v = edges_[nodes_[v].edges[0]].level;
+    const double reach = bridge_reach_ + snap_;
+    point_hits_.clear();
+    node_tree_.query(bgi::intersects(box_around(p, reach)), std::back_inserter(point_hits_));
+    std::vector<std::uint32_t> fronts;
+    for (const PointValue& pv : point_hits_) fronts.push_back(pv.second);
+    std::sort(fronts.begin(), fronts.end());
+    struct Solution {
+      double rating;
+      std::uint32_t w, pair;
+      bool flip;
+    };
+    std::vector<Solution> solutions;
+    for (std::uint32_t w : fronts) {
+      if (w == v || nodes_[w].edges.size() != 1 || completed_[w] || is_pruned(w)) continue;
+      const int level_w = edges_[nodes_[w].edges[0]].level;
+      if (params_.match_levels && level_v >= 0 && level_w >= 0 && level_v != level_w) continue;
+      const Point q = nodes_[w].p;
+      const double dg = distance(p, q);
+      if (dg < min_length_ || dg > reach) continue;
+      if (connected_by_street(v, w) || first_contact(p, q, v, w).found) continue;  // one street; no line of sight
+      auto it = std::lower_bound(bridge_pairs_.begin(), bridge_pairs_.end(), dg - snap_,
+                                 [](const BridgePair& x, double d) { return x.d < d; });
+      const double graph_angle = std::atan2(q.y - p.y, q.x - p.x);
+      for (; it != bridge_pairs_.end() && it->d <= dg + snap_; ++it) {
+        const LibPatch& lp = library_[it->patch];
+        if ((lp.max_uses > 0 && lp.uses >= lp.max_uses) || !in_phase(lp)) continue;
+        const double rating = 1.0 - std::abs(it->d - dg) / dg;
+        const auto pair = static_cast<std::uint32_t>(it - bridge_pairs_.begin());
+        for (bool flip : {false, true}) {
+          // Turned at most max_turn from the front's frame (the warp there), as the depth-first
+          // draw leaves its patches (PatchGrowParams::max_turn).
+          const Point a = flip ? it->b : it->a, b = flip ? it->a : it->b;
+          const double turn = graph_angle - std::atan2(b.y - a.y, b.x - a.x);
+          if (std::abs(wrap(turn - warp_)) > max_turn_ + 1e-9) continue;
+          solutions.push_back({rating, w, pair, flip});
+        }
+      }
+    }
+    if (solutions.empty()) return false;
+    std::sort(solutions.begin(), solutions.end(), [](const Solution& x, const Solution& y) {
+      if (x.rating != y.rating) return x.rating > y.rating;
+      if (x.w != y.w) return x.w < y.w;
+      if (x.pair != y.pair) return x.pair < y.pair;
+      return x.flip < y.flip;
+    });
+    const double saved = warp_;
+    const double window = params_.patch.angle_window * kPi / 180.0;
+    int tries = 0;
+    for (const Solution& s : solutions) {
+      if (tries >= params_.patch.tries) break;
+      const BridgePair& bp = bridge_pairs_[s.pair];
+      const Point a = s.flip ? bp.b : bp.a, b = s.flip ? bp.a : bp.b;
+      const Point q = nodes_[s.w].p;
+      set_warp_angle(std::atan2(q.y - p.y, q.x - p.x) - std::atan2(b.y - a.y, b.x - a.x));
+      // Its far junction lands within snap of w, and w is the node it merges into.
+      const Point at_b = warped(b, a, p);
+      point_hits_.clear();
+      node_tree_.query(bgi::nearest(BPoint(at_b.x, at_b.y), 1), std::back_inserter(point_hits_));
+      if (point_hits_.empty() || point_hits_[0].second != s.w || distance(q, at_b) > snap_) continue;
+      const LibPatch& lp = library_[bp.patch];
+      // Each front's street continues one of the patch's connectors, as at a depth-first front.
+      const std::uint32_t skip_a = doubling_connector(lp, a, p, v, window);
+      if (skip_a == UINT32_MAX) continue;
+      bridge_skip_ = doubling_connector(lp, b, at_b, s.w, window);
+      if (bridge_skip_ == UINT32_MAX) continue;
+      ++tries;
+      ++stats_.bridge_tries;
+      refusal_ = kRefNone;
+      seam_limit_ = seam_limit_here();
+      const bool ok = place_patch(v, bp.patch, a, skip_a);
+      seam_limit_ = 0.0;
+      bridge_skip_ = UINT32_MAX;
+      if (ok) {
+        ++stats_.fronts_bridged;
+        const double turn = std::abs(wrap(warp_)) * 180.0 / kPi;
+        ++stats_.bridge_turns[turn < 5.0 ? 0 : turn < 20.0 ? 1 : 2];
+        for (Point end : {a, b}) {
+          int streets = 0;
+          for (const LibEdge& e : lp.edges) {
+            streets += (distance(e.line.front(), end) <= kContact ? 1 : 0) + (distance(e.line.back(), end) <= kContact ? 1 : 0);
+          }
+          stats_.bridge_crossing_ends += streets >= 4;
+        }
+        set_warp_angle(saved);
+        return true;
+      }
+    }
+    set_warp_angle(saved);
+    return false;
+  }
+
+  // Cell initialisation (PatchGrowParams::cell_init initial): each patch tagged initial with its
+  // straightest main street that has a local street at one end: that end (the junction placed on
+  // the seed), the main street's direction from it, and the side its local streets leave to (+1
+  // left of that direction, -1 right, 0 both: a crossing).
+  struct InitialAnchor {
+    std::uint32_t patch;
+    Point junction;
+    double angle;
+    int side;
+  };
+  std::vector<InitialAnchor> initial_;
+  double initial_spacing_ = 0.0;
+  void prepare_initial() {
+    initial_.clear();
+    if (params_.patch.cell_init != PatchGrowParams::CellInit::initial || !hierarchy_) return;
+    auto key = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
+    for (std::uint32_t i = 0; i < library_.size(); ++i) {
+      const LibPatch& lp = library_[i];
+      if (!lp.initial || lp.arterial || lp.connectors.empty()) continue;
+      double best_straight = 0.98;  // chord over length: a straight main street
+      bool found = false;
+      InitialAnchor best{i, {}, 0.0, 0};
+      for (const LibEdge& m : lp.edges) {
+        if (!level_is_main(m.level)) continue;
+        const double len = length(m.line);
+        const double straight = len > 0.0 ? distance(m.line.front(), m.line.back()) / len : 0.0;
+        if (straight < best_straight) continue;
+        for (int end = 0; end < 2; ++end) {
+          const Point j = end == 0 ? m.line.front() : m.line.back(), other = end == 0 ? m.line.back() : m.line.front();
+          const Point u = unit(other - j);
+          int left = 0, right = 0;
+          for (const LibEdge& e : lp.edges) {
+            if (level_is_main(e.level)) continue;
+            for (int k = 0; k < 2; ++k) {
+              const Point x = k == 0 ? e.line.front() : e.line.back();
+              if (key(x) != key(j)) continue;
+              const double c = cross(u, unit((k == 0 ? e.line[1] : e.line[e.line.size() - 2]) - j));
+              left += c > 1e-9;
+              right += c < -1e-9;
+            }
+          }
+          if (left + right == 0) continue;  // no local street leaves the main street there
+          best = {i, j, std::atan2(u.y, u.x), left > 0 && right > 0 ? 0 : (left > 0 ? 1 : -1)};
+          best_straight = straight;
+          found = true;
+          break;
+        }
+      }
+      if (found) initial_.push_back(best);
+    }
+    // The example's spacing of local junctions along its main streets: its main streets' length over
+    // the local junctions on them (the arterial patches' main streets and local seeds, each street and
+    // each junction once: a connector is in both its patches).
+    double main_length = 0.0;
+    std::set<std::tuple<MillimetreKey, MillimetreKey, long long>> streets;
+    std::set<MillimetreKey> junctions;
+    for (const LibPatch& lp : library_) {
+      if (!lp.arterial) continue;
+      for (const LibEdge& e : lp.edges) {
+        if (!level_is_main(e.level)) continue;
+        const MillimetreKey a = key(e.line.front()), b = key(e.line.back());
+        if (streets.emplace(std::min(a, b), std::max(a, b), std::llround(length(e.line) * 100.0)).second) {
+          main_length += length(e.line);
+        }
+        for (const auto& [k, local] : e.local_seeds) junctions.insert(key(e.line[k]));
+      }
+    }
+    initial_spacing_ = !junctions.empty() ? main_length / static_cast<double>(junctions.size())
+                                          : 2.0 * level_stats_[1].length_mean;
+    initial_spacing_ *= params_.patch.cell_spacing;
+    stats_.initial_spacing = initial_spacing_;
+  }
+  bool main_edge(std::uint32_t e) const { return edges_[e].level >= 0 && level_is_main(edges_[e].level); }
+  // A shape node of one main street: two streets, both main.
+  bool main_through(std::uint32_t n) const {
+    return nodes_[n].edges.size() == 2 && main_edge(nodes_[n].edges[0]) && main_edge(nodes_[n].edges[1]);
+  }
+  // Seed points every initial_spacing_ along each grown main street (between junctions or dead ends),
+  // from half a spacing on, each at the street's shape node nearest to it (at least min_length from
+  // the street's ends); at each, an initial patch on one side of the street (alternating along it,
+  // the other side where that is refused), drawn at random among those tagged initial, its junction
+  // on the seed, turned so its main street lies along the grown one (Teng & Bidarra, section 3.2).
+  void init_cells() {
+    if (initial_.empty() || initial_spacing_ <= 0.0) return;
+    std::vector<char> walked(edges_.size(), 0);
+    std::vector<std::pair<std::uint32_t, int>> seeds;  // node, first side
+    int side = uniform01() < 0.5 ? 1 : -1;
+    const std::size_t node_count = nodes_.size();
+    for (std::uint32_t s = 0; s < node_count; ++s) {
+      if (main_through(s)) continue;
+      for (std::uint32_t e0 : nodes_[s].edges) {
+        if (!main_edge(e0) || walked[e0]) continue;
+        std::vector<std::pair<std::uint32_t, double>> inner;  // shape nodes and their distance along
+        std::uint32_t cur = s, e = e0;
+        double along = 0.0;
+        for (int guard = 0; guard < 100000; ++guard) {
+          walked[e] = 1;
+          const std::uint32_t next = edges_[e].a == cur ? edges_[e].b : edges_[e].a;
+          along += distance(nodes_[cur].p, nodes_[next].p);
+          if (next == s || !main_through(next)) break;
+          inner.emplace_back(next, along);
+          e = nodes_[next].edges[0] == e ? nodes_[next].edges[1] : nodes_[next].edges[0];
+          cur = next;
+        }
+        std::uint32_t last = UINT32_MAX;
+        for (double target = 0.5 * initial_spacing_; target < along; target += initial_spacing_) {
+          std::uint32_t pick = UINT32_MAX;
+          double off = 0.5 * initial_spacing_;
+          for (const auto& [n, at] : inner) {
+            if (at < min_length_ || along - at < min_length_) continue;
+            if (std::abs(at - target) < off) {
+              off = std::abs(at - target);
+              pick = n;
+            }
+          }
+          if (pick == UINT32_MAX || pick == last) continue;
+          last = pick;
+          seeds.emplace_back(pick, side);
+          side = -side;
+        }
+      }
+    }
+    std::vector<std::uint32_t> order(initial_.size());
+    for (const auto& [n, first_side] : seeds) {
+      if (!main_through(n) || new_edges_ >= params_.max_edges) continue;
+      ++stats_.initial_seed_points;
+      const Point a = other_end(nodes_[n].edges[0], n), b = other_end(nodes_[n].edges[1], n);
+      const double theta = std::atan2(b.y - a.y, b.x - a.x);
+      bool placed = false;
+      for (int attempt = 0; attempt < 2 && !placed; ++attempt) {
+        const int want = attempt == 0 ? first_side : -first_side;
+        for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+        for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[uniform(i)]);
+        int tries = 0;
+        for (std::uint32_t k : order) {
+          const InitialAnchor& ia = initial_[k];
+          const LibPatch& lp = library_[ia.patch];
+          if (lp.max_uses > 0 && lp.uses >= lp.max_uses) continue;
+          // Only patches whose main street lies within max_turn of the grown one's direction (mod
+          // 180 degrees) in the library's frame (PatchGrowParams::max_turn).
+          if (std::abs(std::remainder(theta - ia.angle, kPi)) > max_turn_ + 1e-9) continue;
+          if (tries++ >= params_.patch.tries) break;
+          // A crossing (side 0) covers both sides: its second attempt is the patch turned half round.
+          const bool flip = ia.side == 0 ? attempt == 1 : ia.side != want;
+          set_warp_angle(theta - ia.angle + (flip ? kPi : 0.0));
+          refusal_ = kRefNone;
+          seam_limit_ = seam_limit_here();
+          const bool ok = place_patch(n, ia.patch, ia.junction, UINT32_MAX, true);
+          seam_limit_ = 0.0;
+          if (ok) {
+            ++stats_.initial_placed;
+            const double t = std::abs(wrap(warp_)) * 180.0 / kPi, turn = std::min(t, 180.0 - t);
+            ++stats_.initial_turns[turn < 5.0 ? 0 : turn < 20.0 ? 1 : 2];
+            placed = true;
+            break;
+          }
+        }
+      }
+    }
+    set_warp_angle(0.0);
   }
   struct LocalSeed {
     std::uint32_t node;
@@ -4329,6 +4673,11 @@ class Grower {
       ++stats_.fallback;
       apply_style_shape(t_here);
       parametric_step(v, hierarchy_ ? phase_level_[phase_arterial_ ? 0 : 1] : 0, guide_here_);
+      return;
+    }
+    // Teng & Bidarra's breadth-first method first: one patch joining this front to another.
+    if (params_.patch.bridge_fronts && !(hierarchy_ && phase_arterial_) && bridge_front(v)) {
+      done_ = true;
       return;
     }
     // Fronts: every connector leaving within angle_window of one of v's streets, placed with its
@@ -4764,7 +5113,7 @@ class Grower {
       return id >= 0 ? nodes_[static_cast<std::uint32_t>(id)].p : fresh[static_cast<std::size_t>(-id - 1)];
     };
     for (std::uint32_t k = 0; k < lp.edges.size(); ++k) {
-      if (k == skip) continue;
+      if (k == skip || k == bridge_skip_) continue;
       const LibEdge& e = lp.edges[k];
       if (local_only && level_is_main(e.level)) continue;
       std::int64_t a = vertex_of(e.line.front()), b = vertex_of(e.line.back());

@@ -255,6 +255,38 @@ struct PatchGrowParams {
   // local phase starts at every cut, not only at the street's ends; where no local patch is legal
   // at a cut, the local fallback grows from it (a degree-2 node otherwise gets none).
   bool fallback_local_seeds = false;
+  // Teng & Bidarra (2017, section 3.3, Algorithm 2): breadth-first bridging. At a front of one
+  // street (local phase, or one level), before the depth-first draw: the other open fronts (nodes of
+  // one street, not yet finished) in line of sight within the library's largest pair distance plus
+  // snap are paired with the library's pairs of junctions (connector inner ends, the vertices a
+  // front receives; pair distances computed once per library) whose distance is within snap of the
+  // fronts' distance; each solution (both orientations) is rated 1 - |d_patch - d_graph| / d_graph,
+  // and the best rated legal one (every check of place_patch_at, the seam rule where it applies, up
+  // to `tries`) is placed turned so its two junctions land on the two fronts (the mismatch taken up
+  // by the merge within snap, and by seam_slide where it applies), turned at most max_turn; at each
+  // end the connector nearest the front's street (within angle_window, and within max_distance of it
+  // by the Hausdorff distance as the depth-first draw compares them) doubles it and is left out.
+  // Off by default: it failed the merge rule (bench/patches, README, patches37).
+  bool bridge_fronts = false;
+  // Teng & Bidarra (2017, section 3.2, "Patches on main streets"): how the local phase starts.
+  // seeds: from the example's local junctions along the arterial patches (Nishida's section 4.4).
+  // initial: each cell the main streets bound is initialised with patches tagged initial (a straight
+  // main street and a local attachment) at seed points spaced along the grown main streets (the
+  // example's spacing of local junctions along its main streets), sides alternating (the other side
+  // where one is refused): the patch is translated to the seed (a shape node of the street) and turned
+  // so that its main street lies along the grown one (only patches within max_turn of it; the seam
+  // rule where it applies), its main streets left out; local growth goes on from its connectors.
+  // Needs levels (main streets grown first). Default seeds: initial failed the merge rule (README,
+  // patches37).
+  enum class CellInit { seeds, initial };
+  CellInit cell_init = CellInit::seeds;
+  // Both (bridge_fronts, cell_init initial): a patch is turned at most this far (degrees) from the
+  // library's frame (the warp at the front; for an initial patch mod 180, its main street's two
+  // directions being one street). Teng & Bidarra turn patches freely (180); measured on the six
+  // examples, 60-90 % of the bridges and 40-75 % of the initial patches were then turned by 20
+  // degrees or more, and the grids lost their orientation order (bench/patches, README).
+  double max_turn = 5.0;
+  double cell_spacing = 1.0;  // cell_init initial's seed spacing over the example's (above)
 };
 
 struct GrowParams {
@@ -439,6 +471,15 @@ struct GrowStats {
   std::size_t arterial_fallback_passes = 0;   // arterial_fallback_deferred: passes over the fronts left dead ends
   std::size_t arterial_fallback_fronts = 0;   // arterial_fallback_deferred: fronts left dead ends queued again
   std::size_t arterial_fallback_crop_ends = 0;  // of them, ends of arterial streets the example's crop cut
+  // Teng & Bidarra: PatchGrowParams::bridge_fronts: fronts joined to another front by one patch,
+  // the solutions tried (placements attempted), the library's junction pairs; cell_init initial: seed
+  // points along the main streets, initial patches placed there, the spacing used (m).
+  std::size_t fronts_bridged = 0, bridge_tries = 0, bridge_pairs = 0;
+  std::size_t bridge_turns[3] = {};
+  std::size_t bridge_crossing_ends = 0;  // of the bridges' two junctions each, those with 4 or more streets in their patch  // bridges placed by their turn from the library's frame: under 5, 5-20, 20+ degrees
+  std::size_t initial_seed_points = 0, initial_placed = 0;
+  std::size_t initial_turns[3] = {};  // initial patches placed by their turn from the library's frame (mod 180): under 5, 5-20, 20+
+  double initial_spacing = 0.0;
   std::size_t local_seeds = 0;     // levels: fronts on arterial streets where the local phase began
   std::size_t local_seeds_used = 0;  // of those, where the example's own local patch was glued
   std::size_t ended_on_arterial = 0;  // levels: local streets whose new end was put on an arterial street
