@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -46,14 +47,18 @@ inline int interior_dead_ends(const core::GrowResult& r) {
   return n;
 }
 
+// Two grown edges cross or touch without sharing a node (touching counts: an edge ending on
+// another's interior is not joined to it).
 inline bool crosses_without_node(const core::GrownEdge& a, const core::GrownEdge& b) {
-  if (a.from_node == b.from_node || a.from_node == b.to_node || a.to_node == b.from_node || a.to_node == b.to_node) {
-    return false;
-  }
+  bool shared = a.from_node == b.from_node || a.from_node == b.to_node || a.to_node == b.from_node ||
+                a.to_node == b.to_node;
+  if (shared) return false;
   auto orient = [](core::Point p, core::Point q, core::Point r) { return core::cross(q - p, r - p); };
-  const double d1 = orient(a.a, a.b, b.a), d2 = orient(a.a, a.b, b.b);
-  const double d3 = orient(b.a, b.b, a.a), d4 = orient(b.a, b.b, a.b);
-  return d1 * d2 < 0 && d3 * d4 < 0;
+  double d1 = orient(a.a, a.b, b.a), d2 = orient(a.a, a.b, b.b);
+  double d3 = orient(b.a, b.b, a.a), d4 = orient(b.a, b.b, a.b);
+  return d1 * d2 <= 0 && d3 * d4 <= 0 &&
+         std::max(std::min(a.a.x, a.b.x), std::min(b.a.x, b.b.x)) <= std::min(std::max(a.a.x, a.b.x), std::max(b.a.x, b.b.x)) &&
+         std::max(std::min(a.a.y, a.b.y), std::min(b.a.y, b.b.y)) <= std::min(std::max(a.a.y, a.b.y), std::max(b.a.y, b.b.y));
 }
 
 // Pairs of grown edges that cross without a shared node: 0 for a planar growth.

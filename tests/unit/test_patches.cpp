@@ -13,6 +13,7 @@
 
 using namespace streetgen::core;
 using streetgen::test::avenue_grid;
+using streetgen::test::crosses_without_node;
 using streetgen::test::wkt;
 
 namespace {
@@ -185,17 +186,6 @@ struct PatchFixture {
   }
 };
 
-bool crosses_without_node(const GrownEdge& a, const GrownEdge& b) {
-  bool shared = a.from_node == b.from_node || a.from_node == b.to_node || a.to_node == b.from_node ||
-                a.to_node == b.to_node;
-  if (shared) return false;
-  auto orient = [](Point p, Point q, Point r) { return cross(q - p, r - p); };
-  double d1 = orient(a.a, a.b, b.a), d2 = orient(a.a, a.b, b.b);
-  double d3 = orient(b.a, b.b, a.a), d4 = orient(b.a, b.b, a.b);
-  return d1 * d2 <= 0 && d3 * d4 <= 0 &&
-         std::max(std::min(a.a.x, a.b.x), std::min(b.a.x, b.b.x)) <= std::min(std::max(a.a.x, a.b.x), std::max(b.a.x, b.b.x)) &&
-         std::max(std::min(a.a.y, a.b.y), std::min(b.a.y, b.b.y)) <= std::min(std::max(a.a.y, a.b.y), std::max(b.a.y, b.b.y));
-}
 }  // namespace
 
 TEST(GrowPatches, PlanarInsideTheRegionMostlyFromPatches) {
