@@ -53,7 +53,7 @@ Box box_of(Point a, Point b) {
 }
 Box box_around(Point p, double r) { return Box(BPoint(p.x - r, p.y - r), BPoint(p.x + r, p.y + r)); }
 
-// A position rounded to the millimetre: points that close are one node.
+// A position rounded to the millimetre: points that close are one node (millimetre_key).
 using MillimetreKey = std::pair<std::int64_t, std::int64_t>;
 struct MillimetreKeyHash {
   std::size_t operator()(const MillimetreKey& k) const noexcept {
@@ -61,6 +61,7 @@ struct MillimetreKeyHash {
                                     static_cast<std::uint64_t>(k.second));
   }
 };
+MillimetreKey millimetre_key(Point p) { return {std::llround(p.x * 1000.0), std::llround(p.y * 1000.0)}; }
 
 // Proper or touching intersection of segments ab and cd, by orientations.
 bool segments_intersect(Point a, Point b, Point c, Point d) {
@@ -1081,7 +1082,7 @@ class Grower {
       poller.tick();
       Example& ex = examples_[static_cast<std::size_t>(edge.example)];
       auto node_of = [&](Point p) {
-        std::pair<std::int64_t, std::int64_t> key{std::llround(p.x * 1000.0), std::llround(p.y * 1000.0)};
+        const MillimetreKey key = millimetre_key(p);
         auto [it, added] = index[edge.example].emplace(key, static_cast<std::uint32_t>(ex.nodes.size()));
         if (added) ex.nodes.push_back({p, {}});
         return it->second;
@@ -1362,7 +1363,7 @@ class Grower {
   void load_existing() {
     std::unordered_map<MillimetreKey, std::uint32_t, MillimetreKeyHash> index;
     auto node_of = [&](Point p) {
-      std::pair<std::int64_t, std::int64_t> key{std::llround(p.x * 1000.0), std::llround(p.y * 1000.0)};
+      const MillimetreKey key = millimetre_key(p);
       auto it = index.find(key);
       if (it != index.end()) return it->second;
       std::uint32_t id = add_node(p);
@@ -2909,14 +2910,13 @@ class Grower {
     // crop's), the dead ends, a node's degree its streets (as the realism metrics count: a loop
     // twice, two streets between the same nodes both). A connector appears in both its patches:
     // streets are keyed by their two ends and length.
-    auto key_of = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
     std::unordered_map<MillimetreKey, std::size_t, MillimetreKeyHash> degree;
     std::set<std::tuple<MillimetreKey, MillimetreKey, long long>> streets;
     std::unordered_map<MillimetreKey, char, MillimetreKeyHash> own_dead, cut_end;
     for (const LibPatch& lp : library_) {
       if (lp.style != 0) continue;
       for (const LibEdge& e : lp.edges) {
-        const MillimetreKey a = key_of(e.line.front()), b = key_of(e.line.back());
+        const MillimetreKey a = millimetre_key(e.line.front()), b = millimetre_key(e.line.back());
         if (streets.emplace(std::min(a, b), std::max(a, b), std::llround(length(e.line) * 100.0)).second) {
           ++degree[a];
           ++degree[b];
@@ -2929,13 +2929,13 @@ class Grower {
     // the metrics count them, dead ends but near the hull (the crop's).
     auto to_hull_of = [&](Point q) { return distance_to_hull(q, hull0); };
     for (const Polyline& line : isolated_) {
-      const MillimetreKey a = key_of(line.front()), b = key_of(line.back());
+      const MillimetreKey a = millimetre_key(line.front()), b = millimetre_key(line.back());
       if (streets.emplace(std::min(a, b), std::max(a, b), std::llround(length(line) * 100.0)).second) {
         ++degree[a];
         ++degree[b];
       }
       for (Point q : {line.front(), line.back()}) {
-        (to_hull_of(q) <= 0.25 * street_stats_.length_mean ? cut_end : own_dead)[key_of(q)] = 1;
+        (to_hull_of(q) <= 0.25 * street_stats_.length_mean ? cut_end : own_dead)[millimetre_key(q)] = 1;
       }
     }
     double dead = 0.0, ends = 0.0;
@@ -2980,8 +2980,7 @@ class Grower {
     std::vector<char> inside;
     std::unordered_set<std::uint64_t> seen;
     auto node_of = [&](Point q) {
-      auto [it, added] = index.emplace(MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)},
-                                       static_cast<std::uint32_t>(degree.size()));
+      auto [it, added] = index.emplace(millimetre_key(q), static_cast<std::uint32_t>(degree.size()));
       if (added) {
         at.push_back(q);
         degree.push_back(0);
@@ -4046,20 +4045,19 @@ class Grower {
     phase_arterial_ = hierarchy_;
     if (!hierarchy_) return;
     std::unordered_map<MillimetreKey, std::uint32_t, MillimetreKeyHash> junction;
-    auto key = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
     for (std::uint32_t i = 0; i < library_.size(); ++i) {
       const LibPatch& lp = library_[i];
       if (lp.arterial) continue;
       for (const LibEdge& e : lp.edges) {
-        junction.emplace(key(e.line.front()), i);
-        if (e.role == PatchEdgeRole::inner) junction.emplace(key(e.line.back()), i);
+        junction.emplace(millimetre_key(e.line.front()), i);
+        if (e.role == PatchEdgeRole::inner) junction.emplace(millimetre_key(e.line.back()), i);
       }
     }
     for (LibPatch& lp : library_) {
       if (!lp.arterial) continue;
       for (LibEdge& e : lp.edges) {
         for (std::uint32_t k = 0; k < e.line.size(); ++k) {
-          auto it = junction.find(key(e.line[k]));
+          auto it = junction.find(millimetre_key(e.line[k]));
           if (it != junction.end()) e.local_seeds.emplace_back(k, it->second);
         }
       }
@@ -4167,7 +4165,6 @@ class Grower {
     bridge_reach_ = 0.0;
     max_turn_ = params_.patch.max_turn * kPi / 180.0;
     if (!params_.patch.bridge_fronts) return;
-    auto key = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
     for (std::uint32_t i = 0; i < library_.size(); ++i) {
       const LibPatch& lp = library_[i];
       if (hierarchy_ && lp.arterial) continue;  // bridging is the local phase's (or one level's)
@@ -4175,7 +4172,7 @@ class Grower {
       std::set<MillimetreKey> seen;
       for (std::uint32_t c : lp.connectors) {
         const Point q = lp.edges[c].line.front();
-        if (seen.insert(key(q)).second) ends.push_back(q);
+        if (seen.insert(millimetre_key(q)).second) ends.push_back(q);
       }
       for (std::size_t x = 0; x < ends.size(); ++x) {
         for (std::size_t y = x + 1; y < ends.size(); ++y) {
@@ -4194,7 +4191,7 @@ class Grower {
   // Hausdorff distance as the depth-first draw compares them (a street a patch made whole, else over
   // the shorter length): it doubles that street. UINT32_MAX: none fits.
   std::uint32_t doubling_connector(const LibPatch& lp, Point end, Point at, std::uint32_t n, double window) {
-    const MillimetreKey k{std::llround(end.x * 1000.0), std::llround(end.y * 1000.0)};
+    const MillimetreKey k = millimetre_key(end);
     const Polyline street = chain(n, nodes_[n].edges[0], 3.0 * street_stats_.length_mean);
     const Point sq = point_at(street, std::min(length(street), probe_));
     const double street_angle = std::atan2(sq.y - at.y, sq.x - at.x);
@@ -4202,7 +4199,7 @@ class Grower {
     double best_d = window;
     for (std::uint32_t c : lp.connectors) {
       const Polyline& line = lp.edges[c].line;
-      if (MillimetreKey{std::llround(line[0].x * 1000.0), std::llround(line[0].y * 1000.0)} != k) continue;
+      if (millimetre_key(line[0]) != k) continue;
       const Point q = warped(point_at(line, std::min(length(line), probe_)), end, at);
       const double d = std::abs(wrap(std::atan2(q.y - at.y, q.x - at.x) - street_angle));
       if (d <= best_d) {
@@ -4331,7 +4328,6 @@ class Grower {
   void prepare_initial() {
     initial_.clear();
     if (params_.patch.cell_init != PatchGrowParams::CellInit::initial || !hierarchy_) return;
-    auto key = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
     for (std::uint32_t i = 0; i < library_.size(); ++i) {
       const LibPatch& lp = library_[i];
       if (!lp.initial || lp.arterial || lp.connectors.empty()) continue;
@@ -4351,7 +4347,7 @@ class Grower {
             if (level_is_main(e.level)) continue;
             for (int k = 0; k < 2; ++k) {
               const Point x = k == 0 ? e.line.front() : e.line.back();
-              if (key(x) != key(j)) continue;
+              if (millimetre_key(x) != millimetre_key(j)) continue;
               const double c = cross(u, unit((k == 0 ? e.line[1] : e.line[e.line.size() - 2]) - j));
               left += c > 1e-9;
               right += c < -1e-9;
@@ -4376,11 +4372,11 @@ class Grower {
       if (!lp.arterial) continue;
       for (const LibEdge& e : lp.edges) {
         if (!level_is_main(e.level)) continue;
-        const MillimetreKey a = key(e.line.front()), b = key(e.line.back());
+        const MillimetreKey a = millimetre_key(e.line.front()), b = millimetre_key(e.line.back());
         if (streets.emplace(std::min(a, b), std::max(a, b), std::llround(length(e.line) * 100.0)).second) {
           main_length += length(e.line);
         }
-        for (const auto& [k, local] : e.local_seeds) junctions.insert(key(e.line[k]));
+        for (const auto& [k, local] : e.local_seeds) junctions.insert(millimetre_key(e.line[k]));
       }
     }
     initial_spacing_ = !junctions.empty() ? main_length / static_cast<double>(junctions.size())
@@ -4496,9 +4492,8 @@ class Grower {
     std::vector<double> cdf;
     std::map<MillimetreKey, std::size_t> degree;
     std::set<std::pair<MillimetreKey, MillimetreKey>> seen;
-    auto key = [](Point q) { return MillimetreKey{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)}; };
     for (const Polyline* l : streets) {
-      MillimetreKey a = key(l->front()), b = key(l->back());
+      MillimetreKey a = millimetre_key(l->front()), b = millimetre_key(l->back());
       if (!seen.insert({std::min(a, b), std::max(a, b)}).second) continue;
       ++degree[a];
       ++degree[b];
@@ -5058,10 +5053,10 @@ class Grower {
     // Patch vertices (edge ends): an existing node (>= 0), or a new one (-(index into fresh) - 1).
     std::unordered_map<MillimetreKey, std::int64_t, MillimetreKeyHash> vertex;
     std::vector<Point> fresh;
-    const MillimetreKey anchor_key{std::llround(anchor.x * 1000.0), std::llround(anchor.y * 1000.0)};
+    const MillimetreKey anchor_key = millimetre_key(anchor);
     std::vector<std::uint32_t> merged_here;  // nodes merged into so far (a node slides only at its first)
     auto vertex_of = [&](Point q) -> std::int64_t {
-      MillimetreKey key{std::llround(q.x * 1000.0), std::llround(q.y * 1000.0)};
+      const MillimetreKey key = millimetre_key(q);
       auto it = vertex.find(key);
       if (it != vertex.end()) return it->second;
       std::int64_t id;
@@ -5535,8 +5530,8 @@ class Grower {
     if (!front_crossings_here()) return false;
     int own = 0;
     for (const LibEdge& e : lp.edges) {
-      own += MillimetreKey{std::llround(e.line.front().x * 1000.0), std::llround(e.line.front().y * 1000.0)} == anchor;
-      own += MillimetreKey{std::llround(e.line.back().x * 1000.0), std::llround(e.line.back().y * 1000.0)} == anchor;
+      own += millimetre_key(e.line.front()) == anchor;
+      own += millimetre_key(e.line.back()) == anchor;
     }
     if (own >= 4) return false;
     const double ge = static_cast<double>(out_junctions_) + 1.0, gt = static_cast<double>(out_crossings_);
@@ -5795,7 +5790,7 @@ class Grower {
       if (k >= count) continue;
       std::uint32_t prev = UINT32_MAX;
       for (Point p : edge.line) {
-        MillimetreKey key{std::llround(p.x * 1000.0), std::llround(p.y * 1000.0)};
+        const MillimetreKey key = millimetre_key(p);
         auto [it, added] = index[k].emplace(key, static_cast<std::uint32_t>(at[k].size()));
         if (added) {
           at[k].push_back(p);
@@ -6048,7 +6043,7 @@ ContractedExample contract_short_segments(const std::vector<ExampleEdge>& exampl
   double total = 0.0;
   for (std::size_t e = 0; e < example.size(); ++e) {
     for (Point p : example[e].line) {
-      MillimetreKey key{std::llround(p.x * 1000.0), std::llround(p.y * 1000.0)};
+      const MillimetreKey key = millimetre_key(p);
       auto [it, added] = index.emplace(std::make_pair(example[e].example, key), static_cast<std::uint32_t>(pos.size()));
       if (added) pos.push_back(p);
       line_nodes[e].push_back(it->second);
