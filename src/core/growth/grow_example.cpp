@@ -3651,58 +3651,59 @@ class Grower {
     // left are cut back where that leaves no corner, else joined as before.
     const int passes = params_.patch.dangling_corners && !std::isnan(grid_axis()) ? 2 : 1;
     for (int pass = 0; pass < passes; ++pass) {
-    corners_refused_ = passes == 2 && pass == 0;
-    for (const auto& [gap, v] : ends) {
-      poll_interrupts();
-      if (static_cast<double>(dead) <= share * static_cast<double>(street_ends)) break;
-      gate_.end = v;
-      gate_.spare = false;
-      gate_.loss = -1.0;
-      if (gate_.on) {
-        const std::uint32_t j = junction_behind(v);
-        gate_.spare = j != v && nodes_[j].edges.size() >= 4;
-      }
-      if (new_edges_ + 2 > params_.max_edges) break;  // a join and the piece of a split street
-      if (nodes_[v].edges.size() != 1) continue;  // an earlier extension reached it
-      if (passes == 2 && pass == 1) {
-        const std::uint32_t j = junction_behind(v);
-        const std::size_t dj = nodes_[j].edges.size();
-        if (cut_leaves_no_corner(v, j)) {
-          const bool v_counted = in_budget(v), j_counted = in_budget(j);
-          cut_back_to_junction(v);
-          ++stats_.dangling_corners_cut;
-          dead -= v_counted;
-          street_ends -= v_counted;
-          if (dj == 3) {  // j: a junction no more
-            street_ends -= j_counted;
-            if (gate_.on) gate_.junctions -= static_cast<double>(j_counted);
+      corners_refused_ = passes == 2 && pass == 0;
+      for (const auto& [gap, v] : ends) {
+        poll_interrupts();
+        if (static_cast<double>(dead) <= share * static_cast<double>(street_ends)) break;
+        gate_.end = v;
+        gate_.spare = false;
+        gate_.loss = -1.0;
+        if (gate_.on) {
+          const std::uint32_t j = junction_behind(v);
+          gate_.spare = j != v && nodes_[j].edges.size() >= 4;
+        }
+        if (new_edges_ + 2 > params_.max_edges) break;  // a join and the piece of a split street
+        if (nodes_[v].edges.size() != 1) continue;  // an earlier extension reached it
+        if (passes == 2 && pass == 1) {
+          const std::uint32_t j = junction_behind(v);
+          const std::size_t dj = nodes_[j].edges.size();
+          if (cut_leaves_no_corner(v, j)) {
+            const bool v_counted = in_budget(v), j_counted = in_budget(j);
+            cut_back_to_junction(v);
+            ++stats_.dangling_corners_cut;
+            dead -= v_counted;
+            street_ends -= v_counted;
+            if (dj == 3) {  // j: a junction no more
+              street_ends -= j_counted;
+              if (gate_.on) gate_.junctions -= static_cast<double>(j_counted);
+            }
+            continue;
           }
-          continue;
+        }
+        const std::size_t before = nodes_.size();
+        reach_factor_ = corner_reach_factor(v);
+        const std::uint32_t w = connect_end(v);
+        reach_factor_ = 1.0;
+        if (w == UINT32_MAX) continue;
+        if (gate_.on && (w >= before || nodes_[w].edges.size() == 3)) {
+          gate_.junctions += static_cast<double>(in_budget(w));  // a split, or a node of degree 2 made a T
+        }
+        dead -= in_budget(v);  // v: degree 1 -> 2
+        street_ends -= in_budget(v);
+        if (w >= before) {
+          street_ends += in_budget(w);  // a street split: a new junction of degree 3
+        } else if (in_budget(w)) {
+          const std::size_t dw = nodes_[w].edges.size();
+          street_ends += is_end(dw) - is_end(dw - 1);
+          dead -= dw - 1 == 1;
         }
       }
-      const std::size_t before = nodes_.size();
-      reach_factor_ = corner_reach_factor(v);
-      const std::uint32_t w = connect_end(v);
-      reach_factor_ = 1.0;
-      if (w == UINT32_MAX) continue;
-      if (gate_.on && (w >= before || nodes_[w].edges.size() == 3)) {
-        gate_.junctions += static_cast<double>(in_budget(w));  // a split, or a node of degree 2 made a T
-      }
-      dead -= in_budget(v);  // v: degree 1 -> 2
-      street_ends -= in_budget(v);
-      if (w >= before) {
-        street_ends += in_budget(w);  // a street split: a new junction of degree 3
-      } else if (in_budget(w)) {
-        const std::size_t dw = nodes_[w].edges.size();
-        street_ends += is_end(dw) - is_end(dw - 1);
-        dead -= dw - 1 == 1;
-      }
-    }
     }
     corners_refused_ = false;
   }
   bool corners_refused_ = false;  // connect_dangling's first pass under PatchGrowParams::dangling_corners
-  // Whether a join from a to b would leave a a corner: a of one street, turning by more than 45°.
+  // Whether a join from node a to node b would leave a a corner: a has one street, and the join turns
+  // from it by more than 45°.
   bool corner_made(std::uint32_t a, std::uint32_t b) const {
     return nodes_[a].edges.size() == 1 && turn_at(other_end(nodes_[a].edges[0], a), nodes_[a].p, nodes_[b].p) > kCornerTurn;
   }
