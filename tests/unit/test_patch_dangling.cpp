@@ -616,6 +616,9 @@ TEST(PatchDangling, LengthCapKeepsTheExamplesDensityPerHullArea) {
   // (the seams off, as measured: with them, seed 4 leaves 9 dead ends inside with the cap, 5 without)
   p.patch.seam_turn = 0.0;
   p.patch.seam_slide = false;
+  // (and the grid rules: with them the growth without the cap is 162 km, 1.298 x the cap)
+  p.patch.fallback_grid = false;
+  p.patch.dangling_corners = false;
   const GrowParams defaults = p;
   p.patch.length_cap = 0.0;
   GrowResult off = grow_example(f.geos, in, p);
@@ -878,4 +881,94 @@ TEST(PatchDangling, FrontDeadEndsFollowTheExamplesShare) {
   auto [grid_off, grid_on] = f.grow_off_on(grid, &PatchGrowParams::front_dead_ends);
   EXPECT_EQ(grid_on.stats.front_dead_ends_refused, 0u);
   expect_same_graph(grid_on, grid_off);
+}
+
+namespace {
+
+// The length of the statistical streets (example -1) more than 10 degrees off the grid turned by
+// `axis` (mod 90 degrees), and of all of them.
+std::pair<double, double> statistical_off_grid(const GrowResult& r, double axis) {
+  double off = 0.0, all = 0.0;
+  for (const GrownEdge& e : r.edges) {
+    if (e.example >= 0) continue;
+    const Point d = e.b - e.a;
+    const double length = std::hypot(d.x, d.y);
+    all += length;
+    off += std::abs(std::remainder(std::atan2(d.y, d.x) - axis, 0.5 * M_PI)) > 10.0 * M_PI / 180.0 ? length : 0.0;
+  }
+  return {off, all};
+}
+
+// The example turned by `angle` radians about the origin.
+std::vector<PatchInputEdge> turned(std::vector<PatchInputEdge> example, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  for (PatchInputEdge& e : example) {
+    for (Point& q : e.line) q = Point{c * q.x - s * q.y, s * q.x + c * q.y};
+  }
+  return example;
+}
+
+}  // namespace
+
+// Grid fallback: on an ordered example (the uneven blocks, φ 1, turned by 30 degrees so the grid
+// axis must be found, not assumed) the statistical streets' free ends snap only near their own line:
+// less statistical length off the grid, fewer corners, planar, deterministic. On the uneven grid
+// (its nodes moved by up to 28 m) statistical streets a little off the grid turn onto it, and less
+// of their length runs off it. The spider's web (φ near 0) grows as without the switch.
+TEST(PatchDangling, StatisticalStreetsKeepToAnOrderedExamplesGrid) {
+  Fixture f;
+  const double axis = 30.0 * M_PI / 180.0;
+  GrowParams p = Fixture::patch_growth();
+  p.max_edges = 4000;
+  p.patch.dangling_corners = false;
+  for (const bool moved : {false, true}) {
+    SCOPED_TRACE(moved ? "uneven grid" : "uneven blocks");
+    GrowInput in = f.input(turned(moved ? uneven_grid() : uneven_blocks(), axis));
+    auto [off, on] = f.grow_off_on(in, &PatchGrowParams::fallback_grid, p);
+    EXPECT_EQ(off.stats.fallback_grid_turned + off.stats.fallback_snaps_off_line, 0u);
+    EXPECT_GT(on.stats.fallback_snaps_off_line, 50u);
+    if (moved) {
+      EXPECT_GT(on.stats.fallback_grid_turned, 50u);
+    }
+    const auto [off_grid_off, statistical_off] = statistical_off_grid(off, axis);
+    const auto [off_grid_on, statistical_on] = statistical_off_grid(on, axis);
+    ASSERT_GT(statistical_off, 20000.0);
+    EXPECT_LT(off_grid_on / statistical_on, off_grid_off / statistical_off - 0.01);
+    if (!moved) {
+      EXPECT_LT(corner_count(on), corner_count(off));
+    }
+    EXPECT_EQ(crossings_without_node(on), 0);
+    expect_same_graph(grow_example(f.geos, in, p), on);  // (the switch on: its default)
+  }
+  GrowParams web = p;
+  const GrowResult unordered = grow_example(f.geos, f.input(spider_web()), web);
+  EXPECT_GT(unordered.stats.patches_placed, 0u);
+  EXPECT_EQ(unordered.stats.fallback_grid_turned + unordered.stats.fallback_snaps_off_line, 0u);
+  web.patch.fallback_grid = false;
+  expect_same_graph(grow_example(f.geos, f.input(spider_web()), web), unordered);
+}
+
+// Dangling corners: on the ordered uneven blocks (turned by 30 degrees) connect_dangling first joins
+// what leaves no corner; dead ends left with only corner joins are cut back to their junctions: it
+// fires, fewer corners, no more dead ends inside, planar, deterministic. The spider's web grows as
+// without the switch.
+TEST(PatchDangling, DanglingCornerJoinsAreCutBackOnAnOrderedExample) {
+  Fixture f;
+  GrowParams p = Fixture::patch_growth();
+  p.max_edges = 4000;
+  p.patch.fallback_grid = false;
+  GrowInput in = f.input(turned(uneven_blocks(), 30.0 * M_PI / 180.0));
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::dangling_corners, p);
+  EXPECT_EQ(off.stats.dangling_corners_cut, 0u);
+  EXPECT_GT(on.stats.dangling_corners_cut, 10u);
+  EXPECT_LT(corner_count(on), corner_count(off));
+  EXPECT_LE(interior_dead_ends(on), interior_dead_ends(off));
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, p), on);
+
+  GrowParams web = p;
+  const GrowResult unordered = grow_example(f.geos, f.input(spider_web()), web);
+  EXPECT_EQ(unordered.stats.dangling_corners_cut, 0u);
+  web.patch.dangling_corners = false;
+  expect_same_graph(grow_example(f.geos, f.input(spider_web()), web), unordered);
 }
