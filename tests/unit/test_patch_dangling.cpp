@@ -900,7 +900,7 @@ std::pair<double, double> statistical_off_grid(const GrowResult& r, double axis)
 }
 
 // The example turned by `angle` radians about the origin.
-std::vector<PatchInputEdge> turned(std::vector<PatchInputEdge> example, double angle) {
+std::vector<PatchInputEdge> turned_about_origin(std::vector<PatchInputEdge> example, double angle) {
   const double c = std::cos(angle), s = std::sin(angle);
   for (PatchInputEdge& e : example) {
     for (Point& q : e.line) q = Point{c * q.x - s * q.y, s * q.x + c * q.y};
@@ -923,7 +923,7 @@ TEST(PatchDangling, StatisticalStreetsKeepToAnOrderedExamplesGrid) {
   p.patch.dangling_corners = false;
   for (const bool moved : {false, true}) {
     SCOPED_TRACE(moved ? "uneven grid" : "uneven blocks");
-    GrowInput in = f.input(turned(moved ? uneven_grid() : uneven_blocks(), axis));
+    GrowInput in = f.input(turned_about_origin(moved ? uneven_grid() : uneven_blocks(), axis));
     auto [off, on] = f.grow_off_on(in, &PatchGrowParams::fallback_grid, p);
     EXPECT_EQ(off.stats.fallback_grid_turned + off.stats.fallback_snaps_off_line, 0u);
     EXPECT_GT(on.stats.fallback_snaps_off_line, 50u);
@@ -957,7 +957,7 @@ TEST(PatchDangling, DanglingCornerJoinsAreCutBackOnAnOrderedExample) {
   GrowParams p = Fixture::patch_growth();
   p.max_edges = 4000;
   p.patch.fallback_grid = false;
-  GrowInput in = f.input(turned(uneven_blocks(), 30.0 * M_PI / 180.0));
+  GrowInput in = f.input(turned_about_origin(uneven_blocks(), 30.0 * M_PI / 180.0));
   auto [off, on] = f.grow_off_on(in, &PatchGrowParams::dangling_corners, p);
   EXPECT_EQ(off.stats.dangling_corners_cut, 0u);
   EXPECT_GT(on.stats.dangling_corners_cut, 10u);

@@ -805,13 +805,18 @@ class Grower {
   }
 
   // The node cut_back_to_junction(v) would stop at, nothing cut: the first node behind the dead end
-  // `v` that is not a bend (or the node before an edge of the existing network).
-  std::uint32_t junction_behind(std::uint32_t v) const {
+  // `v` that is not a bend (or the node before an edge of the existing network); `last` gets the
+  // street's edge at that node (UINT32_MAX when the walk stopped before the existing network).
+  std::uint32_t junction_behind(std::uint32_t v, std::uint32_t* last = nullptr) const {
     std::uint32_t cur = v, e = nodes_[v].edges[0];
+    if (last != nullptr) *last = UINT32_MAX;
     for (;;) {
       if (edges_[e].level < 0) return cur;
       const std::uint32_t w = edges_[e].a == cur ? edges_[e].b : edges_[e].a;
-      if (nodes_[w].edges.size() != 2 || w == v) return w;
+      if (nodes_[w].edges.size() != 2 || w == v) {
+        if (last != nullptr) *last = e;
+        return w;
+      }
       e = nodes_[w].edges[0] == e ? nodes_[w].edges[1] : nodes_[w].edges[0];
       cur = w;
     }
@@ -3665,9 +3670,10 @@ class Grower {
         if (new_edges_ + 2 > params_.max_edges) break;  // a join and the piece of a split street
         if (nodes_[v].edges.size() != 1) continue;  // an earlier extension reached it
         if (passes == 2 && pass == 1) {
-          const std::uint32_t j = junction_behind(v);
+          std::uint32_t street_at_j = UINT32_MAX;
+          const std::uint32_t j = junction_behind(v, &street_at_j);
           const std::size_t dj = nodes_[j].edges.size();
-          if (cut_leaves_no_corner(v, j)) {
+          if (cut_leaves_no_corner(v, j, street_at_j)) {
             const bool v_counted = in_budget(v), j_counted = in_budget(j);
             cut_back_to_junction(v);
             ++stats_.dangling_corners_cut;
@@ -3707,26 +3713,21 @@ class Grower {
   bool corner_made(std::uint32_t a, std::uint32_t b) const {
     return nodes_[a].edges.size() == 1 && turn_at(other_end(nodes_[a].edges[0], a), nodes_[a].p, nodes_[b].p) > kCornerTurn;
   }
-  // Whether dead end v's street may be cut back to its junction j without a corner there: a local
-  // street (never the example's own dead end nor an arterial), j left with 3 streets or more, or with
-  // 2 going on straight (within 45°).
-  bool cut_leaves_no_corner(std::uint32_t v, std::uint32_t j) const {
-    const OEdge& last = edges_[nodes_[v].edges[0]];
-    if (j == v || last.level < 0 || level_is_main(last.level) || example_dead_end_.count(v) != 0) return false;
+  // Whether dead end v's street (edge `street_at_j` at its junction j, junction_behind) may be cut
+  // back to j without a corner there: a local street (never the example's own dead end nor an
+  // arterial), j left with 3 streets or more, or with 2 going on straight (within 45°).
+  bool cut_leaves_no_corner(std::uint32_t v, std::uint32_t j, std::uint32_t street_at_j) const {
+    const OEdge& end_edge = edges_[nodes_[v].edges[0]];
+    if (j == v || street_at_j == UINT32_MAX || end_edge.level < 0 || level_is_main(end_edge.level) ||
+        example_dead_end_.count(v) != 0) {
+      return false;
+    }
     const std::size_t dj = nodes_[j].edges.size();
     if (dj >= 4) return true;
     if (dj != 3) return false;
-    // the street's own edge at j: walk from v
-    std::uint32_t cur = v, e = nodes_[v].edges[0];
-    for (;;) {
-      const std::uint32_t w = edges_[e].a == cur ? edges_[e].b : edges_[e].a;
-      if (w == j) break;
-      e = nodes_[w].edges[0] == e ? nodes_[w].edges[1] : nodes_[w].edges[0];
-      cur = w;
-    }
     std::vector<Point> others;
     for (std::uint32_t f : nodes_[j].edges) {
-      if (f != e) others.push_back(other_end(f, j));
+      if (f != street_at_j) others.push_back(other_end(f, j));
     }
     return turn_at(others[0], nodes_[j].p, others[1]) <= kCornerTurn;
   }
