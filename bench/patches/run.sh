@@ -267,15 +267,20 @@ SELECT a.method, a.name, a.seed, a.id, b.id, a.origin, b.origin, ST_AsText(ST_In
 SQL
 
 echo
-echo "orientation order's sampling noise (each example's streets inside the hull shrunk by 50 m, degree-2 chains merged, resampled with replacement $(grep -m1 '^RESAMPLES' "$repo/bench/patches/phi_noise.py" | cut -d' ' -f3) times): the spread of φ's relative difference from the example's and the share of resamples past 15 %; phi_here is the script's own φ of the full sample (its chains are ST_LineMerge's, network_stats' are its own simplification: near equal)"
-psql -X -q -A -F, -t -v ON_ERROR_STOP=1 <<'SQL' | /usr/bin/python3 "$repo/bench/patches/phi_noise.py"
+echo "sampling noise of three headline metrics (each example's parts inside the hull shrunk by 50 m, resampled with replacement $(grep -m1 '^RESAMPLES' "$repo/bench/patches/sampling_noise.py" | cut -d' ' -f3) times): phi over its streets (degree-2 chains merged), block_median over its blocks, four_way (the 4-way nodes' share) over its nodes; the spread of the relative difference from the example's value and the share of resamples past 15 %; value_here is the script's own value of the full sample (phi's chains are ST_LineMerge's, network_stats' its own simplification: near equal)"
+psql -X -q -A -F, -t -v ON_ERROR_STOP=1 <<'SQL' | /usr/bin/python3 "$repo/bench/patches/sampling_noise.py"
 WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom FROM region),
      chain AS (SELECT name, (ST_Dump(ST_LineMerge(ST_Collect(geom)))).geom AS g FROM example GROUP BY name),
-     phi AS (SELECT w.name, (streetgen.network_stats(format('SELECT geom FROM example WHERE name = %L', w.name), 0, w.geom,
-                                                     simplify => true)).orientation_order AS phi FROM win w)
-SELECT c.name, ST_Length(ST_Intersection(c.g, w.geom)), degrees(ST_Azimuth(ST_StartPoint(c.g), ST_EndPoint(c.g))), p.phi
-  FROM chain c JOIN win w USING (name) JOIN phi p USING (name)
- WHERE ST_Intersects(c.g, w.geom) AND NOT ST_IsClosed(c.g) AND ST_Length(ST_Intersection(c.g, w.geom)) > 0;
+     st AS (SELECT w.name, n.* FROM win w,
+                   LATERAL streetgen.network_stats(format('SELECT geom FROM example WHERE name = %L', w.name), 0, w.geom,
+                                                   simplify => true) AS n)
+SELECT 'phi', c.name, ST_Length(ST_Intersection(c.g, w.geom)), degrees(ST_Azimuth(ST_StartPoint(c.g), ST_EndPoint(c.g))), s.orientation_order
+  FROM chain c JOIN win w USING (name) JOIN st s USING (name)
+ WHERE ST_Intersects(c.g, w.geom) AND NOT ST_IsClosed(c.g) AND ST_Length(ST_Intersection(c.g, w.geom)) > 0
+UNION ALL
+SELECT 'block_median', s.name, a, NULL, s.block_area_median FROM st s, unnest(s.block_areas) AS a
+UNION ALL
+SELECT 'four_way', s.name, d, NULL, s.degree4_share FROM st s, unnest(s.degrees) AS d;
 SQL
 
 if [ "${SPEED:-1}" = 0 ]; then
