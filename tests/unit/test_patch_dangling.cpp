@@ -972,3 +972,32 @@ TEST(PatchDangling, DanglingCornerJoinsAreCutBackOnAnOrderedExample) {
   web.patch.dangling_corners = false;
   expect_same_graph(grow_example(f.geos, f.input(spider_web()), web), unordered);
 }
+
+// The cuts after the joins (corner fronts and crop ends cut back, corners straightened, dangling
+// streets pruned) leave new T's: a dead end cut back off a crossing leaves a T whose missing arm
+// often faces a T across the block. facing_after_cuts joins the facing T's once more, within two
+// mean streets: the same network up to then, then more crossings, no more than the example's
+// share of them, planar, deterministic.
+TEST(PatchDangling, FacingTeesAreJoinedAgainAfterTheCuts) {
+  Fixture f;
+  GrowInput in = f.input(uneven_grid());
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::facing_after_cuts);
+  EXPECT_EQ(off.stats.faced_after_cuts, 0u);
+  ASSERT_GT(on.stats.faced_after_cuts, 0u);
+  EXPECT_EQ(on.stats.continued_across, off.stats.continued_across + on.stats.faced_after_cuts);
+  const auto [threes_off, fours_off] = junction_counts(off);
+  const auto [threes_on, fours_on] = junction_counts(on);
+  // Each join turns two T's into crossings, adds one street and no junction.
+  EXPECT_EQ(fours_on - fours_off, 2 * static_cast<long>(on.stats.faced_after_cuts));
+  EXPECT_EQ(threes_off - threes_on, 2 * static_cast<long>(on.stats.faced_after_cuts));
+  ASSERT_EQ(on.edges.size(), off.edges.size() + on.stats.faced_after_cuts);
+  for (std::size_t i = 0; i < off.edges.size(); ++i) {  // the network before the pass is the same
+    EXPECT_EQ(on.edges[i].from_node, off.edges[i].from_node);
+    EXPECT_EQ(on.edges[i].to_node, off.edges[i].to_node);
+  }
+  // The example: 49 crossings among 77 junctions (its border nodes are T's).
+  const double share_on = static_cast<double>(fours_on) / static_cast<double>(threes_on + fours_on);
+  EXPECT_LE(share_on, 49.0 / 77.0 + 2.0 / static_cast<double>(threes_on + fours_on));
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
+}

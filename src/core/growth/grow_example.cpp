@@ -438,6 +438,7 @@ class Grower {
         if (params_.use_patches && (avoid_corners() || cul_de_sac_crop_cuts())) cut_corner_fronts();
         if (params_.use_patches && params_.patch.straight_corners) straighten_corners();
         if (params_.use_patches && params_.patch.prune_dangling) prune_dangling();
+        if (params_.use_patches && params_.patch.continue_across && params_.patch.facing_after_cuts) join_facing_after_cuts();
         break;
       }
       ++stats_.restarts;
@@ -3878,26 +3879,21 @@ class Grower {
     }
     return lone < 0 ? UINT32_MAX : es[static_cast<std::size_t>(lone)];
   }
-  // Continuing streets across (after the joins): growth leaves the example's crossings as two T's
-  // facing each other across a block (each patch met the through street, none continued it). A
-  // T-junction's lone street is extended straight on to the nearest T ahead (within angle_window of
-  // its heading and a mean street) whose own lone street leaves on the far side, in the same
-  // direction: one new street, two crossings. Nishida et al.'s "extend to a close vertex ahead"
-  // (section 4.3.4), legal as a join (crossing, clearance, min_angle, water, slope, the merge rule
-  // at busy junctions), nearest first, while the network's share of 4-way junctions among its
-  // junctions is below the example's (so a city of T's keeps them). Then arterial T's without a
-  // T facing them go on to the street ahead (below). Measured in bench/patches (README): joining
-  // every T to the street ahead as well closes the 4-way gaps further but adds streets and
-  // junctions (per-pair median 10.7 % against 9.4 %).
-  void continue_across() {
-    const double reach = std::max(snap_, kAcrossReach * street_stats_.length_mean);
+  // The facing joins of continue_across: each T whose lone street has a T facing it across (within
+  // reach_streets mean streets and angle_window of its heading, that T's own lone street leaving on
+  // the far side in the same direction) is joined to the nearest such T it can legally join,
+  // nearest pairs first, while the network's 4-way share among its junctions is under the
+  // example's. `junctions` and `crossings` come back counted (the network's, after the joins);
+  // false when growth must stop there (the share reached, or max_edges).
+  bool join_facing_tees(double reach_streets, long& junctions, long& crossings) {
+    const double reach = std::max(snap_, reach_streets * street_stats_.length_mean);
     const double cone = params_.patch.angle_window * kPi / 180.0;
     const std::vector<double>& more = ex().more;
     const double target = more.size() > 3 ? more[3] : 0.0;  // P(degree > 3 | degree >= 3)
     // A join makes two crossings: with front_crossings, in a city of cul-de-sacs (a few crossings, so
     // one pair is a large share of them), only while both bring the count nearer to the target.
     const double nearer = params_.patch.front_crossings && cul_de_sac_city(example_dead_end_share_) ? 1.0 : 0.0;
-    long junctions = 0, crossings = 0;
+    junctions = crossings = 0;
     for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
       if (is_pruned(v)) continue;
       junctions += nodes_[v].edges.size() >= 3;
@@ -3937,8 +3933,8 @@ class Grower {
       std::size_t made = 0;
       for (const auto& [gap, v] : order) {
         poll_interrupts();
-        if (static_cast<double>(crossings) + nearer >= target * static_cast<double>(junctions)) return;
-        if (new_edges_ + 1 > params_.max_edges) return;
+        if (static_cast<double>(crossings) + nearer >= target * static_cast<double>(junctions)) return false;
+        if (new_edges_ + 1 > params_.max_edges) return false;
         if (nodes_[v].edges.size() != 3) continue;  // an earlier join reached it
         const std::uint32_t lone = lone_street(v);
         if (lone == UINT32_MAX) continue;
@@ -3952,6 +3948,33 @@ class Grower {
       }
       if (made == 0) break;
     }
+    return true;
+  }
+  // PatchGrowParams::facing_after_cuts: the facing joins again once the cuts are done.
+  void join_facing_after_cuts() {
+    const std::size_t before = stats_.continued_across;
+    long junctions = 0, crossings = 0;
+    join_facing_tees(kLateFacingReach, junctions, crossings);
+    stats_.faced_after_cuts = stats_.continued_across - before;
+  }
+  // Continuing streets across (after the joins): growth leaves the example's crossings as two T's
+  // facing each other across a block (each patch met the through street, none continued it). A
+  // T-junction's lone street is extended straight on to the nearest T ahead (within angle_window of
+  // its heading and a mean street) whose own lone street leaves on the far side, in the same
+  // direction: one new street, two crossings. Nishida et al.'s "extend to a close vertex ahead"
+  // (section 4.3.4), legal as a join (crossing, clearance, min_angle, water, slope, the merge rule
+  // at busy junctions), nearest first, while the network's share of 4-way junctions among its
+  // junctions is below the example's (so a city of T's keeps them). Then arterial T's without a
+  // T facing them go on to the street ahead (below). Measured in bench/patches (README): joining
+  // every T to the street ahead as well closes the 4-way gaps further but adds streets and
+  // junctions (per-pair median 10.7 % against 9.4 %).
+  void continue_across() {
+    const double reach = std::max(snap_, kAcrossReach * street_stats_.length_mean);
+    const std::vector<double>& more = ex().more;
+    const double target = more.size() > 3 ? more[3] : 0.0;  // P(degree > 3 | degree >= 3)
+    long junctions = 0, crossings = 0;
+    if (!join_facing_tees(kAcrossReach, junctions, crossings)) return;
+    auto heading_of = [&](std::uint32_t v, std::uint32_t lone) { return unit(nodes_[v].p - other_end(lone, v)); };
     // Arterials: an arterial T (all three streets main) with no T facing it goes on straight to
     // the first street ahead, split there. The example's arterials run on through each other's
     // junctions (the arterial phase's statistical fallback, PatchGrowParams::arterial_fallback, is off
@@ -4084,6 +4107,7 @@ class Grower {
     return true;
   }
   static constexpr double kAcrossReach = 1.0;  // of the mean street
+  static constexpr double kLateFacingReach = 2.0;  // of the mean street: facing_after_cuts
   static constexpr int kAcrossPasses = 4;
   bool try_connect(std::uint32_t v, std::uint32_t w, int level) {
     const Point p = nodes_[v].p, q = nodes_[w].p;
