@@ -3460,8 +3460,7 @@ class Grower {
     for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
       if (grown_corner(v)) corners.push_back(v);
     }
-    const std::vector<double>& more = ex().more;
-    const double target = more.size() > 3 ? more[3] : 0.0;  // P(degree > 3 | degree >= 3)
+    const double target = crossing_target();
     long junctions = 0, crossings = 0;
     for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
       if (is_pruned(v) || !in_budget(v)) continue;
@@ -3879,6 +3878,13 @@ class Grower {
     }
     return lone < 0 ? UINT32_MAX : es[static_cast<std::size_t>(lone)];
   }
+  // The example's share of crossings among its junctions: P(degree > 3 | degree >= 3).
+  double crossing_target() {
+    const std::vector<double>& more = ex().more;
+    return more.size() > 3 ? more[3] : 0.0;
+  }
+  // The way T v's missing street would leave it: straight on from its lone street.
+  Point tee_heading(std::uint32_t v, std::uint32_t lone) const { return unit(nodes_[v].p - other_end(lone, v)); }
   // The facing joins of continue_across: each T whose lone street has a T facing it across (within
   // reach_streets mean streets and angle_window of its heading, that T's own lone street leaving on
   // the far side in the same direction) is joined to the nearest such T it can legally join,
@@ -3888,8 +3894,7 @@ class Grower {
   bool join_facing_tees(double reach_streets, long& junctions, long& crossings) {
     const double reach = std::max(snap_, reach_streets * street_stats_.length_mean);
     const double cone = params_.patch.angle_window * kPi / 180.0;
-    const std::vector<double>& more = ex().more;
-    const double target = more.size() > 3 ? more[3] : 0.0;  // P(degree > 3 | degree >= 3)
+    const double target = crossing_target();
     // A join makes two crossings: with front_crossings, in a city of cul-de-sacs (a few crossings, so
     // one pair is a large share of them), only while both bring the count nearer to the target.
     const double nearer = params_.patch.front_crossings && cul_de_sac_city(example_dead_end_share_) ? 1.0 : 0.0;
@@ -3899,7 +3904,6 @@ class Grower {
       junctions += nodes_[v].edges.size() >= 3;
       crossings += nodes_[v].edges.size() >= 4;
     }
-    auto heading_of = [&](std::uint32_t v, std::uint32_t lone) { return unit(nodes_[v].p - other_end(lone, v)); };
     // The T's facing v across, nearest first.
     auto facing = [&](std::uint32_t v, Point dir) {
       const Point p = nodes_[v].p;
@@ -3926,7 +3930,7 @@ class Grower {
         if (is_pruned(v) || nodes_[v].edges.size() != 3) continue;
         const std::uint32_t lone = lone_street(v);
         if (lone == UINT32_MAX || edges_[lone].level < 0 || edges_[lone].bridge) continue;
-        const std::vector<std::pair<double, std::uint32_t>> near = facing(v, heading_of(v, lone));
+        const std::vector<std::pair<double, std::uint32_t>> near = facing(v, tee_heading(v, lone));
         if (!near.empty()) order.emplace_back(near.front().first, v);
       }
       std::sort(order.begin(), order.end());
@@ -3938,7 +3942,7 @@ class Grower {
         if (nodes_[v].edges.size() != 3) continue;  // an earlier join reached it
         const std::uint32_t lone = lone_street(v);
         if (lone == UINT32_MAX) continue;
-        for (const auto& [d, w] : facing(v, heading_of(v, lone))) {
+        for (const auto& [d, w] : facing(v, tee_heading(v, lone))) {
           if (!try_connect(v, w, join_level(edges_[lone].level))) continue;
           crossings += 2;
           ++stats_.continued_across;
@@ -3970,11 +3974,9 @@ class Grower {
   // junctions (per-pair median 10.7 % against 9.4 %).
   void continue_across() {
     const double reach = std::max(snap_, kAcrossReach * street_stats_.length_mean);
-    const std::vector<double>& more = ex().more;
-    const double target = more.size() > 3 ? more[3] : 0.0;  // P(degree > 3 | degree >= 3)
+    const double target = crossing_target();
     long junctions = 0, crossings = 0;
     if (!join_facing_tees(kAcrossReach, junctions, crossings)) return;
-    auto heading_of = [&](std::uint32_t v, std::uint32_t lone) { return unit(nodes_[v].p - other_end(lone, v)); };
     // Arterials: an arterial T (all three streets main) with no T facing it goes on straight to
     // the first street ahead, split there. The example's arterials run on through each other's
     // junctions (the arterial phase's statistical fallback, PatchGrowParams::arterial_fallback, is off
@@ -3999,7 +4001,7 @@ class Grower {
         if (is_pruned(v) || !goes_on_across(v)) continue;
         const std::uint32_t lone = lone_street(v);
         const Point p = nodes_[v].p;
-        const Contact c = first_contact(p, p + reach * heading_of(v, lone), v);
+        const Contact c = first_contact(p, p + reach * tee_heading(v, lone), v);
         if (c.found) order.emplace_back(c.t, v);
       }
       std::sort(order.begin(), order.end());
@@ -4013,7 +4015,7 @@ class Grower {
         const std::uint32_t lone = lone_street(v);
         const int level = join_level(edges_[lone].level);  // with levels a local street, as the joins
         const Point p = nodes_[v].p;
-        const Point dir = heading_of(v, lone);
+        const Point dir = tee_heading(v, lone);
         const Point far = p + reach * dir;
         const Contact c = first_contact(p, far, v);
         if (!c.found) continue;
