@@ -1,17 +1,20 @@
 """Where a grown network's orientation order φ comes from (bench/patches/run.sh).
 
 φ (network_stats' orientation_order) weighs each street (degree-2 chains merged) by its length
-at the bearing of its chord. A grown street is one patch edge, several patch edges chained
-through nodes of degree 2 (seams: a connector meeting another patch's connector mid-street), a
-chain of patch and statistical edges (joins and fallback streets continuing a patch street), or
-statistical edges alone. This script splits each grown network's streets by that kind and prints,
+at the bearing of its chord. A grown street (grow_patches returns one row per segment) is one
+patch's street as its example drew it (its segments all from one patch; two placements of one
+patch side by side count as one), patch streets
+joined at seams (segments of two patches or more: a connector meeting another patch's connector
+mid-street, a dead end slid onto a patch's vertex), a chain of patch and statistical segments
+(joins and fallback streets continuing a patch street), or statistical segments alone. This script splits each grown network's streets by that kind and prints,
 per example: the example's φ, the grown networks' (mean over the seeds), and over all seeds
 together each kind's share of the length inside the window and the φ of that kind's streets alone. A kind whose φ alone is far under the example's is
 where the network loses its order.
 
-Reads CSV rows `source,name,seed,patch,ax,ay,bx,by,length` on stdin, one per edge that meets the
-window (the region shrunk by 50 m): source example or grown, patch 1 for an edge a patch made (0:
-statistical or a join), (ax, ay) and (bx, by) its ends, length its length inside the window.
+Reads CSV rows `source,name,seed,patch,ax,ay,bx,by,length` on stdin, one per edge (all of them, so
+that the degrees are right): source example or grown, patch the id of the patch that made the edge
+(its origin's; empty: statistical or a join), (ax, ay) and (bx, by) its ends, length its length
+inside the window (the region shrunk by 50 m; 0 outside).
 Chains are merged through nodes of degree 2 (ends equal to the millimetre), as network_stats'
 simplification does; a chain's bearing is between its two ends.
 """
@@ -21,7 +24,7 @@ import math
 import sys
 
 BINS = 36
-KINDS = ("one patch edge", "patch edges chained", "patch and statistical", "statistical")
+KINDS = ("one patch's street", "patch streets at seams", "patch and statistical", "statistical")
 
 
 def orientation_bin(bearing):
@@ -56,22 +59,22 @@ def streets(edges):
     out = []
 
     def walk(start, i):
-        ends, cur, length, patch = [start], start, 0.0, []
+        ends, cur, length, patches = [start], start, 0.0, []
         while True:
             used[i] = True
-            a, b, inside, made_by_patch = edges[i]
+            a, b, inside, patch = edges[i]
             cur = b if a == cur else a
             length += inside
-            patch.append(made_by_patch)
+            patches.append(patch)
             ends.append(cur)
             nxt = [j for j in at[cur] if not used[j]]
             if len(at[cur]) != 2 or not nxt:
                 break
             i = nxt[0]
-        if all(patch):
-            kind = KINDS[0] if len(patch) == 1 else KINDS[1]
+        if all(patches):
+            kind = KINDS[0] if len(set(patches)) == 1 else KINDS[1]
         else:
-            kind = KINDS[2] if any(patch) else KINDS[3]
+            kind = KINDS[2] if any(patches) else KINDS[3]
         return kind, length, ends[0], ends[-1]
 
     for node, incident in at.items():
@@ -92,10 +95,10 @@ def streets(edges):
 
 
 def main():
-    edges = collections.defaultdict(list)  # (source, name, seed) -> [(a, b, inside, patch)]
+    edges = collections.defaultdict(list)  # (source, name, seed) -> [(a, b, inside, patch id or "")]
     for source, name, seed, patch, ax, ay, bx, by, length in csv.reader(sys.stdin):
         edges[(source, name, seed)].append((key(float(ax), float(ay)), key(float(bx), float(by)), float(length),
-                                            patch == "1"))
+                                            patch))
     names = sorted({name for (_, name, _) in edges})
     print(f"{'name':22s} {'phi example':>11s} {'phi grown':>9s}  {'streets':22s} {'share':>7s} {'phi alone':>9s}")
     for name in names:

@@ -284,13 +284,14 @@ SELECT 'four_way', s.name, d, NULL, s.degree4_share FROM st s, unnest(s.degrees)
 SQL
 
 echo
-echo "where phi comes from (grow_patches): the grown streets (degree-2 chains merged, as network_stats) by what made them, each kind's share of the length inside the hull shrunk by 50 m and the phi of its streets alone (all seeds together); phi grown is the mean over the seeds (the script's own, near network_stats')"
+echo "where phi comes from (grow_patches): the grown streets (degree-2 chains merged, as network_stats; a row is a segment) by what made them, each kind's share of the length inside the hull shrunk by 50 m and the phi of its streets alone (all seeds together); phi grown is the mean over the seeds (the script's own, near network_stats')"
 psql -X -q -A -F, -t -v ON_ERROR_STOP=1 <<'SQL' | /usr/bin/python3 "$repo/bench/patches/phi_sources.py"
 WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom FROM region),
-     e AS (SELECT 'example' AS source, name, 0 AS seed, 0 AS patch, (ST_Dump(geom)).geom AS g FROM example
+     e AS (SELECT 'example' AS source, name, 0 AS seed, '' AS patch, (ST_Dump(geom)).geom AS g FROM example
            UNION ALL
-           SELECT 'grown', name, seed, (origin LIKE 'grow_patches:%')::int, (ST_Dump(geom)).geom FROM grown
-            WHERE method = 'patches')
+           SELECT 'grown', name, seed, CASE WHEN origin LIKE 'grow_patches:%' THEN substr(origin, 14) ELSE '' END,
+                  (ST_Dump(geom)).geom
+             FROM grown WHERE method = 'patches')
 SELECT e.source, e.name, e.seed, e.patch, ST_X(ST_StartPoint(e.g)), ST_Y(ST_StartPoint(e.g)), ST_X(ST_EndPoint(e.g)),
        ST_Y(ST_EndPoint(e.g)), CASE WHEN ST_Intersects(e.g, w.geom) THEN ST_Length(ST_Intersection(e.g, w.geom)) ELSE 0 END
   FROM e JOIN win w USING (name);
