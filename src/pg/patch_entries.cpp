@@ -535,8 +535,9 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           "free-end snaps refused off their street's line, %zu dead ends cut back instead of joined "
                           "at a corner",
                           stats.fallback_grid_turned, stats.fallback_snaps_off_line, stats.dangling_corners_cut)));
-  ereport(DEBUG1, (errmsg("grow_patches: corners: %zu gone on straight (the other street dropped), %zu gone on to a T",
-                          stats.corners_straightened, stats.corners_completed)));
+  ereport(DEBUG1, (errmsg("grow_patches: corners: %zu gone on straight (the other street dropped; %zu of them "
+                          "junctions an earlier drop left corners), %zu gone on to a T",
+                          stats.corners_straightened, stats.corners_in_turn, stats.corners_completed)));
   ereport(DEBUG1, (errmsg("grow_patches: front crossings: %zu draws refused (a front made a crossing its patch's "
                           "junction is not, the output's crossing share at the example's %.3f)",
                           stats.front_crossings_refused, stats.example_crossing_share)));

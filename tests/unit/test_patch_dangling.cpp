@@ -756,6 +756,30 @@ TEST(PatchDangling, CornersStraightenedOnAnOrderedExample) {
   EXPECT_EQ(unordered.stats.corners_straightened + unordered.stats.corners_completed, 0u);
 }
 
+// Corners straightened in turn (corner_cascade): in the second round a corner's street may be
+// dropped where that leaves its junction a corner, which is then straightened in its turn. On the
+// uneven grid: without it the straightening leaves corners it refused for their junction; with it
+// some drops make corners that go on straight in their turn, fewer corners are left, no dead end is
+// made or joined, the crossing share is kept as the straightening keeps it, planar, deterministic.
+TEST(PatchDangling, CornersStraightenedInTurn) {
+  Fixture f;
+  GrowInput in = f.input(uneven_blocks());
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::corner_cascade);
+  EXPECT_EQ(off.stats.corners_in_turn, 0u);
+  ASSERT_GT(on.stats.corners_in_turn, 0u);
+  EXPECT_LE(on.stats.corners_in_turn, on.stats.corners_straightened);
+  EXPECT_GT(on.stats.corners_straightened, off.stats.corners_straightened);
+  EXPECT_LT(corner_count(on), corner_count(off));
+  EXPECT_EQ(interior_dead_ends(on), interior_dead_ends(off));
+  const auto [threes, fours] = junction_counts(on);
+  EXPECT_GE(static_cast<double>(fours) / static_cast<double>(threes + fours),
+            std::min(static_cast<double>(junction_counts(off).second) /
+                         static_cast<double>(junction_counts(off).first + junction_counts(off).second),
+                     0.875) - 0.02);  // the guard counts inside the budget margin only
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
+}
+
 namespace {
 
 // A brick pattern of 100 m blocks (the cross streets of one row offset by half a block from the

@@ -3444,8 +3444,9 @@ class Grower {
   // goes on straight to the node or street ahead (within angle_window of its heading and a mean
   // street, as the joins), and the other street, back to its junction, is dropped (never an arterial
   // one); where dropping it would turn a crossing into a T and the node ahead is a T, it is kept
-  // instead (the corner becomes a T, the T ahead a crossing). Never where the dropped street's
-  // junction would become a corner, nor where a dead end would come or go (tokyo keeps a handful),
+  // instead (the corner becomes a T, the T ahead a crossing). Not where the dropped street's
+  // junction would become a corner, but in the second round with corner_cascade, which then
+  // straightens that corner in its turn; never where a dead end would come or go (tokyo keeps a handful),
   // nor, for a change that lowers the network's share of crossings among its junctions (inside the
   // budget margin), below kCornerMixTolerance under the example's share; the changes that raise the
   // share go first (a first round), then the others. Only where the example is ordered (φ at least kSeamOrder) and the
@@ -3478,8 +3479,15 @@ class Grower {
     };
     std::vector<Option> options;
     std::vector<std::uint32_t> leg_edges, leg_inner;
+    // corner_cascade: the corners a drop made, each straightened in turn once, and no more of them
+    // than there were corners (two corners can hand a drop back and forth for ever).
+    std::vector<char> in_turn(nodes_.size(), 0);
+    const std::size_t most_in_turn = corners.size();
+    std::size_t made_in_turn = 0;
     for (int round = 0; round < 2; ++round) {
-      for (std::uint32_t v : corners) {
+      // (By index: corner_cascade appends the corners its drops make, to be straightened in turn.)
+      for (std::size_t next = 0; next < corners.size(); ++next) {
+        const std::uint32_t v = corners[next];
         poll_interrupts();
         if (new_edges_ + 2 > params_.max_edges) return;
         if (!grown_corner(v)) continue;
@@ -3495,7 +3503,9 @@ class Grower {
             continue;
           }
           const std::size_t dj = nodes_[j].edges.size();
-          if (dj == 3) {  // the junction the dropped street leaves must not become a corner
+          // The junction the dropped street leaves must not become a corner, but in the second round
+          // with corner_cascade (that corner is then straightened in its turn).
+          if (dj == 3 && !(round == 1 && params_.patch.corner_cascade)) {
             std::uint32_t rest[2], n = 0;
             for (std::uint32_t e : nodes_[j].edges) {
               if (e != leg_edges.back()) rest[n++] = e;
@@ -3590,7 +3600,8 @@ class Grower {
             break;
           }
           ++stats_.corners_straightened;
-          leg_of(v, drop, leg_edges, leg_inner);
+          stats_.corners_in_turn += in_turn[v];
+          const std::uint32_t j = leg_of(v, drop, leg_edges, leg_inner);
           for (std::uint32_t e : leg_edges) {
             if (edges_[e].source >= 0 && stats_.patch_edges > 0) --stats_.patch_edges;
             remove_edge(e);
@@ -3599,6 +3610,12 @@ class Grower {
           for (std::uint32_t w : leg_inner) {
             node_tree_.remove(PointValue(BPoint(nodes_[w].p.x, nodes_[w].p.y), w));
             pruned_[w] = 1;
+          }
+          in_turn.resize(nodes_.size(), 0);
+          if (j != UINT32_MAX && !in_turn[j] && made_in_turn < most_in_turn && grown_corner(j)) {
+            corners.push_back(j);
+            in_turn[j] = 1;
+            ++made_in_turn;
           }
           break;
         }

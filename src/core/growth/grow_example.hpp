@@ -160,6 +160,12 @@ struct PatchGrowParams {
   // 12.5 % under the example's. A corner between two streets of a grid reads as one diagonal street:
   // tokyo's 80-120 corners a growth held most of its orientation-order gap (bench/patches, README).
   bool straight_corners = true;
+  // Corners straightened in turn (tok44; with straight_corners): in its second round (the changes
+  // that lower the share of crossings), a corner's street may be dropped even where that leaves its
+  // junction a corner, and that corner is straightened in its turn, in the same round. Tokyo's
+  // corners refused for their junction were most of those left (45 a growth after the straightening,
+  // 30 with this); a T made instead adds a street the density counts (README "Where φ comes from").
+  bool corner_cascade = true;
   // Grid fallback (grid41; an ordered example, φ at least 0.6, one style): a statistical street
   // turns onto the example's grid axis (mod 90 degrees, turned as the patches are) when the street it
   // leaves is within 15 degrees of it, and its free end snaps to a node or street only within half a
@@ -465,6 +471,7 @@ struct GrowStats {
   std::size_t corners_cut = 0;         // avoid_corners: of those, dead ends cut back after the joins
   std::size_t corners_straightened = 0;  // straight_corners: corners gone on straight, the other street dropped
   std::size_t corners_completed = 0;     // straight_corners: corners gone on to a T, the other street kept
+  std::size_t corners_in_turn = 0;       // corner_cascade: junctions a straightening left corners, straightened in turn
   std::size_t crop_ends_cut = 0;       // cut_crop_ends: copied crop dead ends cut back after the joins
   std::size_t arterial_patches_placed = 0;  // levels: patches placed in the arterial phase
   // Levels: each front of the arterial phase (a node with streets) once, by what became of it.
