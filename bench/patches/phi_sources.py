@@ -23,26 +23,14 @@ import csv
 import math
 import sys
 
-BINS = 36
+from sampling_noise import orientation_order  # (this folder: the script's own is on sys.path)
+
 KINDS = ("one patch's street", "patch streets at seams", "patch and statistical", "statistical")
 
 
-def orientation_bin(bearing):
-    shifted = math.fmod(bearing + 180.0 / BINS, 360.0)
-    return min(max(int(math.floor(shifted / (360.0 / BINS))), 0), BINS - 1)
-
-
-def orientation_order(streets):
-    """φ of (length, bearing) pairs, each street counted both ways (network_stats, OSMnx)."""
-    bins = [0.0] * BINS
-    for length, bearing in streets:
-        bins[orientation_bin(bearing)] += length
-        bins[orientation_bin(math.fmod(bearing + 180.0, 360.0))] += length
-    total = sum(bins)
-    if total <= 0.0:
-        return float("nan")
-    entropy = -sum(b / total * math.log(b / total) for b in bins if b > 0.0)
-    return 1.0 - ((entropy - math.log(4.0)) / (math.log(BINS) - math.log(4.0))) ** 2
+def phi(streets):
+    """φ of (length, bearing) pairs as network_stats computes it (sampling_noise's); NaN for none."""
+    return orientation_order(streets) if streets else float("nan")
 
 
 def key(x, y):
@@ -110,17 +98,17 @@ def main():
             if source != "grown" or n != name:
                 continue
             s = streets(rows)
-            per_seed.append(orientation_order([(length, bearing) for _, length, bearing in s]))
+            per_seed.append(phi([(length, bearing) for _, length, bearing in s]))
             for kind, length, bearing in s:
                 grown[kind].append((length, bearing))
                 length_total += length
         if not per_seed:
             continue
-        first = f"{name:22s} {orientation_order(example):11.3f} {sum(per_seed) / len(per_seed):9.3f}"
+        first = f"{name:22s} {phi(example):11.3f} {sum(per_seed) / len(per_seed):9.3f}"
         for kind in KINDS:
             share = sum(length for length, _ in grown[kind]) / length_total if length_total > 0 else 0.0
             label = first if kind == KINDS[0] else ""
-            print(f"{label:44s}  {kind:22s} {100.0 * share:5.1f} % {orientation_order(grown[kind]):9.3f}")
+            print(f"{label:44s}  {kind:22s} {100.0 * share:5.1f} % {phi(grown[kind]):9.3f}")
 
 
 if __name__ == "__main__":
