@@ -203,6 +203,16 @@ SELECT results_eq($$SELECT id, roadway_width, tags->>'parking:left:separate_widt
 SELECT results_eq($$SELECT sides_widened, areas_used FROM streetgen.load_osm_street_parking('parked', 'staging_parking')$$,
                   $$VALUES (0::bigint, 0::bigint)$$, 'loading again widens nothing twice');
 SELECT is((SELECT roadway_width FROM parked.axis WHERE id = 1), 13::float8, 'the width after the second load');
+-- A file without parking areas (most): nothing widened, nothing read twice; the model is still checked.
+CREATE TEMP TABLE staging_no_parking_area (source text, tags jsonb, geom geometry);
+INSERT INTO staging_no_parking_area VALUES
+  ('osm:way/29', '{"amenity": "parking", "parking": "street_side"}', 'SRID=32631;LINESTRING(0 -3, 100 -3)');
+SELECT results_eq($$SELECT sides_widened, areas_used FROM streetgen.load_osm_street_parking('parked', 'staging_no_parking_area')$$,
+                  $$VALUES (0::bigint, 0::bigint)$$, 'no staged parking area: no side widened');
+SELECT is((SELECT array_agg(roadway_width ORDER BY id) FROM parked.axis), ARRAY[13, 10, 8, 8]::float8[],
+          'and every width as it was');
+SELECT throws_ok($$SELECT * FROM streetgen.load_osm_street_parking('nope', 'staging_no_parking_area')$$, '42704', NULL,
+                 'street parking into an unknown model, even with no parking area staged');
 SELECT streetgen.generate('parked');
 SELECT results_eq($$SELECT type, direction, width FROM parked.lane WHERE axis_id = 1 ORDER BY lane_index$$,
                   $$VALUES ('parking', 'backward', 2::float8), ('driving', 'backward', 3::float8),
