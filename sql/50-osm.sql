@@ -400,7 +400,7 @@ BEGIN
     RAISE EXCEPTION 'staging must not be null' USING ERRCODE = 'null_value_not_allowed';
   END IF;
   -- Nothing to do without a staged area (most files): the temporary table, its index and the
-  -- query below are 10-15 ms of a new session, a twentieth of a small file's import.
+  -- query below are 15-20 ms of a new session, a twelfth of a small file's import.
   EXECUTE format('SELECT EXISTS (SELECT 1 FROM %s AS s WHERE ST_Dimension(s.geom) = 2)', staging) INTO any_area;
   IF NOT any_area THEN
     sides_widened := 0;
