@@ -3463,7 +3463,7 @@ class Grower {
     if (!ordered && !(params_.patch.weak_order_corners && example_order() >= kCornerMinOrder)) return;
     if (output_order() >= (1.0 - kCornerOrderGap) * example_order()) return;
     const bool junction_budget = !ordered && example_junctions_per_area_ > 0.0;
-    const double junctions_allowed = junction_budget ? example_junctions_per_area_ * area_inside() + 0.5 : 0.0;
+    const double junctions_allowed = junction_budget ? junctions_allowed_inside() : 0.0;
     const double reach = std::max(snap_, street_stats_.length_mean);
     const double cone = params_.patch.angle_window * kPi / 180.0;
     std::vector<std::uint32_t> corners;
@@ -3775,7 +3775,7 @@ class Grower {
     if (!gate_.on || gate_.spare) return false;
     if (w != UINT32_MAX && nodes_[w].edges.size() != 2) return false;
     const double adds = w == UINT32_MAX ? 1.0 : static_cast<double>(in_budget(w));
-    const double target = example_junctions_per_area_ * area_inside() + 0.5;
+    const double target = junctions_allowed_inside();
     if (adds == 0.0 || gate_.junctions + adds <= target) return false;
     if (gate_.loss < 0.0) gate_.loss = cut_back_loss(gate_.end);
     if (gate_.junctions - gate_.loss + adds <= target) return false;
@@ -4108,6 +4108,10 @@ class Grower {
     }
     return region_area_inside_;
   }
+  // The most junctions the network may have farther than kBudgetMargin from the region's boundary:
+  // the example's per area there, and half a junction (continue_local_tees, dangling_junctions and
+  // weak_order_corners refuse a junction past it).
+  double junctions_allowed_inside() { return example_junctions_per_area_ * area_inside() + 0.5; }
   bool local_join_refused(std::uint32_t v, Point x, std::uint32_t w, bool adds) {
     area_inside();
     const double far_end = w == UINT32_MAX ? 1.0 : static_cast<double>(in_budget(w));
@@ -4116,7 +4120,7 @@ class Grower {
       ++stats_.local_tees_long;
       return true;
     }
-    if (adds && junctions_inside_ + far_end > example_junctions_per_area_ * region_area_inside_ + 0.5) {
+    if (adds && junctions_inside_ + far_end > junctions_allowed_inside()) {
       ++stats_.local_tees_dense;
       return true;
     }
