@@ -4912,11 +4912,20 @@ class Grower {
     // the draws in order until one is legal samples Nishida's eq. 2 over the legal patches.
     std::sort(touched_.begin(), touched_.end());
     keyed_.clear();
+    // (counted with align_stems off too, for its DEBUG1 line and tests: the draw is the same)
+    const bool align = city_of_crossings();
+    bool any_stem = false;
     for (std::uint32_t j : touched_) {
       double u = std::max(uniform01(), 1e-300);
       double x = std::min(best_[j].d / params_.patch.scale, 700.0);
+      if (align) {
+        best_[j].stems = stems_gone_on(j, p);
+        if (params_.patch.align_stems) x -= kStemWeight * best_[j].stems;
+        any_stem = any_stem || best_[j].stems > 0;
+      }
       keyed_.emplace_back(std::log(u) * std::exp(x), j);
     }
+    stats_.stem_fronts += any_stem;
     std::sort(keyed_.begin(), keyed_.end(), [](const auto& a, const auto& b) {
       return a.first > b.first || (a.first == b.first && a.second < b.second);
     });
@@ -4954,6 +4963,7 @@ class Grower {
       refusal_ = kRefNone;
       if (place_patch(v, j, lp.edges[best_[j].edge].line[0], best_[j].edge)) {
         ++stats_.size_placed[lp.size_class];
+        if (align) stats_.stems_continued += static_cast<std::size_t>(best_[j].stems);
         if (seam_pass == 0 && seam_hit_) ++stats_.seam_refused;
         seam_limit_ = 0.0;
         front_dead_ends_off_ = false;
@@ -5108,6 +5118,7 @@ class Grower {
   struct BestPair {
     double d;
     std::uint32_t edge;
+    int stems = 0;  // align_stems: T's of the network the patch goes on across, placed by this pair
   };
   std::vector<BestPair> best_;
   // Not for a city of cul-de-sacs (cul_de_sac_city: its own dead ends over 15 % of its street ends:
@@ -5139,6 +5150,42 @@ class Grower {
   // legal as a whole.
   // A patch glued at v (see place_patch_at); with seam_slide, the dead ends it slid go back when it
   // is refused.
+  // PatchGrowParams::align_stems acts in a city of crossings: an ordered example, one style, more
+  // than kStemCrossings of its junctions crossings. In both phases: new-york's avenues are arterials.
+  bool city_of_crossings() { return !std::isnan(grid_axis()) && crossing_target() > kStemCrossings; }
+  static constexpr double kStemCrossings = 0.5;
+  static constexpr double kStemWeight = 3.0;               // scales of Hausdorff distance per T gone on across
+  static constexpr double kStemTurn = 30.0 * kPi / 180.0;  // a T's through streets, and a patch street across it
+  // How many of patch j's vertices, the patch placed by its best pair with the connector's inner end
+  // on p, land within half a snap distance of a T of the network (its two through streets within
+  // kStemTurn of straight) with a patch street leaving where the T's lone street would go on across.
+  int stems_gone_on(std::uint32_t j, Point p) {
+    const LibPatch& lp = library_[j];
+    const Point anchor = lp.edges[best_[j].edge].line[0];
+    int n = 0;
+    for (const LibEdge& e : lp.edges) {
+      for (int end = 0; end < 2; ++end) {
+        const Point q = end == 0 ? e.line.front() : e.line.back();
+        if (distance(q, anchor) <= kContact) continue;  // the front itself
+        const Point at = warped(q, anchor, p);
+        const Point next = warped(end == 0 ? e.line[1] : e.line[e.line.size() - 2], anchor, p);
+        point_hits_.clear();
+        node_tree_.query(bgi::nearest(BPoint(at.x, at.y), 1), std::back_inserter(point_hits_));
+        if (point_hits_.empty()) continue;
+        const std::uint32_t t = point_hits_[0].second;
+        if (nodes_[t].edges.size() != 3 || distance(nodes_[t].p, at) > 0.5 * snap_) continue;
+        const Point tp = nodes_[t].p;
+        for (int k = 0; k < 3; ++k) {
+          const std::vector<std::uint32_t>& es = nodes_[t].edges;
+          if (turn_at(other_end(es[(k + 1) % 3], t), tp, other_end(es[(k + 2) % 3], t)) > kStemTurn) continue;
+          // k is the lone street: the patch's street leaves opposite it
+          n += turn_at(other_end(es[k], t), tp, tp + (next - at)) <= kStemTurn;
+          break;
+        }
+      }
+    }
+    return n;
+  }
   bool place_patch(std::uint32_t v, std::uint32_t j, Point anchor, std::uint32_t skip, bool local_only = false) {
     slide_here_ = params_.patch.seam_slide && seams_here();
     if (!slide_here_) return place_patch_at(v, j, anchor, skip, local_only);
