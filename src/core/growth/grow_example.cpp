@@ -5160,31 +5160,49 @@ class Grower {
   // on p, land within half a snap distance of a T of the network (its two through streets within
   // kStemTurn of straight) with a patch street leaving where the T's lone street would go on across.
   int stems_gone_on(std::uint32_t j, Point p) {
-    const LibPatch& lp = library_[j];
-    const Point anchor = lp.edges[best_[j].edge].line[0];
+    const Point anchor = library_[j].edges[best_[j].edge].line[0];
     int n = 0;
-    for (const LibEdge& e : lp.edges) {
-      for (int end = 0; end < 2; ++end) {
-        const Point q = end == 0 ? e.line.front() : e.line.back();
-        if (distance(q, anchor) <= kContact) continue;  // the front itself
-        const Point at = warped(q, anchor, p);
-        const Point next = warped(end == 0 ? e.line[1] : e.line[e.line.size() - 2], anchor, p);
-        point_hits_.clear();
-        node_tree_.query(bgi::nearest(BPoint(at.x, at.y), 1), std::back_inserter(point_hits_));
-        if (point_hits_.empty()) continue;
-        const std::uint32_t t = point_hits_[0].second;
-        if (nodes_[t].edges.size() != 3 || distance(nodes_[t].p, at) > 0.5 * snap_) continue;
-        const Point tp = nodes_[t].p;
-        for (int k = 0; k < 3; ++k) {
-          const std::vector<std::uint32_t>& es = nodes_[t].edges;
-          if (turn_at(other_end(es[(k + 1) % 3], t), tp, other_end(es[(k + 2) % 3], t)) > kStemTurn) continue;
-          // k is the lone street: the patch's street leaves opposite it
-          n += turn_at(other_end(es[k], t), tp, tp + (next - at)) <= kStemTurn;
-          break;
-        }
+    for (const StemVertex& sv : stem_vertices(j)) {
+      if (distance(sv.at, anchor) <= kContact) continue;  // the front itself
+      const Point at = warped(sv.at, anchor, p);
+      point_hits_.clear();
+      node_tree_.query(bgi::nearest(BPoint(at.x, at.y), 1), std::back_inserter(point_hits_));
+      if (point_hits_.empty()) continue;
+      const std::uint32_t t = point_hits_[0].second;
+      if (nodes_[t].edges.size() != 3 || distance(nodes_[t].p, at) > 0.5 * snap_) continue;
+      const Point tp = nodes_[t].p;
+      const std::vector<std::uint32_t>& es = nodes_[t].edges;
+      for (int k = 0; k < 3; ++k) {
+        if (turn_at(other_end(es[(k + 1) % 3], t), tp, other_end(es[(k + 2) % 3], t)) > kStemTurn) continue;
+        // k is the lone street: a patch street leaving opposite it goes on across
+        for (Point next : sv.next) n += turn_at(other_end(es[k], t), tp, tp + (warped(next, anchor, p) - at)) <= kStemTurn;
+        break;
       }
     }
     return n;
+  }
+  // A library patch's streets by vertex (library coordinates): the vertex and the next point along
+  // each street leaving it, so that stems_gone_on looks each vertex up once. Built on first use.
+  struct StemVertex {
+    Point at;
+    std::vector<Point> next;
+  };
+  std::vector<std::vector<StemVertex>> stem_vertices_;
+  const std::vector<StemVertex>& stem_vertices(std::uint32_t j) {
+    if (stem_vertices_.size() < library_.size()) stem_vertices_.resize(library_.size());
+    std::vector<StemVertex>& out = stem_vertices_[j];
+    if (out.empty()) {
+      std::unordered_map<MillimetreKey, std::size_t, MillimetreKeyHash> index;
+      for (const LibEdge& e : library_[j].edges) {
+        for (int end = 0; end < 2; ++end) {
+          const Point q = end == 0 ? e.line.front() : e.line.back();
+          const auto [it, added] = index.emplace(millimetre_key(q), out.size());
+          if (added) out.push_back({q, {}});
+          out[it->second].next.push_back(end == 0 ? e.line[1] : e.line[e.line.size() - 2]);
+        }
+      }
+    }
+    return out;
   }
   bool place_patch(std::uint32_t v, std::uint32_t j, Point anchor, std::uint32_t skip, bool local_only = false) {
     slide_here_ = params_.patch.seam_slide && seams_here();
