@@ -5143,13 +5143,6 @@ class Grower {
   std::vector<std::uint32_t> touched_;
   std::vector<std::pair<double, std::uint32_t>> keyed_;
 
-  // Glues patch j with its point `anchor` on v, leaving out edge `skip` (the connector that
-  // doubles v's street). Patch end points within snap of a node are merged into it; edges doubling
-  // a street between merged nodes are left out; a connector leaving the region or touching an
-  // obstacle is clipped, any other illegal edge rejects the patch. Nothing changes unless it is
-  // legal as a whole.
-  // A patch glued at v (see place_patch_at); with seam_slide, the dead ends it slid go back when it
-  // is refused.
   // PatchGrowParams::align_stems acts in a city of crossings: an ordered example, one style, more
   // than kStemCrossings of its junctions crossings. In both phases: new-york's avenues are arterials.
   bool city_of_crossings() { return !std::isnan(grid_axis()) && crossing_target() > kStemCrossings; }
@@ -5204,6 +5197,13 @@ class Grower {
     }
     return out;
   }
+  // Glues patch j with its point `anchor` on v, leaving out edge `skip` (the connector that
+  // doubles v's street). Patch end points within snap of a node are merged into it; edges doubling
+  // a street between merged nodes are left out; a connector leaving the region or touching an
+  // obstacle is clipped, any other illegal edge rejects the patch. Nothing changes unless it is
+  // legal as a whole.
+  // A patch glued at v (see place_patch_at); with seam_slide, the dead ends it slid go back when it
+  // is refused.
   bool place_patch(std::uint32_t v, std::uint32_t j, Point anchor, std::uint32_t skip, bool local_only = false) {
     slide_here_ = params_.patch.seam_slide && seams_here();
     if (!slide_here_) return place_patch_at(v, j, anchor, skip, local_only);
