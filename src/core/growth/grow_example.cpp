@@ -4914,6 +4914,7 @@ class Grower {
     keyed_.clear();
     // (counted with align_stems off too, for its DEBUG1 line and tests: the draw is the same)
     const bool align = city_of_crossings();
+    if (align) tees_near(p);
     bool any_stem = false;
     for (std::uint32_t j : touched_) {
       double u = std::max(uniform01(), 1e-300);
@@ -5153,11 +5154,14 @@ class Grower {
   // on p, land within half a snap distance of a T of the network (its two through streets within
   // kStemTurn of straight) with a patch street leaving where the T's lone street would go on across.
   int stems_gone_on(std::uint32_t j, Point p) {
+    if (tees_near_.empty()) return 0;
     const Point anchor = library_[j].edges[best_[j].edge].line[0];
+    const double r2 = 0.25 * snap_ * snap_;
     int n = 0;
     for (const StemVertex& sv : stem_vertices(j)) {
       if (distance(sv.at, anchor) <= kContact) continue;  // the front itself
       const Point at = warped(sv.at, anchor, p);
+      if (std::none_of(tees_near_.begin(), tees_near_.end(), [&](Point q) { return dot(q - at, q - at) <= r2; })) continue;
       point_hits_.clear();
       node_tree_.query(bgi::nearest(BPoint(at.x, at.y), 1), std::back_inserter(point_hits_));
       if (point_hits_.empty()) continue;
@@ -5173,6 +5177,31 @@ class Grower {
       }
     }
     return n;
+  }
+  // The T's (nodes of degree 3) that a patch placed at p could reach with a vertex within half a
+  // snap distance: within the library's largest patch extent (its vertices' box diagonal) of p.
+  // stems_gone_on looks a vertex up only where one of them is that close.
+  std::vector<Point> tees_near_;
+  double patch_extent_ = -1.0;
+  void tees_near(Point p) {
+    if (patch_extent_ < 0.0) {
+      patch_extent_ = 0.0;
+      for (std::uint32_t j = 0; j < library_.size(); ++j) {
+        if (stem_vertices(j).empty()) continue;
+        Point lo = stem_vertices(j).front().at, hi = lo;
+        for (const StemVertex& sv : stem_vertices(j)) {
+          lo = {std::min(lo.x, sv.at.x), std::min(lo.y, sv.at.y)};
+          hi = {std::max(hi.x, sv.at.x), std::max(hi.y, sv.at.y)};
+        }
+        patch_extent_ = std::max(patch_extent_, distance(lo, hi));
+      }
+    }
+    tees_near_.clear();
+    point_hits_.clear();
+    node_tree_.query(bgi::intersects(box_around(p, patch_extent_ + 0.5 * snap_)), std::back_inserter(point_hits_));
+    for (const PointValue& pv : point_hits_) {
+      if (nodes_[pv.second].edges.size() == 3) tees_near_.push_back(nodes_[pv.second].p);
+    }
   }
   // A library patch's streets by vertex (library coordinates): the vertex and the next point along
   // each street leaving it, so that stems_gone_on looks each vertex up once. Built on first use.
