@@ -5149,10 +5149,10 @@ class Grower {
   bool city_of_crossings() { return !std::isnan(grid_axis()) && crossing_target() > kStemCrossings; }
   static constexpr double kStemCrossings = 0.5;
   static constexpr double kStemWeight = 3.0;               // scales of Hausdorff distance per T gone on across
-  static constexpr double kStemTurn = 30.0 * kPi / 180.0;  // a T's through streets, and a patch street across it
+  static constexpr double kStemTurn = 30.0 * kPi / 180.0;  // a patch street's turn from the T's lone street
   // How many of patch j's vertices, the patch placed by its best pair with the connector's inner end
-  // on p, land within half a snap distance of a T of the network (its two through streets within
-  // kStemTurn of straight) with a patch street leaving where the T's lone street would go on across.
+  // on p, land within half a snap distance of a T of the network (lone_street) with a patch street
+  // leaving where the T's lone street would go on across (tee_heading, within kStemTurn).
   int stems_gone_on(std::uint32_t j, Point p) {
     if (tees_near_.empty()) return 0;
     const Point anchor = library_[j].edges[best_[j].edge].line[0];
@@ -5167,13 +5167,12 @@ class Grower {
       if (point_hits_.empty()) continue;
       const std::uint32_t t = point_hits_[0].second;
       if (nodes_[t].edges.size() != 3 || distance(nodes_[t].p, at) > 0.5 * snap_) continue;
-      const Point tp = nodes_[t].p;
-      const std::vector<std::uint32_t>& es = nodes_[t].edges;
-      for (int k = 0; k < 3; ++k) {
-        if (turn_at(other_end(es[(k + 1) % 3], t), tp, other_end(es[(k + 2) % 3], t)) > kStemTurn) continue;
-        // k is the lone street: a patch street leaving opposite it goes on across
-        for (Point next : sv.next) n += turn_at(other_end(es[k], t), tp, tp + (warped(next, anchor, p) - at)) <= kStemTurn;
-        break;
+      const std::uint32_t lone = lone_street(t);
+      if (lone == UINT32_MAX) continue;
+      const Point across = tee_heading(t, lone);
+      for (Point next : sv.next) {
+        const Point out = unit(warped(next, anchor, p) - at);
+        n += std::acos(std::clamp(dot(across, out), -1.0, 1.0)) <= kStemTurn;
       }
     }
     return n;
