@@ -26,6 +26,8 @@
 #    And the orientation order of the main and the local streets apart (example, grown): which level
 #    loses the example's order. And the streets' bends: turn per km and the share of streets that
 #    bend by 10 degrees or more as a whole, the example's against the statistical fallback's.
+#    Then the examples' sampling noise, where φ comes from, and where the T-junctions come from
+#    (sampling_noise.py, phi_sources.py, tee_sources.py).
 # 2. Speed: km of road per second of one SQL call (one core) for squares grown from tokyo, for
 #    grow_patches and for grow_example in the same run, and their ratio; a 300 km square is the
 #    issue's benchmark (< 3 s).
@@ -295,6 +297,22 @@ WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom FROM region),
 SELECT e.source, e.name, e.seed, e.patch, ST_X(ST_StartPoint(e.g)), ST_Y(ST_StartPoint(e.g)), ST_X(ST_EndPoint(e.g)),
        ST_Y(ST_EndPoint(e.g)), CASE WHEN ST_Intersects(e.g, w.geom) THEN ST_Length(ST_Intersection(e.g, w.geom)) ELSE 0 END
   FROM e JOIN win w USING (name);
+SQL
+
+echo
+echo "where the T's come from (grow_patches): T-junctions inside the hull shrunk by 50 m by their lone street (a patch's or statistical, main or local) and what it reaches at its far end; a T becomes a crossing without a junction more only by joining a T facing it (tee_sources.py)"
+psql -X -q -A -F, -t -v ON_ERROR_STOP=1 <<'SQL' | /usr/bin/python3 "$repo/bench/patches/tee_sources.py"
+WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom FROM region),
+     e AS (SELECT 'example' AS source, name, 0 AS seed, 'patch' AS kind, road_class, (ST_Dump(geom)).geom AS g FROM example
+           UNION ALL
+           SELECT 'grown', name, seed, CASE WHEN origin LIKE 'grow_parametric%' THEN 'statistical' ELSE 'patch' END, road_class,
+                  (ST_Dump(geom)).geom
+             FROM grown WHERE method = 'patches')
+SELECT e.source, e.name, e.seed, e.kind,
+       CASE WHEN e.road_class ~ '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard)$' THEN 'main' ELSE 'local' END,
+       ST_Intersects(ST_StartPoint(e.g), w.geom)::int, ST_Intersects(ST_EndPoint(e.g), w.geom)::int,
+       (SELECT string_agg(ST_X(p.geom) || ' ' || ST_Y(p.geom), ';' ORDER BY p.path) FROM ST_DumpPoints(e.g) AS p)
+  FROM e JOIN win w USING (name) WHERE ST_NPoints(e.g) >= 2;
 SQL
 
 if [ "${SPEED:-1}" = 0 ]; then
