@@ -1002,6 +1002,8 @@ TEST(PatchDangling, DanglingCornerJoinsAreCutBackOnAnOrderedExample) {
   // (and the stems aligned: with them seed 4 keeps 59 corners with the switch, 57 without; without
   // them it leaves fewer on 5 of seeds 1-6)
   p.patch.align_stems = false;
+  // (and the wide facing joins: with them both growths keep 110 corners)
+  p.patch.wide_facing = false;
   GrowInput in = f.input(turned_about_origin(uneven_blocks(), 30.0 * M_PI / 180.0));
   auto [off, on] = f.grow_off_on(in, &PatchGrowParams::dangling_corners, p);
   EXPECT_EQ(off.stats.dangling_corners_cut, 0u);
@@ -1100,5 +1102,27 @@ TEST(PatchDangling, StemsAlignedInACityOfCrossings) {
   GrowInput bricks = f.input(bricks_with_culs_de_sac());
   auto [bricks_off, bricks_on] = f.grow_off_on(bricks, &PatchGrowParams::align_stems);
   EXPECT_EQ(bricks_on.stats.stem_fronts + bricks_on.stats.stems_continued, 0u);
+  expect_same_graph(bricks_on, bricks_off);
+}
+
+
+// Wide facing joins: in a city of crossings (the uneven blocks: an ordered example, most of its
+// junctions crossings) the facing joins also take T's beyond angle_window of the heading and, after
+// the cuts, beyond two mean streets: it fires, a larger share of crossings, planar, deterministic
+// (measured: 33 such joins, 570 -> 592 crossings, 366 -> 349 T's).
+// A city of T's (the bricks with culs-de-sac) grows the same graph either way.
+TEST(PatchDangling, WideFacingJoinsInACityOfCrossings) {
+  Fixture f;
+  GrowInput in = f.input(uneven_blocks());
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::wide_facing);
+  EXPECT_EQ(off.stats.wide_facing_joins, 0u);
+  EXPECT_GT(on.stats.wide_facing_joins, 0u);
+  EXPECT_GT(crossing_share(on), crossing_share(off));
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
+
+  GrowInput bricks = f.input(bricks_with_culs_de_sac());
+  auto [bricks_off, bricks_on] = f.grow_off_on(bricks, &PatchGrowParams::wide_facing);
+  EXPECT_EQ(bricks_on.stats.wide_facing_joins, 0u);
   expect_same_graph(bricks_on, bricks_off);
 }

@@ -3923,11 +3923,15 @@ class Grower {
   // reach_streets mean streets and angle_window of its heading, that T's own lone street leaving on
   // the far side in the same direction) is joined to the nearest such T it can legally join,
   // nearest pairs first, while the network's 4-way share among its junctions is under the
-  // example's. `junctions` and `crossings` come back counted (the network's, after the joins);
+  // example's. With wide_facing in a city of crossings, within wide_reach_streets and
+  // kWideFacingCone. `junctions` and `crossings` come back counted (the network's, after the joins);
   // false when growth must stop there (the share reached, or max_edges).
-  bool join_facing_tees(double reach_streets, long& junctions, long& crossings) {
-    const double reach = std::max(snap_, reach_streets * street_stats_.length_mean);
-    const double cone = params_.patch.angle_window * kPi / 180.0;
+  bool join_facing_tees(double reach_streets, double wide_reach_streets, long& junctions, long& crossings) {
+    const bool wide = params_.patch.wide_facing && city_of_crossings();
+    const double narrow_reach = std::max(snap_, reach_streets * street_stats_.length_mean);
+    const double reach = wide ? std::max(narrow_reach, wide_reach_streets * street_stats_.length_mean) : narrow_reach;
+    const double narrow_cone = params_.patch.angle_window * kPi / 180.0;
+    const double cone = wide ? std::max(narrow_cone, kWideFacingCone) : narrow_cone;
     const double target = crossing_target();
     // A join makes two crossings: with front_crossings, in a city of cul-de-sacs (a few crossings, so
     // one pair is a large share of them), only while both bring the count nearer to the target.
@@ -3938,11 +3942,18 @@ class Grower {
       junctions += nodes_[v].edges.size() >= 3;
       crossings += nodes_[v].edges.size() >= 4;
     }
-    // The T's facing v across, nearest first.
+    // The T's facing v across, nearest first; each with whether it lies within the narrow cone
+    // and reach (wide_facing_joins counts the others).
+    struct Facing {
+      double d;
+      std::uint32_t w;
+      bool narrow;
+      bool operator<(const Facing& o) const { return d < o.d || (d == o.d && w < o.w); }
+    };
     auto facing = [&](std::uint32_t v, Point dir) {
       const Point p = nodes_[v].p;
       const double heading = std::atan2(dir.y, dir.x);
-      std::vector<std::pair<double, std::uint32_t>> near;
+      std::vector<Facing> near;
       point_hits_.clear();
       node_tree_.query(bgi::intersects(box_around(p, reach)), std::back_inserter(point_hits_));
       for (const PointValue& pv : point_hits_) {
@@ -3950,10 +3961,13 @@ class Grower {
         if (w == v || nodes_[w].edges.size() != 3 || is_pruned(w)) continue;
         const Point q = nodes_[w].p;
         const double d = distance(p, q);
-        if (d > reach || d <= kContact || std::abs(wrap(std::atan2(q.y - p.y, q.x - p.x) - heading)) > cone) continue;
+        const double off = std::abs(wrap(std::atan2(q.y - p.y, q.x - p.x) - heading));
+        if (d > reach || d <= kContact || off > cone) continue;
         const std::uint32_t wl = lone_street(w);
-        if (wl == UINT32_MAX || dot(unit(other_end(wl, w) - q), dir) < std::cos(cone)) continue;
-        near.emplace_back(d, w);
+        if (wl == UINT32_MAX) continue;
+        const double along = dot(unit(other_end(wl, w) - q), dir);
+        if (along < std::cos(cone)) continue;
+        near.push_back({d, w, d <= narrow_reach && off <= narrow_cone && along >= std::cos(narrow_cone)});
       }
       std::sort(near.begin(), near.end());
       return near;
@@ -3964,8 +3978,8 @@ class Grower {
         if (is_pruned(v) || nodes_[v].edges.size() != 3) continue;
         const std::uint32_t lone = lone_street(v);
         if (lone == UINT32_MAX || edges_[lone].level < 0 || edges_[lone].bridge) continue;
-        const std::vector<std::pair<double, std::uint32_t>> near = facing(v, tee_heading(v, lone));
-        if (!near.empty()) order.emplace_back(near.front().first, v);
+        const std::vector<Facing> near = facing(v, tee_heading(v, lone));
+        if (!near.empty()) order.emplace_back(near.front().d, v);
       }
       std::sort(order.begin(), order.end());
       std::size_t made = 0;
@@ -3976,10 +3990,11 @@ class Grower {
         if (nodes_[v].edges.size() != 3) continue;  // an earlier join reached it
         const std::uint32_t lone = lone_street(v);
         if (lone == UINT32_MAX) continue;
-        for (const auto& [d, w] : facing(v, tee_heading(v, lone))) {
-          if (!try_connect(v, w, join_level(edges_[lone].level))) continue;
+        for (const Facing& f : facing(v, tee_heading(v, lone))) {
+          if (!try_connect(v, f.w, join_level(edges_[lone].level))) continue;
           crossings += 2;
           ++stats_.continued_across;
+          stats_.wide_facing_joins += !f.narrow;
           ++made;
           break;
         }
@@ -3992,7 +4007,7 @@ class Grower {
   void join_facing_after_cuts() {
     const std::size_t before = stats_.continued_across;
     long junctions = 0, crossings = 0;
-    join_facing_tees(kLateFacingReach, junctions, crossings);
+    join_facing_tees(kLateFacingReach, kWideLateReach, junctions, crossings);
     stats_.faced_after_cuts = stats_.continued_across - before;
   }
   // Continuing streets across (after the joins): growth leaves the example's crossings as two T's
@@ -4010,7 +4025,7 @@ class Grower {
     const double reach = std::max(snap_, kAcrossReach * street_stats_.length_mean);
     const double target = crossing_target();
     long junctions = 0, crossings = 0;
-    if (!join_facing_tees(kAcrossReach, junctions, crossings)) return;
+    if (!join_facing_tees(kAcrossReach, kAcrossReach, junctions, crossings)) return;
     // Arterials: an arterial T (all three streets main) with no T facing it goes on straight to
     // the first street ahead, split there. The example's arterials run on through each other's
     // junctions (the arterial phase's statistical fallback, PatchGrowParams::arterial_fallback, is off
@@ -4148,6 +4163,10 @@ class Grower {
   }
   static constexpr double kAcrossReach = 1.0;  // of the mean street
   static constexpr double kLateFacingReach = 2.0;  // of the mean street: facing_after_cuts
+  // PatchGrowParams::wide_facing: 50 degrees measured against 40 and 60, four mean streets against
+  // three and six (new-york, seeds 1-30, README "Where the T's come from").
+  static constexpr double kWideFacingCone = 50.0 * kPi / 180.0;
+  static constexpr double kWideLateReach = 4.0;  // of the mean street
   static constexpr int kAcrossPasses = 4;
   bool try_connect(std::uint32_t v, std::uint32_t w, int level) {
     const Point p = nodes_[v].p, q = nodes_[w].p;

@@ -119,6 +119,14 @@ struct PatchGrowParams {
   // face each other farther than one mean street (new-york's blocks are 80 by 270 m, its mean street
   // 142 m). Joined while the network's 4-way share is under the example's, as continue_across's.
   bool facing_after_cuts = true;
+  // With continue_across, in a city of crossings (as align_stems: an ordered example, one style, more
+  // than half of its junctions crossings): the facing joins take a T within 50 degrees of the heading
+  // (angle_window otherwise), and after the cuts within four mean streets (two otherwise). Where two
+  // patches' grids meet, each side's streets end on a seam street of its own, the two 30-60 m apart,
+  // and the ends facing each other across that strip are offset by more than angle_window (new-york's
+  // 4-way share -6.5 -> -5.5 pp on seeds 1-30, -7.6 -> -6.6 on 31-60; tokyo's and strasbourg's φ
+  // fell with it ungated; bench/patches, README "Where the T's come from").
+  bool wide_facing = true;
   // Corners (with connect_dangling): at a dead-end front with a node or street ahead within a mean
   // street, a patch that would leave the front as a corner (its only new street there turning more
   // than 45 degrees from the front's street, the others left out as redundant) is illegal, and such
@@ -473,6 +481,7 @@ struct GrowStats {
   std::size_t dangling_connected = 0;  // connect_dangling: streets extended to a node or street ahead
   std::size_t continued_across = 0;    // continue_across: T-junctions joined to the T facing them
   std::size_t faced_after_cuts = 0;    // facing_after_cuts: those of them joined after the cuts
+  std::size_t wide_facing_joins = 0;   // wide_facing: facing joins only its wider cone or reach found
   std::size_t local_tees_continued = 0;  // continue_local_tees: local T's gone on to the node or street ahead
   std::size_t local_tees_long = 0;       // continue_local_tees: joins refused for the example's street length per area
   std::size_t local_tees_dense = 0;      // continue_local_tees: joins refused for the example's junctions per area
