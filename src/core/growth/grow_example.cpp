@@ -3932,6 +3932,7 @@ class Grower {
     const double reach = wide ? std::max(narrow_reach, wide_reach_streets * street_stats_.length_mean) : narrow_reach;
     const double narrow_cone = params_.patch.angle_window * kPi / 180.0;
     const double cone = wide ? std::max(narrow_cone, kWideFacingCone) : narrow_cone;
+    const bool through = params_.patch.facing_through && city_of_crossings();
     const double target = crossing_target();
     // A join makes two crossings: with front_crossings, in a city of cul-de-sacs (a few crossings, so
     // one pair is a large share of them), only while both bring the count nearer to the target.
@@ -3990,13 +3991,27 @@ class Grower {
         if (nodes_[v].edges.size() != 3) continue;  // an earlier join reached it
         const std::uint32_t lone = lone_street(v);
         if (lone == UINT32_MAX) continue;
-        for (const Facing& f : facing(v, tee_heading(v, lone))) {
+        const std::vector<Facing> near = facing(v, tee_heading(v, lone));
+        bool joined = false;
+        for (const Facing& f : near) {
           if (!try_connect(v, f.w, join_level(edges_[lone].level))) continue;
           crossings += 2;
           ++stats_.continued_across;
           stats_.wide_facing_joins += !f.narrow;
           ++made;
+          joined = true;
           break;
+        }
+        for (std::size_t k = 0; !joined && through && k < near.size(); ++k) {
+          const std::size_t crossed = connect_through(v, near[k].w, join_level(edges_[lone].level));
+          if (crossed == 0) continue;
+          crossings += 2 + static_cast<long>(crossed);
+          junctions += static_cast<long>(crossed);
+          ++stats_.continued_across;
+          ++stats_.facing_through_joins;
+          stats_.facing_through_crossed += crossed;
+          ++made;
+          joined = true;
         }
       }
       if (made == 0) break;
@@ -4168,6 +4183,54 @@ class Grower {
   static constexpr double kWideFacingCone = 50.0 * kPi / 180.0;
   static constexpr double kWideLateReach = 4.0;  // of the mean street
   static constexpr int kAcrossPasses = 4;
+  // PatchGrowParams::facing_through: T v joined to T w across up to kThroughStreets streets, each
+  // split where the join crosses it (not a bridge's; away from its ends and from the other
+  // crossings by min_length_, at min_angle_ or more; every piece clear of the network but the
+  // streets it ends on, the whole join legal). The streets crossed (0: not joined).
+  std::size_t connect_through(std::uint32_t v, std::uint32_t w, int level) {
+    const Point p = nodes_[v].p, q = nodes_[w].p;
+    if (nodes_[w].edges.size() + 1 > max_degree_ || has_edge(v, w)) return 0;
+    if (!angle_free(w, std::atan2(p.y - q.y, p.x - q.x)) || !angle_free(v, std::atan2(q.y - p.y, q.x - p.x))) return 0;
+    if (!legal(p, q)) return 0;
+    std::vector<std::pair<std::uint32_t, Point>> crossed;  // (street, where the join crosses it), from v on
+    Point from = p;
+    std::uint32_t skip_node = v, skip_edge = UINT32_MAX;
+    for (Contact c = first_contact(from, q, skip_node, w); c.found; c = first_contact(from, q, skip_node, w, skip_edge)) {
+      if (crossed.size() == kThroughStreets) return 0;
+      const OEdge& hit = edges_[c.edge];
+      const Point x = from + c.t * (q - from);
+      const Point qa = nodes_[hit.a].p, qb = nodes_[hit.b].p;
+      if (hit.bridge || distance(x, qa) < min_length_ || distance(x, qb) < min_length_) return 0;
+      if (distance(from, x) < min_length_ || distance(x, q) < min_length_) return 0;
+      const Point along = qb - qa, in = q - p;
+      const double angle = std::abs(std::atan2(cross(along, in), dot(along, in)));
+      if (std::min(angle, kPi - angle) < min_angle_) return 0;
+      crossed.emplace_back(c.edge, x);
+      from = x + (std::min(1.0, 0.5 * distance(x, q)) / distance(x, q)) * (q - x);  // (just past the street)
+      skip_node = UINT32_MAX;
+      skip_edge = c.edge;
+    }
+    if (crossed.empty()) return 0;  // (a plain join, refused)
+    // The pieces: v to the first street, between streets (held clear from a little past the street
+    // it leaves), the last street to w.
+    if (!clear_of_network(p, crossed.front().second, clearance_, v, -1, -1, crossed.front().first)) return 0;
+    for (std::size_t k = 1; k < crossed.size(); ++k) {
+      const Point a = crossed[k - 1].second, b = crossed[k].second;
+      const double len = distance(a, b);
+      if (len <= 2.0 * clearance_) return 0;
+      if (!clear_of_network(a + (2.0 * clearance_ / len) * (b - a), b, clearance_, UINT32_MAX, -1, -1, crossed[k].first)) return 0;
+    }
+    if (!clear_of_network(q, crossed.back().second, clearance_, w, -1, -1, crossed.back().first)) return 0;
+    std::uint32_t prev = v;
+    for (const auto& [edge, x] : crossed) {
+      const std::uint32_t m = split_edge(edge, x);
+      add_edge(prev, m, level, -1, -1);
+      prev = m;
+    }
+    add_edge(prev, w, level, -1, -1);
+    return crossed.size();
+  }
+  static constexpr std::size_t kThroughStreets = 2;  // facing_through: 1 / 2 / 3 measured, README
   bool try_connect(std::uint32_t v, std::uint32_t w, int level) {
     const Point p = nodes_[v].p, q = nodes_[w].p;
     const std::size_t d0 = nodes_[w].edges.size();

@@ -127,6 +127,14 @@ struct PatchGrowParams {
   // 4-way share -6.5 -> -5.5 pp on seeds 1-30, -7.6 -> -6.6 on 31-60; tokyo's and strasbourg's φ
   // fell with it ungated; bench/patches, README "Where the T's come from").
   bool wide_facing = true;
+  // With continue_across, in a city of crossings (as wide_facing): a T whose facing T (within the
+  // same cone and reach) lies beyond one or two streets, so that no plain join reaches it, is joined
+  // to it across them, each street split where the join crosses it: two T's and the streets crossed
+  // become crossings, a junction more per street crossed. The example's cross streets run on through
+  // the avenues where growth left a T a block or two short of the T facing it (new-york's 4-way share
+  // -5.5 -> -3.7 pp on seeds 1-30, -6.6 -> -4.4 on 31-60; bench/patches, README "Where the T's come
+  // from").
+  bool facing_through = true;
   // Corners (with connect_dangling): at a dead-end front with a node or street ahead within a mean
   // street, a patch that would leave the front as a corner (its only new street there turning more
   // than 45 degrees from the front's street, the others left out as redundant) is illegal, and such
@@ -482,6 +490,8 @@ struct GrowStats {
   std::size_t continued_across = 0;    // continue_across: T-junctions joined to the T facing them
   std::size_t faced_after_cuts = 0;    // facing_after_cuts: those of them joined after the cuts
   std::size_t wide_facing_joins = 0;   // wide_facing: facing joins only its wider cone or reach found
+  std::size_t facing_through_joins = 0;    // facing_through: facing joins across streets
+  std::size_t facing_through_crossed = 0;  // and the streets they crossed (each split: a crossing more)
   std::size_t local_tees_continued = 0;  // continue_local_tees: local T's gone on to the node or street ahead
   std::size_t local_tees_long = 0;       // continue_local_tees: joins refused for the example's street length per area
   std::size_t local_tees_dense = 0;      // continue_local_tees: joins refused for the example's junctions per area
