@@ -1114,12 +1114,11 @@ TEST(PatchDangling, StemsAlignedInACityOfCrossings) {
   expect_same_graph(bricks_on, bricks_off);
 }
 
-
 // Wide facing joins: in a city of crossings (the uneven blocks: an ordered example, most of its
 // junctions crossings) the facing joins also take T's beyond angle_window of the heading and, after
 // the cuts, beyond two mean streets: it fires, a larger share of crossings, planar, deterministic
-// (measured: 33 such joins, 570 -> 592 crossings, 366 -> 349 T's).
-// A city of T's (the bricks with culs-de-sac) grows the same graph either way.
+// (measured: 33 such joins, 570 -> 592 crossings, 366 -> 349 T's). A city of T's (the bricks with
+// culs-de-sac) grows the same graph either way.
 TEST(PatchDangling, WideFacingJoinsInACityOfCrossings) {
   Fixture f;
   GrowInput in = f.input(uneven_blocks());

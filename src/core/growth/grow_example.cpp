@@ -4186,7 +4186,8 @@ class Grower {
   // PatchGrowParams::facing_through: T v joined to T w across up to kThroughStreets streets, each
   // split where the join crosses it (not a bridge's; away from its ends and from the other
   // crossings by min_length_, at min_angle_ or more; every piece clear of the network but the
-  // streets it ends on, the whole join legal). The streets crossed (0: not joined).
+  // streets it ends on, the whole join legal). The streets crossed (0: not joined). Unlike
+  // try_connect it draws no junction-mix check at w: join_facing_tees' 4-way target holds the mix.
   std::size_t connect_through(std::uint32_t v, std::uint32_t w, int level) {
     const Point p = nodes_[v].p, q = nodes_[w].p;
     if (nodes_[w].edges.size() + 1 > max_degree_ || has_edge(v, w)) return 0;
