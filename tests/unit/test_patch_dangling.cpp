@@ -1114,46 +1114,43 @@ TEST(PatchDangling, StemsAlignedInACityOfCrossings) {
   expect_same_graph(bricks_on, bricks_off);
 }
 
-// Wide facing joins: in a city of crossings (the uneven blocks: an ordered example, most of its
-// junctions crossings) the facing joins also take T's beyond angle_window of the heading and, after
-// the cuts, beyond two mean streets: it fires, a larger share of crossings, planar, deterministic
-// (measured: 33 such joins, 570 -> 592 crossings, 366 -> 349 T's). A city of T's (the bricks with
-// culs-de-sac) grows the same graph either way.
-TEST(PatchDangling, WideFacingJoinsInACityOfCrossings) {
+namespace {
+
+// A rule of a city of crossings, switched off against on, on the uneven blocks (an ordered example,
+// most of its junctions crossings): `count` is 0 off and fires on, with a larger share of crossings,
+// planar, deterministic; the bricks with culs-de-sac (a city of T's) count none and grow the same
+// graph either way. The growth with the rule on, for further checks.
+GrowResult expect_a_rule_of_a_city_of_crossings(bool PatchGrowParams::*flag, std::size_t GrowStats::*count) {
   Fixture f;
   GrowInput in = f.input(uneven_blocks());
-  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::wide_facing);
-  EXPECT_EQ(off.stats.wide_facing_joins, 0u);
-  EXPECT_GT(on.stats.wide_facing_joins, 0u);
+  auto [off, on] = f.grow_off_on(in, flag);
+  EXPECT_EQ(off.stats.*count, 0u);
+  EXPECT_GT(on.stats.*count, 0u);
   EXPECT_GT(crossing_share(on), crossing_share(off));
   EXPECT_EQ(crossings_without_node(on), 0);
   expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
 
   GrowInput bricks = f.input(bricks_with_culs_de_sac());
-  auto [bricks_off, bricks_on] = f.grow_off_on(bricks, &PatchGrowParams::wide_facing);
-  EXPECT_EQ(bricks_on.stats.wide_facing_joins, 0u);
+  auto [bricks_off, bricks_on] = f.grow_off_on(bricks, flag);
+  EXPECT_EQ(bricks_on.stats.*count, 0u);
   expect_same_graph(bricks_on, bricks_off);
+  return on;
 }
 
-// Facing joins across streets: in a city of crossings (the uneven blocks) a T whose facing T lies
-// beyond one or two streets is joined to it across them, each split where the join crosses it: it
-// fires, a larger share of crossings, planar, deterministic (measured: 14 joins across 19 streets,
-// 592 -> 613 crossings, 349 -> 347 T's). A city of T's (the bricks with culs-de-sac) grows the same
-// graph either way.
+}  // namespace
+
+// Wide facing joins: the facing joins also take T's beyond angle_window of the heading and, after
+// the cuts, beyond two mean streets (measured: 33 such joins, 570 -> 592 crossings, 366 -> 349 T's).
+TEST(PatchDangling, WideFacingJoinsInACityOfCrossings) {
+  expect_a_rule_of_a_city_of_crossings(&PatchGrowParams::wide_facing, &GrowStats::wide_facing_joins);
+}
+
+// Facing joins across streets: a T whose facing T lies beyond one or two streets is joined to it
+// across them, each split where the join crosses it (measured: 14 joins across 19 streets, 592 ->
+// 613 crossings, 349 -> 347 T's).
 TEST(PatchDangling, FacingTeesJoinedAcrossStreetsInACityOfCrossings) {
-  Fixture f;
-  GrowInput in = f.input(uneven_blocks());
-  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::facing_through);
-  EXPECT_EQ(off.stats.facing_through_joins, 0u);
-  ASSERT_GT(on.stats.facing_through_joins, 0u);
+  const GrowResult on = expect_a_rule_of_a_city_of_crossings(&PatchGrowParams::facing_through,
+                                                             &GrowStats::facing_through_joins);
   EXPECT_GE(on.stats.facing_through_crossed, on.stats.facing_through_joins);
   EXPECT_LE(on.stats.facing_through_crossed, 2 * on.stats.facing_through_joins);
-  EXPECT_GT(crossing_share(on), crossing_share(off));
-  EXPECT_EQ(crossings_without_node(on), 0);
-  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
-
-  GrowInput bricks = f.input(bricks_with_culs_de_sac());
-  auto [bricks_off, bricks_on] = f.grow_off_on(bricks, &PatchGrowParams::facing_through);
-  EXPECT_EQ(bricks_on.stats.facing_through_joins, 0u);
-  expect_same_graph(bricks_on, bricks_off);
 }
