@@ -1592,6 +1592,12 @@ class Grower {
     }
     return false;
   }
+  // Whether a join along `in` meets a street running along `along` at min_angle_ or more (the
+  // street's two directions alike).
+  bool meets_at_min_angle(Point along, Point in) const {
+    const double angle = std::abs(std::atan2(cross(along, in), dot(along, in)));
+    return std::min(angle, kPi - angle) >= min_angle_;
+  }
   // The direction `angle` leaves node v at least min_angle away from v's edges.
   bool angle_free(std::uint32_t v, double angle) const {
     Point p = nodes_[v].p;
@@ -3596,9 +3602,8 @@ class Grower {
             made = try_connect(v, o.node, level);
           } else {
             const OEdge hit = edges_[o.edge];
-            const Point along = nodes_[hit.b].p - nodes_[hit.a].p, in = o.x - p;
-            const double angle = std::abs(std::atan2(cross(along, in), dot(along, in)));
-            if (std::min(angle, kPi - angle) >= min_angle_ && distance(p, o.x) > kContact &&
+            const Point in = o.x - p;
+            if (meets_at_min_angle(nodes_[hit.b].p - nodes_[hit.a].p, in) && distance(p, o.x) > kContact &&
                 angle_free(v, std::atan2(in.y, in.x)) && legal(p, o.x) &&
                 clear_of_network(p, o.x, clearance_, v, -1, -1, o.edge)) {
               add_edge(v, split_edge(o.edge, o.x), level, -1, -1);
@@ -3878,9 +3883,7 @@ class Grower {
         return w;
       }
       if (dangling_dense(UINT32_MAX)) return UINT32_MAX;
-      const Point along = qb - qa, in = x - p;
-      const double angle = std::abs(std::atan2(cross(along, in), dot(along, in)));
-      if (std::min(angle, kPi - angle) < min_angle_ || distance(p, x) <= kContact) return UINT32_MAX;
+      if (!meets_at_min_angle(qb - qa, x - p) || distance(p, x) <= kContact) return UINT32_MAX;
       if (!legal(p, x) || !clear_of_network(p, x, clearance_, v, -1, -1, c.edge)) return UINT32_MAX;
       const std::uint32_t m = split_edge(c.edge, x);
       add_edge(v, m, join_level(edge.level), -1, -1);
@@ -4097,9 +4100,7 @@ class Grower {
           crossings += dw == 3;
           if (local) local_join_made(v, nodes_[w].p, w, dw == 2);
         } else {
-          const Point along = qb - qa, in = x - p;
-          const double angle = std::abs(std::atan2(cross(along, in), dot(along, in)));
-          if (std::min(angle, kPi - angle) < min_angle_ || distance(p, x) < min_length_) continue;
+          if (!meets_at_min_angle(qb - qa, x - p) || distance(p, x) < min_length_) continue;
           if (!angle_free(v, std::atan2(dir.y, dir.x))) continue;
           if (!legal(p, x) || !clear_of_network(p, x, clearance_, v, -1, -1, c.edge)) continue;
           if (local && local_join_refused(v, x, UINT32_MAX, true)) continue;
@@ -4203,9 +4204,7 @@ class Grower {
       const Point qa = nodes_[hit.a].p, qb = nodes_[hit.b].p;
       if (hit.bridge || distance(x, qa) < min_length_ || distance(x, qb) < min_length_) return 0;
       if (distance(from, x) < min_length_ || distance(x, q) < min_length_) return 0;
-      const Point along = qb - qa, in = q - p;
-      const double angle = std::abs(std::atan2(cross(along, in), dot(along, in)));
-      if (std::min(angle, kPi - angle) < min_angle_) return 0;
+      if (!meets_at_min_angle(qb - qa, q - p)) return 0;
       crossed.emplace_back(c.edge, x);
       from = x + (std::min(1.0, 0.5 * distance(x, q)) / distance(x, q)) * (q - x);  // (just past the street)
       skip_node = UINT32_MAX;
@@ -5588,9 +5587,7 @@ class Grower {
         if (distance(best_x, nodes_[edge.a].p) <= clearance_ || distance(best_x, nodes_[edge.b].p) <= clearance_) continue;
         if (distance(best_x, before) < min_length_) continue;
         if (!legal(before, best_x)) continue;  // moved after the legality checks: water and slope again
-        Point dir = nodes_[edge.b].p - nodes_[edge.a].p, in = best_x - before;
-        double angle = std::abs(std::atan2(cross(dir, in), dot(dir, in)));
-        if (std::min(angle, kPi - angle) < min_angle_) continue;
+        if (!meets_at_min_angle(nodes_[edge.b].p - nodes_[edge.a].p, best_x - before)) continue;
         bool taken = false;
         for (std::uint32_t e : split_of) taken = taken || e == best;
         if (taken) continue;
