@@ -26,6 +26,8 @@
 #    And the orientation order of the main and the local streets apart (example, grown): which level
 #    loses the example's order. And the streets' bends: turn per km and the share of streets that
 #    bend by 10 degrees or more as a whole, the example's against the statistical fallback's.
+#    And coverage: the share of the window farther than 100 m from every street, and the share of
+#    the street length outside the window (the metrics are per area and do not see holes).
 #    Then the examples' sampling noise, where φ comes from, and where the T-junctions come from
 #    (sampling_noise.py, phi_sources.py, tee_sources.py).
 # 2. Speed: km of road per second of one SQL call (one core) for squares grown from tokyo, for
@@ -266,6 +268,34 @@ SELECT a.method, a.name, a.seed, a.id, b.id, a.origin, b.origin, ST_AsText(ST_In
   FROM grown a JOIN grown b ON a.method = b.method AND a.name = b.name AND a.seed = b.seed AND a.id < b.id
    AND ST_Intersects(a.geom, b.geom)
  WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node));
+SQL
+
+echo
+echo "coverage: the share of the hull shrunk by 50 m farther than 100 m from every street (points of a 25 m grid), the example's and the grown networks' (median, min-max over the seeds), and the share of the street length outside it (between that window and the hull); compare_networks' metrics are per area of the window and do not see where the streets lie inside it (README \"Coverage\")"
+psql -X -q -v ON_ERROR_STOP=1 <<'SQL'
+CREATE INDEX ON example USING gist (geom);
+ANALYZE example;
+WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom FROM region),
+     pts AS (SELECT w.name, ST_Centroid(c.geom) AS p FROM win w, ST_SquareGrid(25, w.geom) AS c
+              WHERE ST_Intersects(ST_Centroid(c.geom), w.geom)),
+     ex AS (SELECT p.name, avg((NOT EXISTS (SELECT 1 FROM example e WHERE e.name = p.name AND ST_DWithin(e.geom, p.p, 100)))::int) AS empty
+              FROM pts p GROUP BY p.name),
+     runs AS (SELECT DISTINCT method, name, seed FROM grown),
+     gr AS (SELECT r.method, r.name, r.seed,
+                   avg((NOT EXISTS (SELECT 1 FROM grown g WHERE g.method = r.method AND g.name = r.name AND g.seed = r.seed
+                                      AND ST_DWithin(g.geom, p.p, 100)))::int) AS empty
+              FROM runs r JOIN pts p USING (name) GROUP BY r.method, r.name, r.seed),
+     outside AS (SELECT g.method, g.name, g.seed, sum(ST_Length(ST_Difference(g.geom, w.geom))) / sum(ST_Length(g.geom)) AS share
+                   FROM grown g JOIN win w USING (name) GROUP BY g.method, g.name, g.seed),
+     ex_outside AS (SELECT e.name, sum(ST_Length(ST_Difference(e.geom, w.geom))) / sum(ST_Length(e.geom)) AS share
+                      FROM example e JOIN win w USING (name) GROUP BY e.name)
+SELECT gr.method, gr.name, round((100 * min(ex.empty))::numeric, 1) AS example_empty_pct,
+       round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY gr.empty))::numeric, 1) AS grown_empty_pct,
+       round((100 * min(gr.empty))::numeric, 1) || '-' || round((100 * max(gr.empty))::numeric, 1) AS grown_range,
+       round((100 * min(x.share))::numeric, 1) AS example_outside_pct,
+       round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY o.share))::numeric, 1) AS grown_outside_pct
+  FROM gr JOIN ex USING (name) JOIN outside o USING (method, name, seed) JOIN ex_outside x USING (name)
+ GROUP BY gr.method, gr.name ORDER BY gr.method DESC, gr.name;
 SQL
 
 echo
