@@ -544,8 +544,9 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           "junction is not, the output's crossing share at the example's %.3f)",
                           stats.front_crossings_refused, stats.example_crossing_share)));
   ereport(DEBUG1, (errmsg("grow_patches: stems: %zu fronts drew a patch going on across a T's lone street, %zu "
-                          "T's the placed patches were drawn to go on across",
-                          stats.stem_fronts, stats.stems_continued)));
+                          "T's the placed patches were drawn to go on across; %zu patch streets left out as doubling "
+                          "a street within 1.25 x snap",
+                          stats.stem_fronts, stats.stems_continued, stats.wide_redundant_dropped)));
   ereport(DEBUG1, (errmsg("grow_patches: front dead ends: %zu draws refused (a patch's own dead ends, the output's "
                           "share of them at the example's %.3f), %zu fronts tried again without the rule; when the "
                           "growth stopped %zu own dead ends, %zu junctions",

@@ -5884,16 +5884,26 @@ class Grower {
     return gt + 0.5 > examples_[0].crossing_share * ge;
   }
 
-  // Every point of the line (sampled every few metres) is within snap of the network.
+  // Every point of the line (sampled every few metres) is within snap of the network; with
+  // wide_redundant, in a city of crossings, within kWideRedundant x snap.
   bool redundant(const Polyline& line) {
     densify(line, std::max(1.0, 0.5 * snap_), dense_);
-    for (Point q : dense_) {
+    if (within_of_network(dense_, snap_)) return true;
+    if (!params_.patch.wide_redundant || !city_of_crossings() || !within_of_network(dense_, kWideRedundant * snap_)) {
+      return false;
+    }
+    ++stats_.wide_redundant_dropped;
+    return true;
+  }
+  static constexpr double kWideRedundant = 1.25;  // of snap: 1.1 / 1.35 / 1.5 measured (new-york, README)
+  bool within_of_network(const std::vector<Point>& points, double d) {
+    for (Point q : points) {
       hits_.clear();
-      edge_tree_.query(bgi::intersects(box_around(q, snap_)), std::back_inserter(hits_));
+      edge_tree_.query(bgi::intersects(box_around(q, d)), std::back_inserter(hits_));
       bool near = false;
       for (const BoxValue& hv : hits_) {
         const OEdge& edge = edges_[hv.second];
-        if (point_segment_distance(q, nodes_[edge.a].p, nodes_[edge.b].p) <= snap_) {
+        if (point_segment_distance(q, nodes_[edge.a].p, nodes_[edge.b].p) <= d) {
           near = true;
           break;
         }
