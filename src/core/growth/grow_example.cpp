@@ -5888,15 +5888,16 @@ class Grower {
   // wide_redundant, in a city of crossings, within kWideRedundant x snap.
   bool redundant(const Polyline& line) {
     densify(line, std::max(1.0, 0.5 * snap_), dense_);
-    if (within_of_network(dense_, snap_)) return true;
-    if (!params_.patch.wide_redundant || !city_of_crossings() || !within_of_network(dense_, kWideRedundant * snap_)) {
+    if (all_near_network(dense_, snap_)) return true;
+    if (!params_.patch.wide_redundant || !city_of_crossings() || !all_near_network(dense_, kWideRedundant * snap_)) {
       return false;
     }
     ++stats_.wide_redundant_dropped;
     return true;
   }
   static constexpr double kWideRedundant = 1.25;  // of snap: 1.1 / 1.35 / 1.5 measured (new-york, README)
-  bool within_of_network(const std::vector<Point>& points, double d) {
+  // Every point within d of an edge of the network.
+  bool all_near_network(const std::vector<Point>& points, double d) {
     for (Point q : points) {
       hits_.clear();
       edge_tree_.query(bgi::intersects(box_around(q, d)), std::back_inserter(hits_));

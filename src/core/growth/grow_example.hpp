@@ -142,7 +142,8 @@ struct PatchGrowParams {
   // blocks 80 m across): the strip between them holds the T's of both sides' cross streets, which
   // end on different streets. New-york's 4-way share -3.7 -> -3.2 pp on seeds 1-30, -4.4 -> -2.9
   // on 31-60, its per-pair median 2.93 -> 2.55 / 3.01 -> 2.60 %; 1.1 / 1.35 / 1.5 x snap measured
-  // (README "Streets that double a street"). Ungated it was worse on four examples of six.
+  // (README "Streets that double a street"). Ungated it gained on barcelona but lost on quito, tokyo
+  // and canberra.
   bool wide_redundant = true;
   // Corners (with connect_dangling): at a dead-end front with a node or street ahead within a mean
   // street, a patch that would leave the front as a corner (its only new street there turning more
