@@ -1133,28 +1133,36 @@ TEST(PatchDangling, StemsAlignedInACityOfCrossings) {
 
 namespace {
 
-// A rule of a city of crossings, switched off against on, on the uneven blocks (an ordered example,
-// most of its junctions crossings): `count` is 0 off and fires on, with a larger share of crossings,
-// planar, deterministic; the bricks with culs-de-sac (a city of T's) count none and grow the same
-// graph either way. The growth with the rule on, for further checks.
-GrowResult expect_a_rule_of_a_city_of_crossings(bool PatchGrowParams::*flag, std::size_t GrowStats::*count) {
+// A rule of a city of crossings, switched off against on with `p`, on the uneven blocks (an ordered
+// example, most of its junctions crossings): `count` is 0 off and fires on, planar, deterministic
+// (the default growth); the bricks with culs-de-sac (a city of T's) count none and grow the same graph
+// either way.
+Fixture::OffOn a_rule_of_a_city_of_crossings(bool PatchGrowParams::*flag, std::size_t GrowStats::*count,
+                                             const GrowParams& p) {
   Fixture f;
   GrowInput in = f.input(uneven_blocks());
-  GrowParams p = Fixture::patch_growth();
-  // (the doubled streets kept, as measured: left out, the uneven blocks' share of crossings is 0.6368
-  // with either join rule against 0.6372 without it; kept, 0.6385 with both)
-  p.patch.wide_redundant = false;
-  auto [off, on] = f.grow_off_on(in, flag, p);
-  EXPECT_EQ(off.stats.*count, 0u);
-  EXPECT_GT(on.stats.*count, 0u);
-  EXPECT_GT(crossing_share(on), crossing_share(off));
-  EXPECT_EQ(crossings_without_node(on), 0);
-  expect_same_graph(grow_example(f.geos, in, p), on);  // (the switch on: its default)
+  Fixture::OffOn r = f.grow_off_on(in, flag, p);
+  EXPECT_EQ(r.off.stats.*count, 0u);
+  EXPECT_GT(r.on.stats.*count, 0u);
+  EXPECT_EQ(crossings_without_node(r.on), 0);
+  expect_same_graph(grow_example(f.geos, in, p), r.on);  // (the switch on: its default)
 
   GrowInput bricks = f.input(bricks_with_culs_de_sac());
   auto [bricks_off, bricks_on] = f.grow_off_on(bricks, flag, p);
   EXPECT_EQ(bricks_on.stats.*count, 0u);
   expect_same_graph(bricks_on, bricks_off);
+  return r;
+}
+
+// The same for a join rule, which also raises the share of crossings among the junctions; the
+// growth with the rule on, for further checks.
+GrowResult expect_a_rule_of_a_city_of_crossings(bool PatchGrowParams::*flag, std::size_t GrowStats::*count) {
+  GrowParams p = Fixture::patch_growth();
+  // (the doubled streets kept, as measured: left out, the uneven blocks' share of crossings is 0.6368
+  // with either join rule against 0.6372 without it; kept, 0.6385 with both)
+  p.patch.wide_redundant = false;
+  auto [off, on] = a_rule_of_a_city_of_crossings(flag, count, p);
+  EXPECT_GT(crossing_share(on), crossing_share(off));
   return on;
 }
 
@@ -1208,18 +1216,8 @@ std::size_t edges_beside_a_street(const GrowResult& r, double d) {
 // out in a city of crossings, not only within snap (measured: 2313 left out; edges running beside
 // a street, within that distance, 622 -> 303 of 2208 -> 2080).
 TEST(PatchDangling, PatchStreetsDoublingAStreetLeftOutInACityOfCrossings) {
-  Fixture f;
-  GrowInput in = f.input(uneven_blocks());
-  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::wide_redundant);
-  EXPECT_EQ(off.stats.wide_redundant_dropped, 0u);
-  EXPECT_GT(on.stats.wide_redundant_dropped, 0u);
+  auto [off, on] = a_rule_of_a_city_of_crossings(&PatchGrowParams::wide_redundant, &GrowStats::wide_redundant_dropped,
+                                                 Fixture::patch_growth());
   const double d = 1.25 * on.stats.snap;
   EXPECT_LT(static_cast<double>(edges_beside_a_street(on, d)), 0.75 * static_cast<double>(edges_beside_a_street(off, d)));
-  EXPECT_EQ(crossings_without_node(on), 0);
-  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
-
-  GrowInput bricks = f.input(bricks_with_culs_de_sac());  // (a city of T's)
-  auto [bricks_off, bricks_on] = f.grow_off_on(bricks, &PatchGrowParams::wide_redundant);
-  EXPECT_EQ(bricks_on.stats.wide_redundant_dropped, 0u);
-  expect_same_graph(bricks_on, bricks_off);
 }
