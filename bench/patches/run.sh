@@ -26,8 +26,9 @@
 #    And the orientation order of the main and the local streets apart (example, grown): which level
 #    loses the example's order. And the streets' bends: turn per km and the share of streets that
 #    bend by 10 degrees or more as a whole, the example's against the statistical fallback's.
-#    And coverage: the share of the window farther than 100 m from every street, and the share of
-#    the street length outside the window (the metrics are per area and do not see holes).
+#    And coverage: the share of the window farther than 100 m from every street (all of it, near
+#    the hull's edge, well inside it), and the share of the street length outside the window (the
+#    metrics are per area and do not see holes).
 #    Then the examples' sampling noise, where φ comes from, and where the T-junctions come from
 #    (sampling_noise.py, phi_sources.py, tee_sources.py).
 # 2. Speed: km of road per second of one SQL call (one core) for squares grown from tokyo, for
@@ -271,20 +272,28 @@ SELECT a.method, a.name, a.seed, a.id, b.id, a.origin, b.origin, ST_AsText(ST_In
 SQL
 
 echo
-echo "coverage: the share of the hull shrunk by 50 m farther than 100 m from every street (points of a 25 m grid), the example's and the grown networks' (median, min-max over the seeds), and the share of the street length outside it (between that window and the hull); compare_networks' metrics are per area of the window and do not see where the streets lie inside it (README \"Coverage\")"
+echo "coverage: the share of the hull shrunk by 50 m farther than 100 m from every street (points of a 25 m grid), the example's and the grown networks' (median, min-max over the seeds), the same within 150 m of the hull's edge (edge) and 300 m or more inside it (inner), and the share of the street length outside it (between that window and the hull); compare_networks' metrics are per area of the window and do not see where the streets lie inside it (README \"Coverage\")"
 psql -X -q -v ON_ERROR_STOP=1 <<'SQL'
 CREATE INDEX ON example USING gist (geom);
 ANALYZE example;
-WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom FROM region),
-     pts AS (SELECT w.name, ST_Centroid(c.geom) AS p FROM win w, ST_SquareGrid(25, w.geom) AS c
+WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom, ST_Boundary(geom) AS edge FROM region),
+     pts AS (SELECT w.name, ST_Centroid(c.geom) AS p, ST_Distance(ST_Centroid(c.geom), w.edge) < 150 AS near_edge,
+                    ST_Distance(ST_Centroid(c.geom), w.edge) >= 300 AS inner_part
+               FROM win w, ST_SquareGrid(25, w.geom) AS c
               WHERE ST_Intersects(ST_Centroid(c.geom), w.geom)),
-     ex AS (SELECT p.name, avg((NOT EXISTS (SELECT 1 FROM example e WHERE e.name = p.name AND ST_DWithin(e.geom, p.p, 100)))::int) AS empty
-              FROM pts p GROUP BY p.name),
+     ex_pts AS (SELECT p.*, NOT EXISTS (SELECT 1 FROM example e WHERE e.name = p.name AND ST_DWithin(e.geom, p.p, 100)) AS empty
+                  FROM pts p),
+     ex AS (SELECT name, avg(empty::int) AS empty, avg(empty::int) FILTER (WHERE near_edge) AS edge_empty,
+                   avg(empty::int) FILTER (WHERE inner_part) AS inner_empty
+              FROM ex_pts GROUP BY name),
      runs AS (SELECT DISTINCT method, name, seed FROM grown),
-     gr AS (SELECT r.method, r.name, r.seed,
-                   avg((NOT EXISTS (SELECT 1 FROM grown g WHERE g.method = r.method AND g.name = r.name AND g.seed = r.seed
-                                      AND ST_DWithin(g.geom, p.p, 100)))::int) AS empty
-              FROM runs r JOIN pts p USING (name) GROUP BY r.method, r.name, r.seed),
+     gr_pts AS (SELECT r.method, r.name, r.seed, p.near_edge, p.inner_part,
+                       NOT EXISTS (SELECT 1 FROM grown g WHERE g.method = r.method AND g.name = r.name AND g.seed = r.seed
+                                     AND ST_DWithin(g.geom, p.p, 100)) AS empty
+                  FROM runs r JOIN pts p USING (name)),
+     gr AS (SELECT method, name, seed, avg(empty::int) AS empty, avg(empty::int) FILTER (WHERE near_edge) AS edge_empty,
+                   avg(empty::int) FILTER (WHERE inner_part) AS inner_empty
+              FROM gr_pts GROUP BY method, name, seed),
      outside AS (SELECT g.method, g.name, g.seed, sum(ST_Length(ST_Difference(g.geom, w.geom))) / sum(ST_Length(g.geom)) AS share
                    FROM grown g JOIN win w USING (name) GROUP BY g.method, g.name, g.seed),
      ex_outside AS (SELECT e.name, sum(ST_Length(ST_Difference(e.geom, w.geom))) / sum(ST_Length(e.geom)) AS share
@@ -292,6 +301,10 @@ WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom FROM region),
 SELECT gr.method, gr.name, round((100 * min(ex.empty))::numeric, 1) AS example_empty_pct,
        round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY gr.empty))::numeric, 1) AS grown_empty_pct,
        round((100 * min(gr.empty))::numeric, 1) || '-' || round((100 * max(gr.empty))::numeric, 1) AS grown_range,
+       round((100 * min(ex.edge_empty))::numeric, 1) AS example_edge_pct,
+       round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY gr.edge_empty))::numeric, 1) AS grown_edge_pct,
+       round((100 * min(ex.inner_empty))::numeric, 1) AS example_inner_pct,
+       round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY gr.inner_empty))::numeric, 1) AS grown_inner_pct,
        round((100 * min(x.share))::numeric, 1) AS example_outside_pct,
        round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY o.share))::numeric, 1) AS grown_outside_pct
   FROM gr JOIN ex USING (name) JOIN outside o USING (method, name, seed) JOIN ex_outside x USING (name)
