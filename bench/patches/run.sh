@@ -28,7 +28,8 @@
 #    bend by 10 degrees or more as a whole, the example's against the statistical fallback's.
 #    And coverage: the share of the window farther than 100 m from every street (all of it, near
 #    the hull's edge, well inside it), and the share of the street length outside the window (the
-#    metrics are per area and do not see holes).
+#    metrics are per area and do not see holes). And the blocks' shapes, the example's against the
+#    grown blocks' with and without a statistical street on their perimeter.
 #    Then the examples' sampling noise, where φ comes from, and where the T-junctions come from
 #    (sampling_noise.py, phi_sources.py, tee_sources.py).
 # 2. Speed: km of road per second of one SQL call (one core) for squares grown from tokyo, for
@@ -309,6 +310,50 @@ SELECT gr.method, gr.name, round((100 * min(ex.empty))::numeric, 1) AS example_e
        round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY o.share))::numeric, 1) AS grown_outside_pct
   FROM gr JOIN ex USING (name) JOIN outside o USING (method, name, seed) JOIN ex_outside x USING (name)
  GROUP BY gr.method, gr.name ORDER BY gr.method DESC, gr.name;
+SQL
+
+echo
+echo "block shapes and the statistical streets: faces of the network (ST_Polygonize) inside the hull shrunk by 50 m, 200 m² or more; per km² of that window, median area, median compactness (4 pi area / perimeter²) and perimeter per 1000 m², the example's against the grown blocks' (median over the seeds) apart by whether statistical streets (fallback or join) make 2 % or more of their perimeter; with_stat_pct is that share of the grown blocks (README \"Coverage\")"
+psql -X -q -v ON_ERROR_STOP=1 <<'SQL'
+CREATE INDEX IF NOT EXISTS grown_geom ON grown USING gist (geom);
+ANALYZE grown;
+WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom FROM region),
+     ex_faces AS (SELECT name, (ST_Dump(ST_Polygonize(geom))).geom AS f FROM example GROUP BY name),
+     ex AS (SELECT x.name, count(*) / (ST_Area(min(w.geom)) / 1e6) AS per_km2,
+                   percentile_cont(0.5) WITHIN GROUP (ORDER BY ST_Area(x.f)) AS area,
+                   percentile_cont(0.5) WITHIN GROUP (ORDER BY 4 * pi() * ST_Area(x.f) / ST_Perimeter(x.f) ^ 2) AS compact,
+                   1000 * sum(ST_Perimeter(x.f)) / sum(ST_Area(x.f)) AS perim
+              FROM ex_faces x JOIN win w USING (name)
+             WHERE ST_Within(x.f, w.geom) AND ST_Area(x.f) >= 200 GROUP BY x.name),
+     gr_faces AS (SELECT method, name, seed, (ST_Dump(ST_Polygonize(geom))).geom AS f FROM grown GROUP BY method, name, seed),
+     gr AS (SELECT f.method, f.name, f.seed, f.f,
+                   coalesce((SELECT sum(ST_Length(ST_Intersection(g.geom, ST_Buffer(ST_Boundary(f.f), 0.5))))
+                               FROM grown g
+                              WHERE g.method = f.method AND g.name = f.name AND g.seed = f.seed
+                                AND g.origin LIKE 'grow_parametric%' AND ST_DWithin(g.geom, ST_Boundary(f.f), 0.5)), 0)
+                     / ST_Perimeter(f.f) >= 0.02 AS with_stat
+              FROM gr_faces f JOIN win w USING (name)
+             WHERE ST_Within(f.f, w.geom) AND ST_Area(f.f) >= 200),
+     per_seed AS (SELECT gr.method, gr.name, gr.seed, gr.with_stat, count(*) AS n,
+                         count(*) / (ST_Area(min(w.geom)) / 1e6) AS per_km2,
+                         percentile_cont(0.5) WITHIN GROUP (ORDER BY ST_Area(gr.f)) AS area,
+                         percentile_cont(0.5) WITHIN GROUP (ORDER BY 4 * pi() * ST_Area(gr.f) / ST_Perimeter(gr.f) ^ 2) AS compact,
+                         1000 * sum(ST_Perimeter(gr.f)) / sum(ST_Area(gr.f)) AS perim
+                    FROM gr JOIN win w USING (name) GROUP BY gr.method, gr.name, gr.seed, gr.with_stat),
+     shares AS (SELECT method, name, seed, sum(n) FILTER (WHERE with_stat) / sum(n) AS share FROM per_seed GROUP BY 1, 2, 3),
+     med AS (SELECT method, name, with_stat,
+                    percentile_cont(0.5) WITHIN GROUP (ORDER BY per_km2) AS per_km2, percentile_cont(0.5) WITHIN GROUP (ORDER BY area) AS area,
+                    percentile_cont(0.5) WITHIN GROUP (ORDER BY compact) AS compact, percentile_cont(0.5) WITHIN GROUP (ORDER BY perim) AS perim
+               FROM per_seed GROUP BY 1, 2, 3)
+SELECT m.method, m.name, CASE WHEN m.with_stat THEN 'grown, with statistical' ELSE 'grown, patch streets only' END AS blocks,
+       round(m.per_km2::numeric, 1) AS per_km2, round(m.area::numeric) AS median_m2, round(m.compact::numeric, 3) AS compactness,
+       round(m.perim::numeric, 1) AS perimeter_per_1000m2,
+       round((100 * (SELECT percentile_cont(0.5) WITHIN GROUP (ORDER BY share) FROM shares s WHERE s.method = m.method AND s.name = m.name))::numeric, 1) AS with_stat_pct
+  FROM med m
+UNION ALL
+SELECT 'example', name, 'example', round(per_km2::numeric, 1), round(area::numeric), round(compact::numeric, 3), round(perim::numeric, 1), NULL
+  FROM ex
+ ORDER BY 2, 1 DESC, 3;
 SQL
 
 echo
