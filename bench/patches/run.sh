@@ -313,15 +313,21 @@ SELECT gr.method, gr.name, round((100 * min(ex.empty))::numeric, 1) AS example_e
 SQL
 
 echo
-echo "block shapes and the statistical streets: faces of the network (ST_Polygonize) inside the hull shrunk by 50 m, 200 m² or more; per km² of that window, median area, median compactness (4 pi area / perimeter²) and perimeter per 1000 m², the example's against the grown blocks' (median over the seeds) apart by whether statistical streets (fallback or join) make 2 % or more of their perimeter; with_stat_pct is that share of the grown blocks (README \"Coverage\")"
+echo "block shapes and the statistical streets: faces of the network (ST_Polygonize) inside the hull shrunk by 50 m, 200 m² or more; per km² of that window, median area, median compactness (4 pi area / perimeter²), median aspect ratio (long over short side of the oriented envelope) and perimeter per 1000 m², the example's against the grown blocks' (median over the seeds) apart by whether statistical streets (fallback or join) make 2 % or more of their perimeter; with_stat_pct is that share of the grown blocks (README \"Coverage\")"
 psql -X -q -v ON_ERROR_STOP=1 <<'SQL'
 CREATE INDEX IF NOT EXISTS grown_geom ON grown USING gist (geom);
 ANALYZE grown;
+-- long over short side of a face's oriented envelope (network_stats' block_aspect_ratio)
+CREATE FUNCTION pg_temp.aspect(f geometry) RETURNS double precision LANGUAGE sql IMMUTABLE AS $$
+  SELECT greatest(a, b) / nullif(least(a, b), 0)
+    FROM (SELECT ST_Distance(ST_PointN(r, 1), ST_PointN(r, 2)) AS a, ST_Distance(ST_PointN(r, 2), ST_PointN(r, 3)) AS b
+            FROM (SELECT ST_ExteriorRing(ST_OrientedEnvelope(f)) AS r) e) s $$;
 WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom FROM region),
      ex_faces AS (SELECT name, (ST_Dump(ST_Polygonize(geom))).geom AS f FROM example GROUP BY name),
      ex AS (SELECT x.name, count(*) / (ST_Area(min(w.geom)) / 1e6) AS per_km2,
                    percentile_cont(0.5) WITHIN GROUP (ORDER BY ST_Area(x.f)) AS area,
                    percentile_cont(0.5) WITHIN GROUP (ORDER BY 4 * pi() * ST_Area(x.f) / ST_Perimeter(x.f) ^ 2) AS compact,
+                   percentile_cont(0.5) WITHIN GROUP (ORDER BY pg_temp.aspect(x.f)) AS aspect,
                    1000 * sum(ST_Perimeter(x.f)) / sum(ST_Area(x.f)) AS perim
               FROM ex_faces x JOIN win w USING (name)
              WHERE ST_Within(x.f, w.geom) AND ST_Area(x.f) >= 200 GROUP BY x.name),
@@ -338,20 +344,23 @@ WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom FROM region),
                          count(*) / (ST_Area(min(w.geom)) / 1e6) AS per_km2,
                          percentile_cont(0.5) WITHIN GROUP (ORDER BY ST_Area(gr.f)) AS area,
                          percentile_cont(0.5) WITHIN GROUP (ORDER BY 4 * pi() * ST_Area(gr.f) / ST_Perimeter(gr.f) ^ 2) AS compact,
+                         percentile_cont(0.5) WITHIN GROUP (ORDER BY pg_temp.aspect(gr.f)) AS aspect,
                          1000 * sum(ST_Perimeter(gr.f)) / sum(ST_Area(gr.f)) AS perim
                     FROM gr JOIN win w USING (name) GROUP BY gr.method, gr.name, gr.seed, gr.with_stat),
      shares AS (SELECT method, name, seed, sum(n) FILTER (WHERE with_stat) / sum(n) AS share FROM per_seed GROUP BY 1, 2, 3),
      med AS (SELECT method, name, with_stat,
                     percentile_cont(0.5) WITHIN GROUP (ORDER BY per_km2) AS per_km2, percentile_cont(0.5) WITHIN GROUP (ORDER BY area) AS area,
-                    percentile_cont(0.5) WITHIN GROUP (ORDER BY compact) AS compact, percentile_cont(0.5) WITHIN GROUP (ORDER BY perim) AS perim
+                    percentile_cont(0.5) WITHIN GROUP (ORDER BY compact) AS compact, percentile_cont(0.5) WITHIN GROUP (ORDER BY aspect) AS aspect,
+                    percentile_cont(0.5) WITHIN GROUP (ORDER BY perim) AS perim
                FROM per_seed GROUP BY 1, 2, 3)
 SELECT m.method, m.name, CASE WHEN m.with_stat THEN 'grown, with statistical' ELSE 'grown, patch streets only' END AS blocks,
        round(m.per_km2::numeric, 1) AS per_km2, round(m.area::numeric) AS median_m2, round(m.compact::numeric, 3) AS compactness,
-       round(m.perim::numeric, 1) AS perimeter_per_1000m2,
+       round(m.aspect::numeric, 2) AS aspect, round(m.perim::numeric, 1) AS perimeter_per_1000m2,
        round((100 * (SELECT percentile_cont(0.5) WITHIN GROUP (ORDER BY share) FROM shares s WHERE s.method = m.method AND s.name = m.name))::numeric, 1) AS with_stat_pct
   FROM med m
 UNION ALL
-SELECT 'example', name, 'example', round(per_km2::numeric, 1), round(area::numeric), round(compact::numeric, 3), round(perim::numeric, 1), NULL
+SELECT 'example', name, 'example', round(per_km2::numeric, 1), round(area::numeric), round(compact::numeric, 3), round(aspect::numeric, 2),
+       round(perim::numeric, 1), NULL
   FROM ex
  ORDER BY 2, 1 DESC, 3;
 SQL
