@@ -545,8 +545,10 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           stats.front_crossings_refused, stats.example_crossing_share)));
   ereport(DEBUG1, (errmsg("grow_patches: stems: %zu fronts drew a patch going on across a T's lone street, %zu "
                           "T's the placed patches were drawn to go on across; %zu patch streets left out as doubling "
-                          "a street within 1.25 x snap",
-                          stats.stem_fronts, stats.stems_continued, stats.wide_redundant_dropped)));
+                          "a street within 1.25 x snap; %zu fronts drew a patch with a connector end on the line of a "
+                          "street across it, %zu such ends placed",
+                          stats.stem_fronts, stats.stems_continued, stats.wide_redundant_dropped, stats.line_fronts,
+                          stats.line_ends_placed)));
   ereport(DEBUG1, (errmsg("grow_patches: front dead ends: %zu draws refused (a patch's own dead ends, the output's "
                           "share of them at the example's %.3f), %zu fronts tried again without the rule; when the "
                           "growth stopped %zu own dead ends, %zu junctions",

@@ -4997,7 +4997,7 @@ class Grower {
     // (counted with align_stems off too, for its DEBUG1 line and tests: the draw is the same)
     const bool align = city_of_crossings();
     if (align) tees_near(p);
-    bool any_stem = false;
+    bool any_stem = false, any_line = false;
     for (std::uint32_t j : touched_) {
       double u = std::max(uniform01(), 1e-300);
       double x = std::min(best_[j].d / params_.patch.scale, 700.0);
@@ -5005,10 +5005,16 @@ class Grower {
         best_[j].stems = stems_gone_on(j, p);
         if (params_.patch.align_stems) x -= kStemWeight * best_[j].stems;
         any_stem = any_stem || best_[j].stems > 0;
+        if (params_.patch.align_lines) {
+          best_[j].line_ends = ends_on_lines(j, p);
+          x -= kLineWeight * best_[j].line_ends;
+          any_line = any_line || best_[j].line_ends > 0;
+        }
       }
       keyed_.emplace_back(std::log(u) * std::exp(x), j);
     }
     stats_.stem_fronts += any_stem;
+    stats_.line_fronts += any_line;
     std::sort(keyed_.begin(), keyed_.end(), [](const auto& a, const auto& b) {
       return a.first > b.first || (a.first == b.first && a.second < b.second);
     });
@@ -5046,7 +5052,10 @@ class Grower {
       refusal_ = kRefNone;
       if (place_patch(v, j, lp.edges[best_[j].edge].line[0], best_[j].edge)) {
         ++stats_.size_placed[lp.size_class];
-        if (align) stats_.stems_continued += static_cast<std::size_t>(best_[j].stems);
+        if (align) {
+          stats_.stems_continued += static_cast<std::size_t>(best_[j].stems);
+          stats_.line_ends_placed += static_cast<std::size_t>(best_[j].line_ends);
+        }
         if (seam_pass == 0 && seam_hit_) ++stats_.seam_refused;
         seam_limit_ = 0.0;
         front_dead_ends_off_ = false;
@@ -5202,6 +5211,7 @@ class Grower {
     double d;
     std::uint32_t edge;
     int stems = 0;  // align_stems: T's of the network the patch goes on across, placed by this pair
+    int line_ends = 0;  // align_lines: its connector ends on the line of a street across them
   };
   std::vector<BestPair> best_;
   // Not for a city of cul-de-sacs (cul_de_sac_city: its own dead ends over 15 % of its street ends:
@@ -5259,6 +5269,39 @@ class Grower {
     }
     return n;
   }
+  // PatchGrowParams::align_lines: how many of patch j's connector ends (its vertices of one street,
+  // the front aside), the patch placed by its best pair with the connector's inner end on p, lie
+  // within kLineTolerance of the line of a network street across theirs (kLineSquare), that street
+  // within kLineReach of the end: the street the end's next junction would continue.
+  static constexpr double kLineWeight = 3.0;     // scales of Hausdorff distance per end on a line
+  static constexpr double kLineTolerance = 0.25;  // of snap: 0.15 / 0.4 measured (new-york, README)
+  static constexpr double kLineReach = 1.5;       // mean streets: 3 measured
+  static constexpr double kLineSquare = 0.17;     // |cos| between the two streets: within 10 degrees of square
+  int ends_on_lines(std::uint32_t j, Point p) {
+    const double tolerance = kLineTolerance * snap_, reach = kLineReach * street_stats_.length_mean;
+    const Point anchor = library_[j].edges[best_[j].edge].line[0];
+    int n = 0;
+    for (const StemVertex& sv : stem_vertices(j)) {
+      if (sv.next.size() != 1 || distance(sv.at, anchor) <= kContact) continue;
+      const Point at = warped(sv.at, anchor, p);
+      const Point heading = unit(at - warped(sv.next[0], anchor, p));
+      line_hits_.clear();
+      edge_tree_.query(bgi::intersects(box_around(at, reach)), std::back_inserter(line_hits_));
+      for (const BoxValue& hv : line_hits_) {
+        const Point a = nodes_[edges_[hv.second].a].p, b = nodes_[edges_[hv.second].b].p;
+        if (!(distance(a, b) > 1.0)) continue;
+        const Point along = unit(b - a);
+        if (std::abs(dot(along, heading)) > kLineSquare) continue;
+        const Point w = at - a;
+        if (std::abs(w.x * along.y - w.y * along.x) > tolerance) continue;  // off the street's line
+        if (point_segment_distance(at, a, b) > reach) continue;
+        ++n;
+        break;
+      }
+    }
+    return n;
+  }
+  std::vector<BoxValue> line_hits_;
   // The T's (nodes of degree 3) that a patch placed at p could reach with a vertex within half a
   // snap distance: within the library's largest patch extent (its vertices' box diagonal) of p.
   // stems_gone_on looks a vertex up only where one of them is that close.
