@@ -5269,8 +5269,8 @@ class Grower {
     }
     return n;
   }
-  // PatchGrowParams::align_lines: how many of patch j's connector ends (its vertices of one street,
-  // the front aside), the patch placed by its best pair with the connector's inner end on p, lie
+  // PatchGrowParams::align_lines: how many of patch j's ends (its vertices of one street, connectors'
+  // and dead ends', the front aside), the patch placed by its best pair with the connector's inner end on p, lie
   // within kLineTolerance of the line of a network street across theirs (kLineSquare), that street
   // within kLineReach of the end: the street the end's next junction would continue.
   static constexpr double kLineWeight = 3.0;     // scales of Hausdorff distance per end on a line

@@ -242,10 +242,10 @@ struct PatchGrowParams {
   // −6.5 points on seeds 1-30, −8.85 → −7.6 on 31-60 (README "Stems aligned").
   bool align_stems = true;
   // Ends on lines (a city of crossings, as align_stems): a front's draw also favours the patches
-  // whose connector ends (patch vertices of one street, the front aside) land within a quarter snap
-  // distance of the line of a network street across theirs (within 10 degrees of square, its nearest
-  // point within 1.5 mean streets): each such end weighs as a Hausdorff distance three scales
-  // shorter. A row of new-york's blocks put its avenues at the sums of its own patches' connector
+  // whose ends (patch vertices of one street: connectors' and dead ends', the front aside) land
+  // within a quarter snap distance of the line of a network street across theirs (within 10 degrees
+  // of square, its nearest point within 1.5 mean streets): each such end weighs as a Hausdorff
+  // distance three scales shorter. A row of new-york's blocks put its avenues at the sums of its own patches' connector
   // lengths, so the rows did not agree where the avenues run, and an avenue of the next row met a
   // street halfway along its block. Its 4-way share −3.22 → −1.36 points on seeds 1-30, −2.88 →
   // −2.27 on 31-60, −3.14 → −2.82 on 61-90 (README "Ends on lines").
