@@ -278,10 +278,9 @@ psql -X -q -v ON_ERROR_STOP=1 <<'SQL'
 CREATE INDEX ON example USING gist (geom);
 ANALYZE example;
 WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom, ST_Boundary(geom) AS edge FROM region),
-     pts AS (SELECT w.name, ST_Centroid(c.geom) AS p, ST_Distance(ST_Centroid(c.geom), w.edge) < 150 AS near_edge,
-                    ST_Distance(ST_Centroid(c.geom), w.edge) >= 300 AS inner_part
-               FROM win w, ST_SquareGrid(25, w.geom) AS c
-              WHERE ST_Intersects(ST_Centroid(c.geom), w.geom)),
+     pts AS (SELECT w.name, q.p, ST_Distance(q.p, w.edge) < 150 AS near_edge, ST_Distance(q.p, w.edge) >= 300 AS inner_part
+               FROM win w, ST_SquareGrid(25, w.geom) AS c, LATERAL (SELECT ST_Centroid(c.geom) AS p) q
+              WHERE ST_Intersects(q.p, w.geom)),
      ex_pts AS (SELECT p.*, NOT EXISTS (SELECT 1 FROM example e WHERE e.name = p.name AND ST_DWithin(e.geom, p.p, 100)) AS empty
                   FROM pts p),
      ex AS (SELECT name, avg(empty::int) AS empty, avg(empty::int) FILTER (WHERE near_edge) AS edge_empty,
@@ -323,45 +322,40 @@ CREATE FUNCTION pg_temp.aspect(f geometry) RETURNS double precision LANGUAGE sql
     FROM (SELECT ST_Distance(ST_PointN(r, 1), ST_PointN(r, 2)) AS a, ST_Distance(ST_PointN(r, 2), ST_PointN(r, 3)) AS b
             FROM (SELECT ST_ExteriorRing(ST_OrientedEnvelope(f)) AS r) e) s $$;
 WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom FROM region),
-     ex_faces AS (SELECT name, (ST_Dump(ST_Polygonize(geom))).geom AS f FROM example GROUP BY name),
-     ex AS (SELECT x.name, count(*) / (ST_Area(min(w.geom)) / 1e6) AS per_km2,
-                   percentile_cont(0.5) WITHIN GROUP (ORDER BY ST_Area(x.f)) AS area,
-                   percentile_cont(0.5) WITHIN GROUP (ORDER BY 4 * pi() * ST_Area(x.f) / ST_Perimeter(x.f) ^ 2) AS compact,
-                   percentile_cont(0.5) WITHIN GROUP (ORDER BY pg_temp.aspect(x.f)) AS aspect,
-                   1000 * sum(ST_Perimeter(x.f)) / sum(ST_Area(x.f)) AS perim
-              FROM ex_faces x JOIN win w USING (name)
-             WHERE ST_Within(x.f, w.geom) AND ST_Area(x.f) >= 200 GROUP BY x.name),
+     ex_faces AS (SELECT 'example'::text AS method, name, 0 AS seed, (ST_Dump(ST_Polygonize(geom))).geom AS f
+                    FROM example GROUP BY name),
      gr_faces AS (SELECT method, name, seed, (ST_Dump(ST_Polygonize(geom))).geom AS f FROM grown GROUP BY method, name, seed),
-     gr AS (SELECT f.method, f.name, f.seed, f.f,
-                   coalesce((SELECT sum(ST_Length(ST_Intersection(g.geom, ST_Buffer(ST_Boundary(f.f), 0.5))))
-                               FROM grown g
-                              WHERE g.method = f.method AND g.name = f.name AND g.seed = f.seed
-                                AND g.origin LIKE 'grow_parametric%' AND ST_DWithin(g.geom, ST_Boundary(f.f), 0.5)), 0)
-                     / ST_Perimeter(f.f) >= 0.02 AS with_stat
-              FROM gr_faces f JOIN win w USING (name)
-             WHERE ST_Within(f.f, w.geom) AND ST_Area(f.f) >= 200),
-     per_seed AS (SELECT gr.method, gr.name, gr.seed, gr.with_stat, count(*) AS n,
+     -- the example's faces (with_stat NULL) and the grown ones, marked by their statistical perimeter
+     faces AS (SELECT f.method, f.name, f.seed, f.f,
+                      CASE WHEN f.method <> 'example' THEN
+                        coalesce((SELECT sum(ST_Length(ST_Intersection(g.geom, ST_Buffer(ST_Boundary(f.f), 0.5))))
+                                    FROM grown g
+                                   WHERE g.method = f.method AND g.name = f.name AND g.seed = f.seed
+                                     AND g.origin LIKE 'grow_parametric%' AND ST_DWithin(g.geom, ST_Boundary(f.f), 0.5)), 0)
+                          / ST_Perimeter(f.f) >= 0.02
+                      END AS with_stat
+                 FROM (SELECT * FROM ex_faces UNION ALL SELECT * FROM gr_faces) f JOIN win w USING (name)
+                WHERE ST_Within(f.f, w.geom) AND ST_Area(f.f) >= 200),
+     per_seed AS (SELECT x.method, x.name, x.seed, x.with_stat, count(*) AS n,
                          count(*) / (ST_Area(min(w.geom)) / 1e6) AS per_km2,
-                         percentile_cont(0.5) WITHIN GROUP (ORDER BY ST_Area(gr.f)) AS area,
-                         percentile_cont(0.5) WITHIN GROUP (ORDER BY 4 * pi() * ST_Area(gr.f) / ST_Perimeter(gr.f) ^ 2) AS compact,
-                         percentile_cont(0.5) WITHIN GROUP (ORDER BY pg_temp.aspect(gr.f)) AS aspect,
-                         1000 * sum(ST_Perimeter(gr.f)) / sum(ST_Area(gr.f)) AS perim
-                    FROM gr JOIN win w USING (name) GROUP BY gr.method, gr.name, gr.seed, gr.with_stat),
-     shares AS (SELECT method, name, seed, sum(n) FILTER (WHERE with_stat) / sum(n) AS share FROM per_seed GROUP BY 1, 2, 3),
+                         percentile_cont(0.5) WITHIN GROUP (ORDER BY ST_Area(x.f)) AS area,
+                         percentile_cont(0.5) WITHIN GROUP (ORDER BY 4 * pi() * ST_Area(x.f) / ST_Perimeter(x.f) ^ 2) AS compact,
+                         percentile_cont(0.5) WITHIN GROUP (ORDER BY pg_temp.aspect(x.f)) AS aspect,
+                         1000 * sum(ST_Perimeter(x.f)) / sum(ST_Area(x.f)) AS perim
+                    FROM faces x JOIN win w USING (name) GROUP BY x.method, x.name, x.seed, x.with_stat),
+     shares AS (SELECT method, name, seed, sum(n) FILTER (WHERE with_stat) / sum(n) AS share
+                  FROM per_seed WHERE method <> 'example' GROUP BY 1, 2, 3),
      med AS (SELECT method, name, with_stat,
                     percentile_cont(0.5) WITHIN GROUP (ORDER BY per_km2) AS per_km2, percentile_cont(0.5) WITHIN GROUP (ORDER BY area) AS area,
                     percentile_cont(0.5) WITHIN GROUP (ORDER BY compact) AS compact, percentile_cont(0.5) WITHIN GROUP (ORDER BY aspect) AS aspect,
                     percentile_cont(0.5) WITHIN GROUP (ORDER BY perim) AS perim
                FROM per_seed GROUP BY 1, 2, 3)
-SELECT m.method, m.name, CASE WHEN m.with_stat THEN 'grown, with statistical' ELSE 'grown, patch streets only' END AS blocks,
+SELECT m.method, m.name,
+       CASE WHEN m.with_stat IS NULL THEN 'example' WHEN m.with_stat THEN 'grown, with statistical' ELSE 'grown, patch streets only' END AS blocks,
        round(m.per_km2::numeric, 1) AS per_km2, round(m.area::numeric) AS median_m2, round(m.compact::numeric, 3) AS compactness,
        round(m.aspect::numeric, 2) AS aspect, round(m.perim::numeric, 1) AS perimeter_per_1000m2,
        round((100 * (SELECT percentile_cont(0.5) WITHIN GROUP (ORDER BY share) FROM shares s WHERE s.method = m.method AND s.name = m.name))::numeric, 1) AS with_stat_pct
   FROM med m
-UNION ALL
-SELECT 'example', name, 'example', round(per_km2::numeric, 1), round(area::numeric), round(compact::numeric, 3), round(aspect::numeric, 2),
-       round(perim::numeric, 1), NULL
-  FROM ex
  ORDER BY 2, 1 DESC, 3;
 SQL
 
