@@ -1271,10 +1271,9 @@ std::vector<PatchInputEdge> turned_bricks_with_culs_de_sac() {
   const std::vector<PatchInputEdge> bricks = bricks_with_culs_de_sac();
   std::int64_t id = 0;
   for (int k = 0; k < 4; ++k) {
-    const double angle = k * 22.5 * M_PI / 180.0, c = std::cos(angle), s = std::sin(angle);
     const Point offset{(k % 2) * 2000.0, (k / 2) * 2000.0};
-    for (PatchInputEdge e : bricks) {
-      for (Point& q : e.line) q = Point{c * q.x - s * q.y, s * q.x + c * q.y} + offset;
+    for (PatchInputEdge e : turned_about_origin(bricks, k * 22.5 * M_PI / 180.0)) {
+      for (Point& q : e.line) q = q + offset;
       e.id = ++id;
       out.push_back(e);
     }
