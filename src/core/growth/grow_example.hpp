@@ -282,7 +282,7 @@ struct PatchGrowParams {
   // (street density -16 to -64 %); 0.85 measured best of 0.7 / 0.85 / 1 before the length cap.
   // With the cap, whose cut-back of the open connectors leaves a growth at 0.91-0.97 x, 0.95 makes
   // up most of that in the voids the cap left at the region's edge: seeds 1-60, per-pair median
-  // (mean over the six examples) 2.61 → 2.40 %, values past 15 % 242 → 239, the share of the window
+  // (mean over the six examples) 2.60 → 2.40 %, values past 15 % 242 → 239, the share of the window
   // farther than 100 m from every street barcelona 11.8 → 8.0 %, quito 8.6 → 5.7 % (seeds 1-30;
   // README "Refill to the cap"). 0: off.
   double refill = 0.95;
