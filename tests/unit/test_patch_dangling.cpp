@@ -1270,7 +1270,7 @@ TEST(PatchDangling, PatchEndsOnTheLinesOfStreetsAcrossInACityOfCrossings) {
 namespace {
 
 // The bricks with cul-de-sacs four times, turned by 0, 22.5, 45 and 67.5 degrees and 2 km apart: a
-// weakly ordered city of cul-de-sacs (its streets at eight bearings a quarter turn round).
+// weakly ordered city of cul-de-sacs (its streets at eight bearings 22.5 degrees apart).
 std::vector<PatchInputEdge> turned_bricks_with_culs_de_sac() {
   std::vector<PatchInputEdge> out;
   const std::vector<PatchInputEdge> bricks = bricks_with_culs_de_sac();
