@@ -9,6 +9,7 @@
 
 #include "core/growth/grow_example.hpp"
 #include "core/growth/patches.hpp"
+#include "core/metrics/network_stats.hpp"
 #include "patch_fixtures.hpp"
 #include "test_support.hpp"
 
@@ -1286,22 +1287,21 @@ std::vector<PatchInputEdge> turned_bricks_with_culs_de_sac() {
   return out;
 }
 
-// The orientation order φ of a growth's segments (36 bins of 10 degrees, length-weighted, counted
-// both ways: network_stats' φ over segments rather than merged streets).
+// The orientation order φ of a growth's segments (network_stats' bins and φ, length-weighted,
+// counted both ways, over segments rather than merged streets).
 double segment_order(const GrowResult& r) {
-  std::vector<double> bins(36, 0.0);
+  std::vector<double> bins(kOrientationBins, 0.0);
   double weight = 0.0;
   for (const GrownEdge& e : r.edges) {
     const Point d = e.b - e.a;
     const double length = std::hypot(d.x, d.y);
     const double bearing = std::fmod(std::atan2(d.x, d.y) * 180.0 / M_PI + 360.0, 360.0);
-    for (double b : {bearing, std::fmod(bearing + 180.0, 360.0)}) bins[static_cast<int>(std::fmod(b + 5.0, 360.0) / 10.0)] += length;
+    for (double b : {bearing, std::fmod(bearing + 180.0, 360.0)}) bins[orientation_bin(b)] += length;
     weight += 2.0 * length;
   }
   double entropy = 0.0;
   for (double w : bins) entropy -= w > 0.0 ? w / weight * std::log(w / weight) : 0.0;
-  const double x = (entropy - std::log(4.0)) / (std::log(36.0) - std::log(4.0));
-  return 1.0 - x * x;
+  return orientation_order_of_entropy(entropy);
 }
 
 // Patches placed (distinct patch ids among the grown edges a patch made) and the most edges one

@@ -1834,7 +1834,7 @@ class Grower {
     }
     if (corrected != nullptr) {
       const double chains = 0.25 * weight * weight / squares;  // (weight counts each chain twice)
-      *corrected = orientation_order_of_entropy(std::min(std::log(36.0), entropy + kEntropyBias / chains));
+      *corrected = orientation_order_of_entropy(std::min(std::log(static_cast<double>(kOrientationBins)), entropy + kEntropyBias / chains));
     }
     return orientation_order_of_entropy(entropy);
   }
