@@ -541,8 +541,9 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           stats.corners_straightened, stats.corners_in_turn, stats.corners_completed,
                           stats.corners_over_density)));
   ereport(DEBUG1, (errmsg("grow_patches: front crossings: %zu draws refused (a front made a crossing its patch's "
-                          "junction is not, the output's crossing share at the example's %.3f)",
-                          stats.front_crossings_refused, stats.example_crossing_share)));
+                          "junction is not, the output's crossing share at the example's %.3f); the joins across "
+                          "aimed at a share of %.3f",
+                          stats.front_crossings_refused, stats.example_crossing_share, stats.crossing_target)));
   ereport(DEBUG1, (errmsg("grow_patches: stems: %zu fronts drew a patch going on across a T's lone street, %zu "
                           "T's the placed patches were drawn to go on across; %zu patch streets left out as doubling "
                           "a street within 1.25 x snap; %zu fronts drew a patch with a connector end on the line of a "

@@ -872,6 +872,44 @@ TEST(PatchDangling, FrontCrossingsFollowTheExamplesShare) {
   expect_same_graph(grid_on, grid_off);
 }
 
+// Crossings inside the crop: in a city of cul-de-sacs, continue_across's joins aim at the
+// example's crossing share inside its crop margin (the share the front crossings keep), not the
+// whole example's. The uneven grid with a cul-de-sac off every street has fewer crossings in its
+// crop ring than inside (the whole example's share 0.25, inside 0.32), the grid cropped across
+// two streets with one off every third street more (0.64, 0.56): each growth joins to its target,
+// more joins for the first, fewer for the second, and the output's share is nearer the inside
+// share; planar, deterministic. An example that is no city of cul-de-sacs (the uneven grid) grows
+// as it did.
+TEST(PatchDangling, CrossingsJoinedAcrossAimAtTheShareInsideTheCrop) {
+  Fixture f;
+  auto share = [](const GrowResult& r) {
+    const auto [threes, fours] = junction_counts(r);
+    return static_cast<double>(fours) / static_cast<double>(threes + fours);
+  };
+  for (bool inside_higher : {true, false}) {
+    SCOPED_TRACE(inside_higher ? "uneven grid with culs-de-sac" : "cropped grid with culs-de-sac");
+    GrowInput in = f.input(inside_higher ? uneven_grid_with_culs_de_sac()
+                                         : with_culs_de_sac(cropped_grid(55.0, true), 3));
+    auto [off, on] = f.grow_off_on(in, &PatchGrowParams::interior_crossings);
+    const double inside = on.stats.example_crossing_share;
+    EXPECT_EQ(on.stats.crossing_target, inside);
+    EXPECT_GT(std::abs(off.stats.crossing_target - inside), 0.05);
+    EXPECT_EQ(off.stats.crossing_target < inside, inside_higher);
+    ASSERT_GT(off.stats.continued_across, 0u);
+    if (inside_higher) EXPECT_GT(on.stats.continued_across, off.stats.continued_across);  // (measured 87 against 41)
+    else EXPECT_LT(on.stats.continued_across, off.stats.continued_across);               // (135 against 331)
+    EXPECT_NEAR(share(off), off.stats.crossing_target, 0.02);
+    EXPECT_NEAR(share(on), inside, 0.02);
+    EXPECT_LT(std::abs(share(on) - inside), 0.5 * std::abs(share(off) - inside));
+    EXPECT_EQ(crossings_without_node(on), 0);
+    expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
+  }
+  GrowInput grid = f.input(uneven_grid());
+  auto [grid_off, grid_on] = f.grow_off_on(grid, &PatchGrowParams::interior_crossings);
+  EXPECT_EQ(grid_on.stats.crossing_target, grid_off.stats.crossing_target);
+  expect_same_graph(grid_on, grid_off);
+}
+
 // Joins under the example's junctions: the walled uneven grid beside an existing network of 600
 // small T's (junctions far over the example's per area of the region shrunk by 50 m). The joins of
 // dead ends that would make a junction (a street split, a node of degree 2) are refused, those

@@ -3948,7 +3948,13 @@ class Grower {
     return lone < 0 ? UINT32_MAX : es[static_cast<std::size_t>(lone)];
   }
   // The example's share of crossings among its junctions: P(degree > 3 | degree >= 3).
+  // The share of crossings among junctions continue_across aims at: P(degree > 3 | degree >= 3)
+  // of the example; with PatchGrowParams::interior_crossings, in a city of cul-de-sacs, of its
+  // junctions inside the crop margin (Example::crossing_share).
   double crossing_target() {
+    if (params_.use_patches && params_.patch.interior_crossings && cul_de_sac_city(example_dead_end_share_)) {
+      return ex().crossing_share;
+    }
     const std::vector<double>& more = ex().more;
     return more.size() > 3 ? more[3] : 0.0;
   }
@@ -4074,6 +4080,7 @@ class Grower {
   void continue_across() {
     const double reach = std::max(snap_, kAcrossReach * street_stats_.length_mean);
     const double target = crossing_target();
+    stats_.crossing_target = target;
     long junctions = 0, crossings = 0;
     if (!join_facing_tees(kAcrossReach, kAcrossReach, junctions, crossings)) return;
     // Arterials: an arterial T (all three streets main) with no T facing it goes on straight to

@@ -233,6 +233,14 @@ struct PatchGrowParams {
   // passes the example's early in the growth and the joins after it lose crossings (strasbourg: 4-5
   // draws refused a growth, its final share 16-26 % under the example's). bench/patches, README.
   bool front_crossings = true;
+  // Crossings inside the crop (a city of cul-de-sacs): continue_across's joins aim at the example's
+  // share of crossings among its junctions farther than crop_margin inside its hull (the share the
+  // front crossings keep), not the whole example's, whose crop ring is a sample of a few junctions.
+  // Canberra_south_large's whole example 0.0213, inside 0.0194: a join makes two crossings, and
+  // growths at 6 took one more pair to 8 inside the hull shrunk by 50 m (the example 7). 4-way share
+  // +14.1 -> +2.4 % at the median over seeds 1-120, seeds past 15 % 61 -> 20, per-pair median 2.45
+  // -> 2.30 % (README "Crossings inside the crop").
+  bool interior_crossings = true;
   // Stems aligned (a city of crossings: an ordered example, φ at least 0.6, one style, more than
   // half its junctions crossings; new-york, not tokyo): a front's draw favours the patches whose
   // vertices land (within half a snap distance) on a T of the network and leave it where its lone
@@ -506,6 +514,7 @@ struct GrowStats {
   std::size_t patch_illegal = 0;   // drawn patches that failed a legality check
   std::size_t front_crossings_refused = 0;  // PatchGrowParams::front_crossings: draws refused for a crossing at the front
   double example_crossing_share = 0.0;      // patch growth: the patch streets' crossings among their junctions
+  double crossing_target = 0.0;  // continue_across: the share of crossings among junctions its joins aimed at
   // A city of crossings (align_stems, counted also with it off): fronts where a candidate patch
   // would go on across a T's lone street, and T's the placed patches were so drawn to go on across.
   std::size_t stem_fronts = 0;
