@@ -3498,7 +3498,11 @@ class Grower {
   void straighten_corners() {
     if (styles_ != 1 || examples_.empty()) return;
     const bool ordered = example_order() >= kSeamOrder;
-    if (!ordered && !(params_.patch.weak_order_corners && example_order() >= kCornerMinOrder)) return;
+    stats_.example_order = example_order();
+    if (!ordered && !(params_.patch.weak_order_corners && example_order() >= kCornerMinOrder &&
+                      !cul_de_sac_city(example_dead_end_share_))) {
+      return;
+    }
     if (output_order() >= (1.0 - kCornerOrderGap) * example_order()) return;
     const bool junction_budget = !ordered && example_junctions_per_area_ > 0.0;
     const double junctions_allowed = junction_budget ? junctions_allowed_inside() : 0.0;
@@ -3674,10 +3678,12 @@ class Grower {
   }
   static constexpr double kCornerOrderGap = 0.10;      // straighten_corners: of the example's φ
   static constexpr double kCornerMixTolerance = 0.125; // straighten_corners: of the example's crossing share
-  // weak_order_corners: the least φ of an example whose corners are straightened. Below it an
-  // example's streets are about as unordered as φ tells (quito 0.07, canberra's cul-de-sacs 0.04:
-  // a 15 % bar there is ±0.01 of φ), and straightening quito's raised its per-pair median.
-  static constexpr double kCornerMinOrder = 0.15;
+  // weak_order_corners: the least φ of an example whose corners are straightened (not in a city of
+  // cul-de-sacs). At 0.15 quito (0.073) was left out, as straightening raised its per-pair median
+  // (3.16 -> 4.13 % before the refill at 0.95); with the refill, 2.16 -> 2.60 % while its φ went
+  // from -12.0 to -5 % at the median over seeds 1-60 (-16.4 to -5.5 over 61-120). Canberra's
+  // cul-de-sacs (0.037) lost 8 points of block area to it (README "Corners of quito").
+  static constexpr double kCornerMinOrder = 0.05;
   // Nishida et al.'s local constraint (section 4.3.4, Figure 6a) for the streets growth left
   // ending where the example does not end them (an open connector whose front found no legal
   // patch, a statistical street, a street the example's crop cut): the street is extended to the

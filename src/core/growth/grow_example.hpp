@@ -193,9 +193,11 @@ struct PatchGrowParams {
   // 30 with this); a T made instead adds a street the density counts (README "Where φ comes from").
   bool corner_cascade = true;
   // Corners of a weakly ordered example (with straight_corners): straightened also where the
-  // example's φ is at least 0.15 (barcelona 0.28, strasbourg 0.19), not only 0.6 (tokyo, new-york),
-  // and there a change that adds a junction only within the example's junctions per area (README
-  // "Corners of a weakly ordered example"). Barcelona's φ was past 15 % on 18 of seeds 1-30.
+  // example's φ is at least 0.05 (barcelona 0.28, strasbourg 0.19, quito 0.073), not only 0.6
+  // (tokyo, new-york), but not in a city of cul-de-sacs (canberra), and there a change that adds a
+  // junction only within the example's junctions per area (README "Corners of a weakly ordered
+  // example", "Corners of quito"). Barcelona's φ was past 15 % on 18 of seeds 1-30, quito's on 36
+  // of seeds 1-60 (27 with it).
   bool weak_order_corners = true;
   // Grid fallback (grid41; an ordered example, φ at least 0.6, one style): a statistical street
   // turns onto the example's grid axis (mod 90 degrees, turned as the patches are) when the street it
@@ -515,6 +517,7 @@ struct GrowStats {
   std::size_t front_crossings_refused = 0;  // PatchGrowParams::front_crossings: draws refused for a crossing at the front
   double example_crossing_share = 0.0;      // patch growth: the patch streets' crossings among their junctions
   double crossing_target = 0.0;  // continue_across: the share of crossings among junctions its joins aimed at
+  double example_order = 0.0;    // straight_corners: the example's φ (network_stats' orientation order)
   // A city of crossings (align_stems, counted also with it off): fronts where a candidate patch
   // would go on across a T's lone street, and T's the placed patches were so drawn to go on across.
   std::size_t stem_fronts = 0;
