@@ -3681,8 +3681,9 @@ class Grower {
   // weak_order_corners: the least φ of an example whose corners are straightened (not in a city of
   // cul-de-sacs). At 0.15 quito (0.073) was left out, as straightening raised its per-pair median
   // (3.16 -> 4.13 % before the refill at 0.95); with the refill, 2.16 -> 2.60 % while its φ went
-  // from -12.0 to -5 % at the median over seeds 1-60 (-16.4 to -5.5 over 61-120). Canberra's
-  // cul-de-sacs (0.037) lost 8 points of block area to it (README "Corners of quito").
+  // from -12.0 to -4.7 % at the median over seeds 1-60 (-16.4 to -5.8 over 61-120). Canberra's
+  // cul-de-sacs (0.037) grew larger blocks with it (+1.6 -> +10.6 %, mean over seeds 1-60; README
+  // "Corners of quito").
   static constexpr double kCornerMinOrder = 0.05;
   // Nishida et al.'s local constraint (section 4.3.4, Figure 6a) for the streets growth left
   // ending where the example does not end them (an open connector whose front found no legal
