@@ -87,8 +87,8 @@ std::vector<PatchInputEdge> uneven_blocks() {
   return out;
 }
 
-// A spider's web: 16 spokes and 4 rings (100 m apart), its streets in every direction (orientation
-// order near 0).
+// A spider's web: `spokes` spokes and 4 rings (100 m apart), its streets in many directions
+// (orientation order 0.11 with 16 spokes, under 0.001 with 36).
 std::vector<PatchInputEdge> spider_web(int spokes = 16) {
   const double step = 2.0 * std::acos(-1.0) / spokes;
   auto at = [&](int ring, int spoke) {

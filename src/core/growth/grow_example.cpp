@@ -3954,7 +3954,6 @@ class Grower {
     }
     return lone < 0 ? UINT32_MAX : es[static_cast<std::size_t>(lone)];
   }
-  // The example's share of crossings among its junctions: P(degree > 3 | degree >= 3).
   // The share of crossings among junctions continue_across aims at: P(degree > 3 | degree >= 3)
   // of the example; with PatchGrowParams::interior_crossings, in a city of cul-de-sacs, of its
   // junctions inside the crop margin (Example::crossing_share).
