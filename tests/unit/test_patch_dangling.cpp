@@ -1164,6 +1164,9 @@ TEST(PatchDangling, CornersStraightenedOnAWeaklyOrderedExample) {
   // area where the corners are, so no change is refused: 40 straightened, 0 over the density,
   // corners 103 → 68; at 0.85 37, 5, 102 → 68)
   p.patch.refill = 0.85;
+  // (and the weakly ordered seams off: with them the growth's junctions also stay under the
+  // example's per area, and the straightening's T's add 14 junctions, none refused)
+  p.patch.weak_order_seams = false;
   auto [off, on] = f.grow_off_on(in, &PatchGrowParams::weak_order_corners, p);
   EXPECT_EQ(off.stats.corners_straightened + off.stats.corners_completed, 0u);
   ASSERT_GT(on.stats.corners_straightened, 0u);
@@ -1175,6 +1178,37 @@ TEST(PatchDangling, CornersStraightenedOnAWeaklyOrderedExample) {
   EXPECT_EQ(interior_dead_ends(on), interior_dead_ends(off));
   EXPECT_EQ(crossings_without_node(on), 0);
   expect_same_graph(grow_example(f.geos, in, p), on);  // (the switch on: its default)
+}
+
+// Seams of a weakly ordered example (weak_order_seams): the uneven blocks beside a spider's web (φ
+// under 0.6, so the ordered examples' seam rules leave it alone) glue patch streets whose merges
+// turn them where the grid's patches meet. With the switch the seam rules run as on an ordered
+// example: draws refused for a seam and dead ends slid, a smaller share of the patch streets' length
+// turned by 5 degrees or more, planar, deterministic. The same with a cul-de-sac off every street (a
+// city of cul-de-sacs) is left alone, as is the spider's web alone (φ 0.11:
+// SeamsTurnFewerPatchStreetsOnAnOrderedExample).
+TEST(PatchDangling, SeamsTurnFewerPatchStreetsOnAWeaklyOrderedExample) {
+  Fixture f;
+  GrowInput in = f.input(blocks_beside_a_web());
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::weak_order_seams);
+  auto turned = [](const GrowStats& s) {
+    return (s.seam_length[2] + s.seam_length[3] + s.seam_length[4]) / std::max(1.0, s.patch_length);
+  };
+  EXPECT_GE(on.stats.example_order, 0.15);
+  EXPECT_LT(on.stats.example_order, 0.6);
+  EXPECT_EQ(off.stats.seam_refused + off.stats.seam_slid + off.stats.seam_relaxed, 0u);
+  EXPECT_GT(on.stats.seam_refused, 0u);  // (measured 117, and 279 dead ends slid)
+  EXPECT_GT(on.stats.seam_slid, 0u);
+  ASSERT_GT(turned(off.stats), 0.0);
+  EXPECT_LT(turned(on.stats), 0.5 * turned(off.stats));  // (0.048 against 0.130)
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
+
+  // The same with a cul-de-sac off every street: a city of cul-de-sacs, left alone.
+  const GrowResult culs = grow_example(f.geos, f.input(with_culs_de_sac(blocks_beside_a_web())), Fixture::patch_growth());
+  EXPECT_GT(culs.stats.patches_placed, 0u);
+  EXPECT_GE(culs.stats.example_order, 0.15);
+  EXPECT_EQ(culs.stats.seam_refused + culs.stats.seam_slid + culs.stats.seam_relaxed, 0u);  // (94 and 320 without the gate)
 }
 
 // Stems aligned (align_stems): the uneven blocks are a city of crossings (ordered, most junctions
