@@ -3499,10 +3499,7 @@ class Grower {
     if (styles_ != 1 || examples_.empty()) return;
     const bool ordered = example_order() >= kSeamOrder;
     stats_.example_order = example_order();
-    if (!ordered && !(params_.patch.weak_order_corners && example_order() >= kCornerMinOrder &&
-                      !cul_de_sac_city(example_dead_end_share_))) {
-      return;
-    }
+    if (!ordered && !(params_.patch.weak_order_corners && weakly_ordered(kCornerMinOrder))) return;
     if (output_order() >= (1.0 - kCornerOrderGap) * example_order()) return;
     const bool junction_budget = !ordered && example_junctions_per_area_ > 0.0;
     const double junctions_allowed = junction_budget ? junctions_allowed_inside() : 0.0;
@@ -5430,10 +5427,14 @@ class Grower {
   bool seams_here() {
     if (styles_ != 1 || examples_.empty()) return false;
     const double order = example_order();
-    const bool weak = params_.patch.weak_order_seams && order >= kWeakSeamOrder &&
-                      !cul_de_sac_city(example_dead_end_share_);
-    if (order < kSeamOrder && !weak) return false;
+    if (order < kSeamOrder && !(params_.patch.weak_order_seams && weakly_ordered(kWeakSeamOrder))) return false;
     return output_order() < order;
+  }
+  // Whether a rule of the ordered examples also runs here, from φ `least` (weak_order_corners,
+  // weak_order_seams): the example at least that ordered, and no city of cul-de-sacs (canberra,
+  // whose φ the spread order follows).
+  bool weakly_ordered(double least) {
+    return example_order() >= least && !cul_de_sac_city(example_dead_end_share_);
   }
   static constexpr double kSeamOrder = 0.6;
   // weak_order_seams: quito (0.073) at 0.05 measured even (seeds 1-30: φ −2.7 → −4.3 %, per-pair
