@@ -536,10 +536,10 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           "at a corner",
                           stats.fallback_grid_turned, stats.fallback_snaps_off_line, stats.dangling_corners_cut)));
   ereport(DEBUG1, (errmsg("grow_patches: corners: %zu gone on straight (the other street dropped; %zu of them "
-                          "junctions an earlier drop left corners), %zu gone on to a T, %zu changes refused (a "
-                          "weakly ordered example's junctions per area)",
+                          "junctions an earlier drop left corners), %zu gone on to a T (%zu of them for the "
+                          "junctions), %zu changes refused (a weakly ordered example's junctions per area)",
                           stats.corners_straightened, stats.corners_in_turn, stats.corners_completed,
-                          stats.corners_over_density)));
+                          stats.corner_tees, stats.corners_over_density)));
   ereport(DEBUG1, (errmsg("grow_patches: front crossings: %zu draws refused (a front made a crossing its patch's "
                           "junction is not, the output's crossing share at the example's %.3f); the joins across "
                           "aimed at a share of %.3f",

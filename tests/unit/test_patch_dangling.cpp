@@ -1430,3 +1430,48 @@ TEST(PatchDangling, SpreadOrderDrawsUnusedPatchesWhileTheOutputIsMoreOrdered) {
   EXPECT_EQ(grid_on.stats.spread_fronts, 0u);
   expect_same_graph(grid_on, grid_off);
 }
+
+// Corner T's (corner_tees): on a weakly ordered example the straightening keeps a corner's other
+// street (the corner becomes a T) while two more junctions keep the network within the example's
+// junctions per area; past that it drops the other street as before. The spider's web of 12 spokes
+// (φ 0.36) grows under its example's junctions per area: its corners become T's, none is dropped,
+// the network has more junctions and more street length. The web of 16 (φ 0.11) reaches the
+// example's junctions per area: a few T's, then the changes that add junctions are refused and
+// the rest dropped as before. An ordered example (the uneven blocks) and a city of cul-de-sacs are
+// left alone. Planar, no dead end made or joined, deterministic.
+TEST(PatchDangling, CornersBecomeTeesWhileTheJunctionsAreShort) {
+  Fixture f;
+  auto length = [](const GrowResult& r) {
+    double total = 0.0;
+    for (const GrownEdge& e : r.edges) total += distance(e.a, e.b);
+    return total;
+  };
+  GrowInput in = f.input(spider_web(12));
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::corner_tees);
+  EXPECT_GE(on.stats.example_order, 0.05);
+  EXPECT_LT(on.stats.example_order, 0.6);
+  EXPECT_EQ(off.stats.corner_tees, 0u);
+  ASSERT_GT(off.stats.corners_straightened, 0u);  // (measured 62)
+  EXPECT_GT(on.stats.corner_tees, off.stats.corners_straightened / 2);  // (measured 56)
+  EXPECT_LT(on.stats.corners_straightened, off.stats.corners_straightened);
+  const auto [threes_off, fours_off] = junction_counts(off);
+  const auto [threes_on, fours_on] = junction_counts(on);
+  EXPECT_GT(threes_on + fours_on, threes_off + fours_off);  // (686 -> 760)
+  EXPECT_GT(length(on), length(off));
+  EXPECT_LE(corner_count(on), corner_count(off));
+  EXPECT_EQ(interior_dead_ends(on), interior_dead_ends(off));
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
+
+  auto [web_off, web_on] = f.grow_off_on(f.input(spider_web()), &PatchGrowParams::corner_tees);
+  EXPECT_GT(web_on.stats.corner_tees, 0u);  // (measured 9)
+  EXPECT_GT(web_on.stats.corners_over_density, web_off.stats.corners_over_density);  // (18 -> 41)
+  EXPECT_GT(web_on.stats.corners_straightened, 0u);
+  EXPECT_EQ(crossings_without_node(web_on), 0);
+
+  for (const auto& example : {uneven_blocks(), with_culs_de_sac(spider_web())}) {
+    auto [left_off, left_on] = f.grow_off_on(f.input(example), &PatchGrowParams::corner_tees);
+    EXPECT_EQ(left_on.stats.corner_tees, 0u);
+    expect_same_graph(left_off, left_on);
+  }
+}

@@ -3503,6 +3503,7 @@ class Grower {
     if (output_order() >= (1.0 - kCornerOrderGap) * example_order()) return;
     const bool junction_budget = !ordered && example_junctions_per_area_ > 0.0;
     const double junctions_allowed = junction_budget ? junctions_allowed_inside() : 0.0;
+    const bool tees = params_.patch.corner_tees && junction_budget;
     const double reach = std::max(snap_, street_stats_.length_mean);
     const double cone = params_.patch.angle_window * kPi / 180.0;
     std::vector<std::uint32_t> corners;
@@ -3523,6 +3524,7 @@ class Grower {
       std::uint32_t edge;
       Point x;
       bool complete;       // the other street kept: the corner becomes a T
+      bool tee;            // (by corner_tees, not to keep a crossing)
       long junctions, crossings;  // the changes to the counts
     };
     std::vector<Option> options;
@@ -3565,7 +3567,7 @@ class Grower {
           };
           const Point dir = unit(p - other_end(keep, v));
           const double heading = std::atan2(dir.y, dir.x);
-          Option o{INFINITY, k, UINT32_MAX, UINT32_MAX, p, false, 0, 0};
+          Option o{INFINITY, k, UINT32_MAX, UINT32_MAX, p, false, false, 0, 0};
           point_hits_.clear();
           node_tree_.query(bgi::intersects(box_around(p, reach)), std::back_inserter(point_hits_));
           for (const PointValue& pv : point_hits_) {
@@ -3605,6 +3607,9 @@ class Grower {
           const std::size_t dw = o.node == UINT32_MAX ? 2 : nodes_[o.node].edges.size();
           if (dj == 1 || dw == 1) continue;  // the dead ends as they were
           o.complete = dj == 4 && dw == 3;
+          // corner_tees: a T while two more junctions stay within the example's per area.
+          o.tee = !o.complete && tees && static_cast<double>(junctions) + 2.0 <= junctions_allowed;
+          o.complete = o.complete || o.tee;
           const long ij = in_budget(j), iw = o.node == UINT32_MAX ? in_budget(v) : in_budget(o.node);
           if (o.complete) {
             o.junctions += in_budget(v);
@@ -3648,6 +3653,7 @@ class Grower {
           crossings += o.crossings;
           if (o.complete) {
             ++stats_.corners_completed;
+            stats_.corner_tees += o.tee;
             break;
           }
           ++stats_.corners_straightened;

@@ -204,6 +204,18 @@ struct PatchGrowParams {
   // example", "Corners of quito"). Barcelona's φ was past 15 % on 18 of seeds 1-30, quito's on 36
   // of seeds 1-60 (27 with it).
   bool weak_order_corners = true;
+  // Corner T's (weak_order_corners on a weakly ordered example, not an ordered one): a corner's
+  // straightening keeps its other street, so that the corner becomes a T (and the node ahead a
+  // junction), while two more junctions keep the network's (inside the budget margin) within the
+  // example's per area; past that the other street is dropped as before. Dropping it took street
+  // length and left quito's junctions 6-7 % under its example's at the median over seeds (inside
+  // the hull shrunk by 250 m 6.84 a km against 7.28; its ring had the example's), its per-pair
+  // median 2.66-2.90 %. With it, seeds 1-30 / 61-120 / 121-180: per-pair median 2.66 → 2.53 / 2.88
+  // → 2.05 / 2.90 → 2.17 %, intersections −6.9 → −1.2 / −5.2 → −1.1 / −6.0 → −0.9 %, φ −5.1 →
+  // −9.2 / −5.8 → −9.0 / −4.4 → −9.4 % (medians over the seeds). Barcelona and strasbourg are
+  // mostly at or over their examples' junctions per area (9 and 5 of seeds 1-120 grow otherwise,
+  // their medians within 0.3 %); ordered examples and canberra as before (README "Corners to T's").
+  bool corner_tees = true;
   // Grid fallback (grid41; an ordered example, φ at least 0.6, one style): a statistical street
   // turns onto the example's grid axis (mod 90 degrees, turned as the patches are) when the street it
   // leaves is within 15 degrees of it, and its free end snaps to a node or street only within half a
@@ -565,6 +577,7 @@ struct GrowStats {
   std::size_t corners_cut = 0;         // avoid_corners: of those, dead ends cut back after the joins
   std::size_t corners_straightened = 0;  // straight_corners: corners gone on straight, the other street dropped
   std::size_t corners_completed = 0;     // straight_corners: corners gone on to a T, the other street kept
+  std::size_t corner_tees = 0;           // corner_tees: of those, the T's kept for the junctions (not a crossing's)
   std::size_t corners_in_turn = 0;       // corner_cascade: junctions a straightening left corners, straightened in turn
   std::size_t corners_over_density = 0;  // weak_order_corners: changes refused, a junction more than the example's per area
   std::size_t crop_ends_cut = 0;       // cut_crop_ends: copied crop dead ends cut back after the joins
