@@ -1433,12 +1433,14 @@ TEST(PatchDangling, SpreadOrderDrawsUnusedPatchesWhileTheOutputIsMoreOrdered) {
 
 // Corner T's (corner_tees): on a weakly ordered example the straightening keeps a corner's other
 // street (the corner becomes a T) while two more junctions keep the network within the example's
-// junctions per area; past that it drops the other street as before. The spider's web of 12 spokes
+// junctions per area; past that it drops the other street as before, and only where the output is
+// less ordered than the straightening aims at (the drops are for φ). The spider's web of 12 spokes
 // (φ 0.36) grows under its example's junctions per area: its corners become T's, none is dropped,
 // the network has more junctions and more street length. The web of 16 (φ 0.11) reaches the
 // example's junctions per area: a few T's, then the changes that add junctions are refused and
-// the rest dropped as before. An ordered example (the uneven blocks) and a city of cul-de-sacs are
-// left alone. Planar, no dead end made or joined, deterministic.
+// the rest dropped as before. Grown as ordered as its example, a web's corners become T's with no
+// drop. An ordered example (the uneven blocks) and a city of cul-de-sacs are left alone. Planar, no
+// dead end made or joined, deterministic.
 TEST(PatchDangling, CornersBecomeTeesWhileTheJunctionsAreShort) {
   Fixture f;
   auto length = [](const GrowResult& r) {
@@ -1468,6 +1470,21 @@ TEST(PatchDangling, CornersBecomeTeesWhileTheJunctionsAreShort) {
   EXPECT_GT(web_on.stats.corners_over_density, web_off.stats.corners_over_density);  // (18 -> 41)
   EXPECT_GT(web_on.stats.corners_straightened, 0u);
   EXPECT_EQ(crossings_without_node(web_on), 0);
+
+  // Patches placed as drawn (rotation off), a web of 11 spokes grows as (un)ordered as its example
+  // (φ 0.07): nothing is straightened, but its corners still become T's, none dropped.
+  GrowParams unturned = Fixture::patch_growth();
+  unturned.rotation = false;
+  auto [as_drawn_off, as_drawn_on] = f.grow_off_on(f.input(spider_web(11)), &PatchGrowParams::corner_tees, unturned);
+  EXPECT_LT(as_drawn_on.stats.example_order, 0.15);
+  EXPECT_EQ(as_drawn_off.stats.corners_straightened + as_drawn_off.stats.corners_completed, 0u);
+  EXPECT_GT(as_drawn_on.stats.corner_tees, 0u);  // (measured 39)
+  EXPECT_EQ(as_drawn_on.stats.corners_straightened, 0u);
+  EXPECT_LT(corner_count(as_drawn_on), corner_count(as_drawn_off));  // (104 -> 48)
+  const auto [threes_drawn_off, fours_drawn_off] = junction_counts(as_drawn_off);
+  const auto [threes_drawn_on, fours_drawn_on] = junction_counts(as_drawn_on);
+  EXPECT_GT(threes_drawn_on + fours_drawn_on, threes_drawn_off + fours_drawn_off);  // (684 -> 769)
+  EXPECT_EQ(crossings_without_node(as_drawn_on), 0);
 
   for (const auto& example : {uneven_blocks(), with_culs_de_sac(spider_web())}) {
     auto [left_off, left_on] = f.grow_off_on(f.input(example), &PatchGrowParams::corner_tees);

@@ -3500,10 +3500,12 @@ class Grower {
     const bool ordered = example_order() >= kSeamOrder;
     stats_.example_order = example_order();
     if (!ordered && !(params_.patch.weak_order_corners && weakly_ordered(kCornerMinOrder))) return;
-    if (output_order() >= (1.0 - kCornerOrderGap) * example_order()) return;
     const bool junction_budget = !ordered && example_junctions_per_area_ > 0.0;
-    const double junctions_allowed = junction_budget ? junctions_allowed_inside() : 0.0;
     const bool tees = params_.patch.corner_tees && junction_budget;
+    // The drops are for φ: where the output is within kCornerOrderGap of the example's, only the T's.
+    const bool tees_only = output_order() >= (1.0 - kCornerOrderGap) * example_order();
+    if (tees_only && !tees) return;
+    const double junctions_allowed = junction_budget ? junctions_allowed_inside() : 0.0;
     const double reach = std::max(snap_, street_stats_.length_mean);
     const double cone = params_.patch.angle_window * kPi / 180.0;
     std::vector<std::uint32_t> corners;
@@ -3610,6 +3612,7 @@ class Grower {
           // corner_tees: a T while two more junctions stay within the example's per area.
           o.tee = !o.complete && tees && static_cast<double>(junctions) + 2.0 <= junctions_allowed;
           o.complete = o.complete || o.tee;
+          if (tees_only && !o.complete) continue;
           const long ij = in_budget(j), iw = o.node == UINT32_MAX ? in_budget(v) : in_budget(o.node);
           if (o.complete) {
             o.junctions += in_budget(v);

@@ -207,14 +207,15 @@ struct PatchGrowParams {
   // Corner T's (weak_order_corners on a weakly ordered example, not an ordered one): a corner's
   // straightening keeps its other street, so that the corner becomes a T (and the node ahead a
   // junction), while two more junctions keep the network's (inside the budget margin) within the
-  // example's per area; past that the other street is dropped as before. Dropping it took street
-  // length and left quito's junctions 6-7 % under its example's at the median over seeds (inside
-  // the hull shrunk by 250 m 6.84 a km against 7.28; its ring had the example's), its per-pair
-  // median 2.66-2.90 %. With it, seeds 1-30 / 61-120 / 121-180: per-pair median 2.66 → 2.53 / 2.88
-  // → 2.05 / 2.90 → 2.17 %, intersections −6.9 → −1.2 / −5.2 → −1.1 / −6.0 → −0.9 %, φ −5.1 →
-  // −9.2 / −5.8 → −9.0 / −4.4 → −9.4 % (medians over the seeds). Barcelona and strasbourg are
-  // mostly at or over their examples' junctions per area (9 and 5 of seeds 1-120 grow otherwise,
-  // their medians within 0.3 %); ordered examples and canberra as before (README "Corners to T's").
+  // example's per area; past that the other street is dropped as before, and only where the output's
+  // φ is more than kCornerOrderGap under the example's (the drops are for φ, the T's for the
+  // junctions: where φ is near, the T's alone). Dropping took street length and left quito's
+  // junctions 5-6 % under its example's at the median over seeds (inside the hull shrunk by 250 m
+  // 6.84 a km against 7.28; its ring had the example's). With it, seeds 1-60 / 61-120 / 121-180:
+  // per-pair median 2.60 → 2.30 / 2.88 → 2.18 / 2.90 → 2.15 %, intersections −6.4 / −5.2 / −6.0 →
+  // −0.9 %, φ −4.7 → −8.3 / −5.8 → −9.4 / −4.4 → −8.2 %; seeds over 5 % per pair 17 → 5 of 180.
+  // Barcelona and strasbourg are mostly at or over their examples' junctions per area (per-pair
+  // medians 0.1-0.2 points lower); ordered examples and canberra as before (README "Corners to T's").
   bool corner_tees = true;
   // Grid fallback (grid41; an ordered example, φ at least 0.6, one style): a statistical street
   // turns onto the example's grid axis (mod 90 degrees, turned as the patches are) when the street it
