@@ -1167,6 +1167,9 @@ TEST(PatchDangling, CornersStraightenedOnAWeaklyOrderedExample) {
   // (and the weakly ordered seams off: with them the growth's junctions also stay under the
   // example's per area, and the straightening's T's add 14 junctions, none refused)
   p.patch.weak_order_seams = false;
+  // (and the short dead ends joined: cut back, each with its T, they leave the growth under the
+  // example's junctions per area, so no change is refused)
+  p.patch.cut_short_ends = false;
   auto [off, on] = f.grow_off_on(in, &PatchGrowParams::weak_order_corners, p);
   EXPECT_EQ(off.stats.corners_straightened + off.stats.corners_completed, 0u);
   ASSERT_GT(on.stats.corners_straightened, 0u);
@@ -1489,6 +1492,36 @@ TEST(PatchDangling, CornersBecomeTeesWhileTheJunctionsAreShort) {
   for (const auto& example : {uneven_blocks(), with_culs_de_sac(spider_web())}) {
     auto [left_off, left_on] = f.grow_off_on(f.input(example), &PatchGrowParams::corner_tees);
     EXPECT_EQ(left_on.stats.corner_tees, 0u);
+    expect_same_graph(left_off, left_on);
+  }
+}
+
+// Short dead ends cut back (cut_short_ends): on a weakly ordered example (φ from 0.15 to under 0.6,
+// not a city of cul-de-sacs) a dead end no farther from its junction than the joins reach is cut
+// back to it instead of joined, where that leaves no corner. The spider's web of 12 spokes (φ 0.36)
+// and the uneven blocks beside a web (φ 0.52): some ends cut back, fewer joins, as many dead ends
+// left, planar, deterministic. The web of 16 spokes (φ 0.11), an ordered example (the uneven blocks)
+// and a city of cul-de-sacs grow the same graph either way.
+TEST(PatchDangling, ShortDeadEndsAreCutBackOnAWeaklyOrderedExample) {
+  Fixture f;
+  for (const auto& example : {spider_web(12), blocks_beside_a_web()}) {
+    GrowInput in = f.input(example);
+    auto [off, on] = f.grow_off_on(in, &PatchGrowParams::cut_short_ends);
+    EXPECT_GE(on.stats.example_order, 0.15);
+    EXPECT_LT(on.stats.example_order, 0.6);
+    EXPECT_EQ(off.stats.short_ends_cut, 0u);
+    EXPECT_GT(on.stats.short_ends_cut, 0u);  // (measured 2 and 3)
+    EXPECT_LT(on.stats.dangling_connected, off.stats.dangling_connected);
+    EXPECT_EQ(interior_dead_ends(on), interior_dead_ends(off));
+    const auto [threes_off, fours_off] = junction_counts(off);
+    const auto [threes_on, fours_on] = junction_counts(on);
+    EXPECT_LE(threes_on + fours_on, threes_off + fours_off);  // (760 -> 751, 567 -> 567)
+    EXPECT_EQ(crossings_without_node(on), 0);
+    expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
+  }
+  for (const auto& example : {spider_web(16), uneven_blocks(), with_culs_de_sac(spider_web(12))}) {
+    auto [left_off, left_on] = f.grow_off_on(f.input(example), &PatchGrowParams::cut_short_ends);
+    EXPECT_EQ(left_on.stats.short_ends_cut, 0u);
     expect_same_graph(left_off, left_on);
   }
 }

@@ -3740,6 +3740,7 @@ class Grower {
     // PatchGrowParams::dangling_corners: the joins that leave no corner first; then the dead ends
     // left are cut back where that leaves no corner, else joined as before.
     const int passes = params_.patch.dangling_corners && !std::isnan(grid_axis()) ? 2 : 1;
+    const bool cut_short = params_.patch.cut_short_ends && example_order() < kSeamOrder && weakly_ordered(kWeakSeamOrder);
     for (int pass = 0; pass < passes; ++pass) {
       corners_refused_ = passes == 2 && pass == 0;
       for (const auto& [gap, v] : ends) {
@@ -3754,14 +3755,17 @@ class Grower {
         }
         if (new_edges_ + 2 > params_.max_edges) break;  // a join and the piece of a split street
         if (nodes_[v].edges.size() != 1) continue;  // an earlier extension reached it
-        if (passes == 2 && pass == 1) {
+        // dangling_corners' second pass cuts back what leaves no corner; cut_short_ends the short
+        // dead ends that leave none.
+        if ((passes == 2 && pass == 1) || cut_short) {
           std::uint32_t street_at_j = UINT32_MAX;
           const std::uint32_t j = junction_behind(v, &street_at_j);
           const std::size_t dj = nodes_[j].edges.size();
-          if (cut_leaves_no_corner(v, j, street_at_j)) {
+          const bool short_end = distance(nodes_[v].p, nodes_[j].p) <= kConnectReach * street_stats_.length_mean;
+          if ((!cut_short || short_end) && cut_leaves_no_corner(v, j, street_at_j)) {
             const bool v_counted = in_budget(v), j_counted = in_budget(j);
             cut_back_to_junction(v);
-            ++stats_.dangling_corners_cut;
+            ++(cut_short ? stats_.short_ends_cut : stats_.dangling_corners_cut);
             dead -= v_counted;
             street_ends -= v_counted;
             if (dj == 3) {  // j: a junction no more
