@@ -445,7 +445,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           "placed, %zu local seeds (%zu with their example patch), %zu local streets ended on arterials; "
                           "terrain: %zu bridges (%zu bridge attempts failed), %zu bent along the contour, %zu too steep; "
                           "operations: %zu warped steps, %zu patches from the interpolate library, %zu dangling "
-                          "streets connected, %zu T-junctions continued across (%zu of them after the cuts, %zu facing joins found by the wider cone or reach, %zu across %zu streets; %zu local T's to the node or street ahead; joins "
+                          "streets connected, %zu T-junctions continued across (%zu of them after the cuts, %zu facing joins found by the wider cone or reach, %zu across %zu streets, %zu nodes slid onto the grid for joins; %zu local T's to the node or street ahead; joins "
                           "refused: %zu over the example's street length, %zu over its junctions), %zu corners avoided (%zu cut back), %zu crop dead ends "
                           "cut back, %zu dangling segments "
                           "pruned, %zu dead ends kept; "
@@ -454,7 +454,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           stats.patches_dropped, stats.restarts, stats.arterial_patches_placed, stats.local_seeds,
                           stats.local_seeds_used, stats.ended_on_arterial, bridges, stats.bridges_failed, stats.bent,
                           stats.too_steep, stats.guided, stats.patches_b_placed, stats.dangling_connected,
-                          stats.continued_across, stats.faced_after_cuts, stats.wide_facing_joins, stats.facing_through_joins, stats.facing_through_crossed, stats.local_tees_continued, stats.local_tees_long, stats.local_tees_dense, stats.corners_avoided, stats.corners_cut, stats.crop_ends_cut, stats.dangling_pruned,
+                          stats.continued_across, stats.faced_after_cuts, stats.wide_facing_joins, stats.facing_through_joins, stats.facing_through_crossed, stats.slid_onto_grid, stats.local_tees_continued, stats.local_tees_long, stats.local_tees_dense, stats.corners_avoided, stats.corners_cut, stats.crop_ends_cut, stats.dangling_pruned,
                           stats.dead_ends_kept, total > 0 ? 100.0 * from_patches / total : 0.0,
                           length_total > 0 ? 100.0 * length_patches / length_total : 0.0)));
   if (stats.arterial_fronts > 0) {

@@ -356,6 +356,8 @@ TEST(PatchDangling, LocalTeesContinueToTheNodeOrStreetAhead) {
   p.patch.wide_redundant = false;
   // (and the ends on lines off: with them the walled growth keeps 184 T's with the rule against 178)
   p.patch.align_lines = false;
+  // (and the joins not slid onto the grid: slid, it keeps 197 T's either way, with more crossings)
+  p.patch.slide_onto_grid = false;
   auto [off, on] = f.grow_off_on(in, &PatchGrowParams::continue_local_tees, p);
   EXPECT_EQ(off.stats.local_tees_continued, 0u);
   ASSERT_GT(on.stats.local_tees_continued, 0u);
@@ -1523,4 +1525,45 @@ TEST(PatchDangling, ShortDeadEndsAreCutBackOnAWeaklyOrderedExample) {
     EXPECT_EQ(left_on.stats.short_ends_cut, 0u);
     expect_same_graph(left_off, left_on);
   }
+}
+
+namespace {
+
+// Metres of a growth's statistical edges (not a patch's) more than `limit` off a grid whose axis
+// is `axis` (radians; mod 90 degrees).
+double statistical_off_grid(const GrowResult& r, double axis, double limit) {
+  double metres = 0.0;
+  for (const GrownEdge& e : r.edges) {
+    if (e.example >= 0) continue;
+    const Point d = e.b - e.a;
+    if (std::abs(std::remainder(std::atan2(d.y, d.x) - axis, 0.5 * M_PI)) > limit) metres += std::hypot(d.x, d.y);
+  }
+  return metres;
+}
+
+}  // namespace
+
+// Joins slid onto the grid (slide_onto_grid): on an ordered example a facing join, a dead end's
+// join ahead and a corner's join ahead first slide the nodes they join along their streets, so that
+// the join runs along the grid instead of across the block at the nodes' offset. The uneven blocks
+// turned 30 degrees (measured: 130 nodes slid; statistical edges more than 10 degrees off the grid
+// 11.7 -> 10.0 km; segment φ 0.938 -> 0.954): it fires, fewer metres of statistical street off the
+// grid, a more ordered output, planar, deterministic. The spider's web (no grid) grows the same
+// graph either way.
+TEST(PatchDangling, JoinsSlideOntoTheGridOnAnOrderedExample) {
+  Fixture f;
+  const double axis = 30.0 * M_PI / 180.0;
+  GrowInput in = f.input(turned_about_origin(uneven_blocks(), axis));
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::slide_onto_grid);
+  EXPECT_EQ(off.stats.slid_onto_grid, 0u);
+  ASSERT_GT(on.stats.slid_onto_grid, 0u);
+  EXPECT_LT(statistical_off_grid(on, axis, 10.0 * M_PI / 180.0), statistical_off_grid(off, axis, 10.0 * M_PI / 180.0));
+  EXPECT_GT(segment_order(on), segment_order(off));
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
+
+  GrowInput web = f.input(spider_web());
+  auto [web_off, web_on] = f.grow_off_on(web, &PatchGrowParams::slide_onto_grid);
+  EXPECT_EQ(web_on.stats.slid_onto_grid, 0u);
+  expect_same_graph(web_on, web_off);
 }

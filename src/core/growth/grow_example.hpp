@@ -135,6 +135,16 @@ struct PatchGrowParams {
   // -5.5 -> -3.7 pp on seeds 1-30, -6.6 -> -4.4 on 31-60; bench/patches, README "Where the T's come
   // from").
   bool facing_through = true;
+  // On an ordered example (tokyo, new-york), the joins continue_across makes between facing T's,
+  // and those from a dead end (connect_dangling) or a straightened corner's kept street
+  // (straight_corners) to a node ahead, first slide the nodes they join along their streets so that
+  // the join runs along the grid's axis instead of across the block at the nodes' offset: a T along
+  // its through street (its lone street turning at most 10 degrees and ending at most 5 off the
+  // grid), a shape node along its straight street; the two T's of a facing join half the offset
+  // each, the node ahead all of it. Where the slid join is refused, the join is tried unslid.
+  // Tokyo's φ -13.3 -> -9.3 % (median over seeds 1-60; -12.8 -> -9.2 over 61-120); README "Joins
+  // slid onto the grid".
+  bool slide_onto_grid = true;
   // Patch streets that double a street, in a city of crossings (as wide_facing): a placed patch's
   // street every point of which lies within 1.25 x snap of the network is left out, not only within
   // snap (Nishida's redundancy). Where two patches' grids meet, each brings the seam street of its
@@ -573,6 +583,7 @@ struct GrowStats {
   std::size_t wide_facing_joins = 0;   // wide_facing: facing joins only its wider cone or reach found
   std::size_t facing_through_joins = 0;    // facing_through: facing joins across streets
   std::size_t facing_through_crossed = 0;  // and the streets they crossed (each split: a crossing more)
+  std::size_t slid_onto_grid = 0;          // slide_onto_grid: nodes slid for a join along the grid
   std::size_t wide_redundant_dropped = 0;  // wide_redundant: patch streets left out that snap would have kept
   std::size_t local_tees_continued = 0;  // continue_local_tees: local T's gone on to the node or street ahead
   std::size_t local_tees_long = 0;       // continue_local_tees: joins refused for the example's street length per area
