@@ -4135,22 +4135,33 @@ class Grower {
   static constexpr double kSlideMin = 0.25;                   // metres: a smaller offset is left
   static constexpr double kSlideTilt = 10.0 * kPi / 180.0;    // a slid T's lone street turns at most this
   static constexpr double kSlideGridOff = 5.0 * kPi / 180.0;  // and ends at most this off the grid
-  // The street node t slides along: a T's through street (its lone street aside), a shape node's
-  // two streets; UINT32_MAX for `lone` when t has no lone street. False for other nodes (sliding
-  // a dead end square to its street as well left tokyo's φ where it was: -9.6 %, mean over seeds 1-40).
-  bool slide_street(std::uint32_t t, std::uint32_t& lone, Point& along) const {
-    const std::size_t degree = nodes_[t].edges.size();
+  // The street node t slides along (`along`) to move across g: a T's through street (its lone
+  // street aside), a shape node's two streets where they run straight on (within 10 degrees), else
+  // (a bend) the one of them more square to g (the other then its lone street); UINT32_MAX for
+  // `lone` when t has no lone street. False for other nodes (sliding a dead end square to its
+  // street as well left tokyo's φ where it was: -9.6 %, mean over seeds 1-40).
+  bool slide_street(std::uint32_t t, Point g, std::uint32_t& lone, Point& along) const {
+    const std::vector<std::uint32_t>& es = nodes_[t].edges;
+    const std::size_t degree = es.size();
     lone = degree == 3 ? lone_street(t) : UINT32_MAX;
     if ((degree == 3 && lone == UINT32_MAX) || degree < 2 || degree > 3) return false;
+    const Point p = nodes_[t].p;
+    if (degree == 2) {
+      const Point a = other_end(es[0], t), b = other_end(es[1], t);
+      if (std::abs(wrap(std::atan2(p.y - a.y, p.x - a.x) - std::atan2(b.y - p.y, b.x - p.x))) > kSlideTilt) {
+        const int k = std::abs(cross(g, unit(p - a))) >= std::abs(cross(g, unit(p - b))) ? 0 : 1;
+        lone = es[1 - k];
+        along = unit(p - (k == 0 ? a : b));
+        return true;
+      }
+    }
     Point ends[2];
     int k = 0;
-    for (std::uint32_t e : nodes_[t].edges) {
+    for (std::uint32_t e : es) {
       if (e != lone) ends[k++] = other_end(e, t);
     }
     along = unit(ends[1] - ends[0]);
-    // A shape node slides only on a straight street (its streets' own bearings kept).
-    return degree == 3 || std::abs(wrap(std::atan2(nodes_[t].p.y - ends[0].y, nodes_[t].p.x - ends[0].x) -
-                                        std::atan2(ends[1].y - nodes_[t].p.y, ends[1].x - nodes_[t].p.x))) <= kSlideTilt;
+    return true;
   }
   // How far node t may move across g, to its left (sign 1) or right (-1), along its street
   // (slide_street, within 45 degrees of square to g): each street it slides along keeping
@@ -4161,7 +4172,7 @@ class Grower {
   double slide_room(std::uint32_t t, Point g, double sign) {
     std::uint32_t lone;
     Point u;
-    if (!slide_street(t, lone, u)) return 0.0;
+    if (!slide_street(t, g, lone, u)) return 0.0;
     const double across = cross(g, u);
     if (std::abs(across) < std::sqrt(0.5)) return 0.0;
     const Point p = nodes_[t].p;
@@ -4188,7 +4199,7 @@ class Grower {
   bool slide_across(std::uint32_t t, Point g, double left) {
     std::uint32_t lone;
     Point u;
-    if (!slide_street(t, lone, u)) return false;
+    if (!slide_street(t, g, lone, u)) return false;
     const Point np = nodes_[t].p + (left / cross(g, u)) * u;
     point_hits_.clear();
     node_tree_.query(bgi::nearest(BPoint(np.x, np.y), 2), std::back_inserter(point_hits_));

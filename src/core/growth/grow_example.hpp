@@ -140,10 +140,10 @@ struct PatchGrowParams {
   // (straight_corners) to a node ahead, first slide the nodes they join along their streets so that
   // the join runs along the grid's axis instead of across the block at the nodes' offset: a T along
   // its through street (its lone street turning at most 10 degrees and ending at most 5 off the
-  // grid), a shape node along its straight street; the two T's of a facing join half the offset
-  // each, the node ahead all of it. Where the slid join is refused, the join is tried unslid.
-  // Tokyo's φ -13.3 -> -9.3 % (median over seeds 1-60; -12.8 -> -9.2 over 61-120); README "Joins
-  // slid onto the grid".
+  // grid), a shape node along its straight street, a bend along its street more square to the join;
+  // the two T's of a facing join half the offset each, the node ahead all of it. Where the slid join
+  // is refused, the join is tried unslid. Tokyo's φ -13.3 / -12.8 / -12.9 -> -8.8 / -8.6 / -8.8 %
+  // (medians over seeds 1-60 / 61-120 / 121-180); README "Joins slid onto the grid".
   bool slide_onto_grid = true;
   // Patch streets that double a street, in a city of crossings (as wide_facing): a placed patch's
   // street every point of which lies within 1.25 x snap of the network is left out, not only within
