@@ -5579,7 +5579,7 @@ class Grower {
     slid_.clear();
     const bool ok = place_patch_at(v, j, anchor, skip, local_only);
     if (ok) stats_.seam_slid += slid_.size();
-    for (auto it = slid_.rbegin(); !ok && it != slid_.rend(); ++it) move_dead_end(it->first, it->second);
+    for (auto it = slid_.rbegin(); !ok && it != slid_.rend(); ++it) move_node(it->first, it->second);
     slid_.clear();
     slide_here_ = false;
     return ok;
@@ -5649,10 +5649,9 @@ class Grower {
     for (const PointValue& pv : point_hits_) {
       if (pv.second != v && distance(nodes_[pv.second].p, np) < clearance_) return false;
     }
-    move_dead_end(v, np);
+    move_node(v, np);
     return true;
   }
-  void move_dead_end(std::uint32_t v, Point np) { move_node(v, np); }
   // Node v moves to np, its edges with it (indexes and length counts kept).
   void move_node(std::uint32_t v, Point np) {
     const Point p = nodes_[v].p;
