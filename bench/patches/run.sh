@@ -11,6 +11,7 @@
 #   STRUCTURES=0 bash bench/patches/run.sh    without the roundabout / cul-de-sac uses (about 7 of 9 minutes)
 #   SIDES='1200 2600' bash bench/patches/run.sh   the speed part's square sides (m)
 #   DEBUG1=1 bash bench/patches/run.sh        grow_patches' DEBUG1 counts (arterial fronts, fallback, ...) into $OUT/debug1.log
+#   TILES='200 400' bash bench/patches/run.sh  tile_noise.py's tile sides (m; default 250 500)
 #
 # 1. Realism: for each example, extract its patches, grow its convex hull from one seed at its
 #    centre with grow_patches and with grow_example (default params, max_edges 200000), and
@@ -30,8 +31,9 @@
 #    the hull's edge, well inside it), and the share of the street length outside the window (the
 #    metrics are per area and do not see holes). And the blocks' shapes, the example's against the
 #    grown blocks' with and without a statistical street on their perimeter.
-#    Then the examples' sampling noise, where φ comes from, and where the T-junctions come from
-#    (sampling_noise.py, phi_sources.py, tee_sources.py).
+#    Then the examples' sampling noise, the realism goal as the example's own tiles would score it,
+#    where φ comes from, and where the T-junctions come from (sampling_noise.py, tile_noise.py,
+#    phi_sources.py, tee_sources.py).
 # 2. Speed: km of road per second of one SQL call (one core) for squares grown from tokyo, for
 #    grow_patches and for grow_example in the same run, and their ratio; a 300 km square is the
 #    issue's benchmark (< 3 s).
@@ -376,6 +378,41 @@ UNION ALL
 SELECT 'four_way', s.name, d, NULL, s.degree4_share FROM st s, unnest(s.degrees) AS d;
 SQL
 
+echo
+echo "the realism goal as the example itself would score it (tile_noise.py): the window cut into square tiles of ${TILES:-250 500} m, as many drawn with replacement $(grep -m1 '^RESAMPLES' "$repo/bench/patches/tile_noise.py" | cut -d' ' -f3) times, each draw one network scored as compare_networks scores a growth; the share of draws whose per-pair median is over 5 % and their values past 15 % a pair, beside the growths' (grow_patches, this run's seeds)"
+psql -X -q -A -F, -t -v ON_ERROR_STOP=1 -v tiles="{${TILES:-250 500}}" <<'SQL' | /usr/bin/python3 "$repo/bench/patches/tile_noise.py"
+WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom FROM region),
+     size AS (SELECT unnest(translate(:'tiles', ' ', ',')::float8[]) AS m),
+     tile AS (SELECT w.name, s.m, g.i || ' ' || g.j AS id, ST_Intersection(g.geom, w.geom) AS geom
+                FROM win w, size s, LATERAL ST_SquareGrid(s.m, w.geom) AS g
+               WHERE ST_Intersects(g.geom, w.geom)),
+     face AS (SELECT name, (ST_Dump(ST_Polygonize(geom))).geom AS f FROM example GROUP BY name),
+     st AS (SELECT w.name, n.* FROM win w,
+                   LATERAL streetgen.network_stats(format('SELECT geom FROM example WHERE name = %L', w.name), 0, w.geom,
+                                                   simplify => true) AS n)
+SELECT 'tile', t.name, t.m, t.id, n.area, n.total_length, array_to_string(n.degrees, ' '),
+       array_to_string(n.orientation_histogram, ' ')
+  FROM tile t, LATERAL streetgen.network_stats(format('SELECT geom FROM example WHERE name = %L', t.name), 0, t.geom,
+                                               simplify => true) AS n
+ WHERE ST_Area(t.geom) > 0
+UNION ALL
+SELECT 'block', t.name, t.m, t.id, ST_Area(f.f), NULL, NULL, NULL
+  FROM face f JOIN win w USING (name) JOIN tile t ON t.name = f.name AND ST_Intersects(t.geom, ST_PointOnSurface(f.f))
+ WHERE ST_Within(f.f, w.geom)
+UNION ALL
+SELECT 'reported', s.name, NULL, m.metric, m.value, NULL, NULL, NULL
+  FROM st s, LATERAL (VALUES ('street_density', s.street_density), ('intersection_density', s.intersection_density),
+                             ('mean_degree', s.mean_degree), ('dead_end_share', s.dead_end_share),
+                             ('degree4_share', s.degree4_share), ('connected_node_ratio', s.connected_node_ratio),
+                             ('orientation_order', s.orientation_order),
+                             ('block_area_median', s.block_area_median)) AS m(metric, value)
+UNION ALL
+SELECT 'grown', name, NULL, seed::text, max(score) FILTER (WHERE metric = 'median_abs_relative_difference'),
+       count(*) FILTER (WHERE abs(relative_difference) > 0.15 AND metric IN ('street_density', 'intersection_density',
+                        'mean_degree', 'dead_end_share', 'degree4_share', 'connected_node_ratio', 'orientation_order',
+                        'block_area_median'))::float8, NULL, NULL
+  FROM cmp WHERE method = 'patches' GROUP BY name, seed;
+SQL
 echo
 echo "where phi comes from (grow_patches): the grown streets (degree-2 chains merged, as network_stats; a row is a segment) by what made them, each kind's share of the length inside the hull shrunk by 50 m and the phi of its streets alone (all seeds together); phi grown is the mean over the seeds (the script's own, near network_stats')"
 psql -X -q -A -F, -t -v ON_ERROR_STOP=1 <<'SQL' | /usr/bin/python3 "$repo/bench/patches/phi_sources.py"

@@ -1,0 +1,153 @@
+"""The realism goal as the example itself would score it, by tiles (bench/patches/run.sh).
+
+The goal asks, for each grown network (one seed), a per-pair median of the eight headline
+metrics' relative differences of 5 % or less and no metric past 15 %. sampling_noise.py resamples
+three metrics part by part; this script asks the whole question at once, of a network drawn from
+the example's own streets. It cuts the window (the hull shrunk by 50 m) into square tiles and draws
+as many tiles as there are, with replacement, 1,000 times (a fixed seed per example and tile
+size): the drawn tiles' streets, nodes and blocks make one resampled network. That keeps the streets of a tile together
+(neighbouring blocks and junctions are alike), so it is a block bootstrap at the tile's scale; a
+larger tile keeps more together and spreads more.
+
+Each resample is scored as compare_networks scores a growth: the relative difference of each
+headline metric from the example's own (all tiles once), the per-pair median of their absolute
+values (each capped at 100 %; where the example's value is 0, a metric counts as 0 when the
+resample's is 0 too and is left out otherwise, as in compare_networks), and the values past 15 %.
+
+Reads CSV rows on stdin:
+  tile,name,size,id,area,length,degrees,histogram
+      a tile: its area and street length inside the window (m², m), its nodes' degrees (space
+      separated; network_stats' degrees inside the tile, with their full degree) and its
+      orientation histogram (36 shares, network_stats' orientation_histogram of the tile)
+  block,name,size,id,area,,,
+      a block of the window (network_stats' blocks), in the tile holding its point on surface
+  reported,name,,metric,value,,,
+      the window's own value as network_stats computes it (printed beside the script's own)
+  grown,name,,seed,per_pair_median,past_15,,
+      a growth as compare_networks scored it (its per-pair median, a share; its headline values
+      past 15 %), printed beside the resamples
+"""
+import collections
+import csv
+import math
+import random
+import statistics
+import sys
+
+BINS = 36
+RESAMPLES = 1000
+HEADLINE = ["street_density", "intersection_density", "mean_degree", "dead_end_share", "degree4_share",
+            "connected_node_ratio", "orientation_order", "block_area_median"]
+SHORT = {"street_density": "street", "intersection_density": "junct", "mean_degree": "degree",
+         "dead_end_share": "dead", "degree4_share": "4way", "connected_node_ratio": "cnr",
+         "orientation_order": "phi", "block_area_median": "blocks"}
+
+
+def orientation_order(histogram):
+    weight = sum(histogram)
+    if weight <= 0.0:
+        return 0.0
+    entropy = -sum(b / weight * math.log(b / weight) for b in histogram if b > 0.0)
+    return 1.0 - ((entropy - math.log(4)) / (math.log(36) - math.log(4))) ** 2
+
+
+class Tile:
+    def __init__(self, area, length, degrees, histogram):
+        self.area = area
+        self.length = length
+        self.degrees = degrees
+        # network_stats' histogram holds shares of the tile's street length: back to metres, so
+        # that tiles add up
+        self.histogram = [length * share for share in histogram] if histogram else [0.0] * BINS
+        self.blocks = []
+
+
+def metrics(tiles):
+    """The eight headline metrics of the network the tiles make together (network_stats' definitions)."""
+    area = sum(t.area for t in tiles)
+    length = sum(t.length for t in tiles)
+    degrees = [d for t in tiles for d in t.degrees]
+    nodes = len(degrees)
+    histogram = [sum(t.histogram[i] for t in tiles) for i in range(BINS)]
+    blocks = [b for t in tiles for b in t.blocks]
+    dead = sum(d == 1 for d in degrees)
+    return {
+        "street_density": length / area * 1000.0,           # km per km²
+        "intersection_density": sum(d >= 3 for d in degrees) / area * 1e6,
+        "mean_degree": sum(degrees) / nodes if nodes else 0.0,
+        "dead_end_share": dead / nodes if nodes else 0.0,
+        "degree4_share": sum(d == 4 for d in degrees) / nodes if nodes else 0.0,
+        "connected_node_ratio": (nodes - dead) / nodes if nodes else 0.0,
+        "orientation_order": orientation_order(histogram),
+        "block_area_median": statistics.median(blocks) if blocks else 0.0,
+    }
+
+
+def score(values, own):
+    """compare_networks' per-pair median and the values past 15 % of one resample."""
+    differences = {}
+    for metric in HEADLINE:
+        if own[metric] != 0.0:
+            differences[metric] = min(abs(values[metric] - own[metric]) / abs(own[metric]), 1.0)
+        elif values[metric] == 0.0:
+            differences[metric] = 0.0  # both 0: equal (compare_networks' relative_difference)
+    return statistics.median(differences.values()), differences
+
+
+def main():
+    tiles = collections.defaultdict(dict)  # (name, size) -> id -> Tile
+    reported = {}
+    grown = collections.defaultdict(list)  # name -> (per-pair median, values past 15 %) per seed
+    for row in csv.reader(sys.stdin):
+        if row[0] == "tile":
+            _, name, size, tile_id, area, length, degrees, histogram = row
+            tiles[(name, float(size))][tile_id] = Tile(float(area), float(length),
+                                                       [int(d) for d in degrees.split()],
+                                                       [float(h) for h in histogram.split()])
+        elif row[0] == "block":
+            _, name, size, tile_id, area = row[:5]
+            tiles[(name, float(size))][tile_id].blocks.append(float(area))
+        elif row[0] == "reported":
+            _, name, _, metric, value = row[:5]
+            reported[(name, metric)] = float(value)
+        elif row[0] == "grown":
+            _, name, _, _, median, past = row[:6]
+            grown[name].append((float(median), int(float(past))))
+    print(f"{'name':22s} | {'tile_m':>6s} | {'tiles':>5s} | {'pairs_over_5_pct':>16s} | {'past_15_per_pair':>16s} | "
+          f"{'grown_over_5_pct':>16s} | {'grown_past_15':>13s} | resamples past 15 % by metric (%)")
+    checks = []
+    for key in sorted(tiles):
+        name, size = key
+        own_tiles = list(tiles[key].values())
+        rng = random.Random(f"{name} {size:g}")  # each example's own draws, whichever others run
+        own = metrics(own_tiles)
+        checks.append((name, size, own))
+        over5 = 0
+        past15 = 0
+        past_by_metric = collections.Counter()
+        for _ in range(RESAMPLES):
+            sample = [own_tiles[rng.randrange(len(own_tiles))] for _ in own_tiles]
+            median, differences = score(metrics(sample), own)
+            over5 += median > 0.05
+            for metric, difference in differences.items():
+                if difference > 0.15:
+                    past15 += 1
+                    past_by_metric[metric] += 1
+        by_metric = " ".join(f"{SHORT[m]} {100.0 * past_by_metric[m] / RESAMPLES:.1f}" for m in HEADLINE)
+        seeds = grown.get(name, [])
+        grown_over5 = f"{100.0 * sum(m > 0.05 for m, _ in seeds) / len(seeds):16.1f}" if seeds else f"{'':>16s}"
+        grown_past15 = f"{sum(p for _, p in seeds) / len(seeds):13.2f}" if seeds else f"{'':>13s}"
+        print(f"{name:22s} | {size:6.0f} | {len(own_tiles):5d} | {100.0 * over5 / RESAMPLES:16.1f} | "
+              f"{past15 / RESAMPLES:16.2f} | {grown_over5} | {grown_past15} | {by_metric}")
+    # The script's own values of all tiles once against network_stats' of the window: nodes on a
+    # tile's edge count in both tiles, and the histogram is weighted by each tile's length, so they
+    # are near equal, not equal.
+    print()
+    print("the script's own values (all tiles once) / network_stats' of the window:")
+    for name, size, own in checks:
+        pairs = " ".join(f"{SHORT[m]} {own[m]:.4g}/{reported.get((name, m), float('nan')):.4g}" for m in HEADLINE)
+        print(f"  {name:22s} {size:4.0f} m: {pairs}")
+
+
+if __name__ == "__main__":
+    main()
