@@ -155,6 +155,7 @@ TEST(PatchDangling, DeadEndsAtTheExamplesCropAreNotTheExamples) {
   p.max_edges = 800;
   p.patch.connect_dangling = false;
   p.patch.prune_dangling = false;
+  p.patch.prune_without_own_dead_ends = false;  // (the grid has no dead end of its own: it would prune)
   p.patch.align_lines = false;  // (with the ends on lines 90 of the stubs are left inside)
   GrowResult raw = grow_example(f.geos, in, p);
   EXPECT_GT(interior_dead_ends(raw), 100);  // the stubs, placed inside the region
@@ -176,6 +177,8 @@ TEST(PatchDangling, DanglingStreetsJoinTheNetworkAhead) {
   // (the ends on lines off: with them the rows agree, and the growth stopped by max_edges leaves no
   // open front with a node or street within half a street ahead)
   p.patch.align_lines = false;
+  // (and the dead ends left kept: the avenue grid has none of its own, so they would be pruned)
+  p.patch.prune_without_own_dead_ends = false;
   auto [open, joined] = f.grow_off_on(in, &PatchGrowParams::connect_dangling, p);
   EXPECT_EQ(open.stats.dangling_connected, 0u);
   EXPECT_GT(joined.stats.dangling_connected, 0u);
@@ -396,6 +399,9 @@ TEST(PatchDangling, LocalTeesStopWhereTheNetworkIsDenserThanTheExample) {
   p.patch.avoid_corners = false;
   p.patch.straight_corners = false;  // the joins alone (it runs after them and makes junctions too)
   p.patch.facing_through = false;    // (the joins across streets make junctions too: 338 against 341)
+  // (and the dead ends left kept: pruned, as the uneven grid has none of its own, the growth with
+  // the local T's has 262 junctions against 261 without them)
+  p.patch.prune_without_own_dead_ends = false;
 
   GrowInput lines = in;
   for (int k = 0; k <= 120; ++k) lines.existing.push_back({{-1400.0, -1400.0 + 5.0 * k}, {-100.0, -1400.0 + 5.0 * k}});
@@ -496,6 +502,31 @@ std::vector<PatchInputEdge> uneven_grid_with_culs_de_sac() { return with_culs_de
 
 }  // namespace
 
+// An example without a dead end of its own grows none: a growth of the uneven grid stopped by
+// max_edges leaves open fronts inside the region; after the joins they are cut back to their
+// junctions (prune_dangling's post-process; seed 4: 55 dead ends inside, 92 segments cut back). An
+// example with dead ends of its own (a cul-de-sac off every street) grows as before.
+TEST(PatchDangling, AnExampleWithoutDeadEndsGrowsNone) {
+  Fixture f;
+  GrowParams p = Fixture::patch_growth();
+  p.max_edges = 800;  // stops with open fronts inside the region
+  const GrowInput grid = f.input(uneven_grid());
+  auto [kept, pruned] = f.grow_off_on(grid, &PatchGrowParams::prune_without_own_dead_ends, p);
+  EXPECT_EQ(kept.stats.dangling_pruned, 0u);
+  EXPECT_GT(interior_dead_ends(kept), 30);
+  EXPECT_GT(pruned.stats.dangling_pruned, 10u);
+  EXPECT_EQ(interior_dead_ends(pruned), 0);
+  EXPECT_LT(pruned.edges.size(), kept.edges.size());
+  EXPECT_GT(pruned.edges.size(), kept.edges.size() / 2);
+  EXPECT_EQ(crossings_without_node(pruned), 0);
+  expect_same_graph(grow_example(f.geos, grid, p), pruned);  // (the switch on: its default)
+  const GrowInput culs = f.input(uneven_grid_with_culs_de_sac());
+  auto [culs_off, culs_on] = f.grow_off_on(culs, &PatchGrowParams::prune_without_own_dead_ends, p);
+  EXPECT_EQ(culs_on.stats.dangling_pruned, 0u);
+  EXPECT_GT(interior_dead_ends(culs_on), 10);
+  expect_same_graph(culs_off, culs_on);
+}
+
 // Legality refuses large patches more often (their streets pass near more of the network), so the
 // first legal draw is a small one. size_redraw: after a first draw refused for clearance, a
 // crossing or an angle, the draws of its size class come first: it fires, the placed patches are
@@ -593,6 +624,7 @@ TEST(PatchDangling, CopiedCropDeadEndsAreCutBack) {
   GrowInput in = f.input(cropped_grid());
   GrowParams p = Fixture::patch_growth();
   p.max_edges = 3000;
+  p.patch.prune_without_own_dead_ends = false;  // (the grid has no dead end of its own: all pruned)
   auto [off, on] = f.grow_off_on(in, &PatchGrowParams::cut_crop_ends, p);
   EXPECT_EQ(off.stats.crop_ends_cut, 0u);
   EXPECT_GT(interior_dead_ends(off), 50);
@@ -604,6 +636,7 @@ TEST(PatchDangling, CopiedCropDeadEndsAreCutBack) {
   EXPECT_EQ(crossings_without_node(on), 0);
   GrowParams defaults = Fixture::patch_growth();
   defaults.max_edges = 3000;
+  defaults.patch.prune_without_own_dead_ends = false;
   expect_same_graph(grow_example(f.geos, in, defaults), on);  // (the switch on: its default)
 }
 
@@ -1283,6 +1316,9 @@ GrowResult expect_a_rule_of_a_city_of_crossings(bool PatchGrowParams::*flag, std
   // (and the joins not slid onto the grid: slid, the share is 0.6368 with the wide facing joins
   // against 0.6381 without them)
   p.patch.slide_onto_grid = false;
+  // (and the dead ends left kept: the uneven blocks have none of their own; pruned, the share is
+  // 0.6364 with the wide facing joins against 0.6389 without them)
+  p.patch.prune_without_own_dead_ends = false;
   auto [off, on] = a_rule_of_a_city_of_crossings(flag, count, p);
   EXPECT_GT(crossing_share(on), crossing_share(off));
   return on;

@@ -70,6 +70,7 @@ GrowParams bridge_params(bool on, double max_turn = 180.0) {
   p.snap = 10.0;
   p.max_edges = 3;  // the bridging patch's three streets, then the growth stops
   p.patch.bridge_fronts = on;
+  p.patch.prune_without_own_dead_ends = false;  // (the example has no dead end: its fronts would go)
   return p;
 }
 

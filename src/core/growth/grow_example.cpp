@@ -442,7 +442,7 @@ class Grower {
         if (params_.use_patches && params_.patch.continue_across) continue_across();
         if (params_.use_patches && (avoid_corners() || cul_de_sac_crop_cuts())) cut_corner_fronts();
         if (params_.use_patches && params_.patch.straight_corners) straighten_corners();
-        if (params_.use_patches && params_.patch.prune_dangling) prune_dangling();
+        if (params_.use_patches && (params_.patch.prune_dangling || example_without_dead_ends())) prune_dangling();
         if (params_.use_patches && params_.patch.continue_across && params_.patch.facing_after_cuts) join_facing_after_cuts();
         break;
       }
@@ -3355,6 +3355,11 @@ class Grower {
   Point warped(Point q, Point origin, Point at) const {
     const Point d = q - origin;
     return at + Point{warp_cos_ * d.x - warp_sin_ * d.y, warp_sin_ * d.x + warp_cos_ * d.y};
+  }
+  // PatchGrowParams::prune_without_own_dead_ends: the library counted street ends, none of them its
+  // own dead ends.
+  bool example_without_dead_ends() const {
+    return params_.patch.prune_without_own_dead_ends && !example_ends_.empty() && example_dead_end_share_ == 0.0;
   }
   // The dangling-edge post-process (PatchGrowParams::prune_dangling): every dead end but the
   // example's own and those that cannot go on (a step on is illegal) is cut back, through its
