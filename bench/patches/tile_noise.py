@@ -23,9 +23,10 @@ Reads CSV rows on stdin:
       a block of the window (network_stats' blocks), in the tile holding its point on surface
   reported,name,,metric,value,,,
       the window's own value as network_stats computes it (printed beside the script's own)
-  grown,name,,seed,per_pair_median,past_15,,
-      a growth as compare_networks scored it (its per-pair median, a share; its headline values
-      past 15 %), printed beside the resamples
+  grown,name,,seed,per_pair_median,past_15,metrics,
+      a growth as compare_networks scored it (its per-pair median, a share; how many of its
+      headline values are past 15 %, and which: their metric names, space separated), printed
+      beside the resamples
 """
 import collections
 import csv
@@ -97,7 +98,7 @@ def score(values, own):
 def main():
     tiles = collections.defaultdict(dict)  # (name, size) -> id -> Tile
     reported = {}
-    grown = collections.defaultdict(list)  # name -> (per-pair median, values past 15 %) per seed
+    grown = collections.defaultdict(list)  # name -> (per-pair median, values past 15 %, their metrics) per seed
     for row in csv.reader(sys.stdin):
         if row[0] == "tile":
             _, name, size, tile_id, area, length, degrees, histogram = row
@@ -111,10 +112,10 @@ def main():
             _, name, _, metric, value = row[:5]
             reported[(name, metric)] = float(value)
         elif row[0] == "grown":
-            _, name, _, _, median, past = row[:6]
-            grown[name].append((float(median), int(float(past))))
+            _, name, _, _, median, past, past_metrics = row[:7]
+            grown[name].append((float(median), int(float(past)), past_metrics.split()))
     print(f"{'name':22s} | {'tile_m':>6s} | {'tiles':>5s} | {'pairs_over_5_pct':>16s} | {'past_15_per_pair':>16s} | "
-          f"{'grown_over_5_pct':>16s} | {'grown_past_15':>13s} | resamples past 15 % by metric (%)")
+          f"{'grown_over_5_pct':>16s} | {'grown_past_15':>13s} | past 15 % by metric, resamples / growths (%)")
     checks = []
     for key in sorted(tiles):
         name, size = key
@@ -133,10 +134,14 @@ def main():
                 if difference > 0.15:
                     past15 += 1
                     past_by_metric[metric] += 1
-        by_metric = " ".join(f"{SHORT[m]} {100.0 * past_by_metric[m] / RESAMPLES:.1f}" for m in HEADLINE)
         seeds = grown.get(name, [])
-        grown_over5 = f"{100.0 * sum(m > 0.05 for m, _ in seeds) / len(seeds):16.1f}" if seeds else f"{'':>16s}"
-        grown_past15 = f"{sum(p for _, p in seeds) / len(seeds):13.2f}" if seeds else f"{'':>13s}"
+
+        def growths_past(metric):
+            return f"/{100.0 * sum(metric in past for _, _, past in seeds) / len(seeds):.0f}" if seeds else ""
+
+        by_metric = " ".join(f"{SHORT[m]} {100.0 * past_by_metric[m] / RESAMPLES:.1f}{growths_past(m)}" for m in HEADLINE)
+        grown_over5 = f"{100.0 * sum(m > 0.05 for m, _, _ in seeds) / len(seeds):16.1f}" if seeds else f"{'':>16s}"
+        grown_past15 = f"{sum(p for _, p, _ in seeds) / len(seeds):13.2f}" if seeds else f"{'':>13s}"
         print(f"{name:22s} | {size:6.0f} | {len(own_tiles):5d} | {100.0 * over5 / RESAMPLES:16.1f} | "
               f"{past15 / RESAMPLES:16.2f} | {grown_over5} | {grown_past15} | {by_metric}")
     # The script's own values of all tiles once against network_stats' of the window: nodes on a
