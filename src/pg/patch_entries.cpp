@@ -559,8 +559,9 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           "growth stopped %zu own dead ends, %zu junctions",
                           stats.front_dead_ends_refused, stats.example_dead_end_share, stats.front_dead_ends_relaxed,
                           stats.own_dead_ends_grown, stats.junctions_grown)));
-  ereport(DEBUG1, (errmsg("grow_patches: dangling joins: %zu refused (a junction over the example's per area)",
-                          stats.dangling_dense)));
+  ereport(DEBUG1, (errmsg("grow_patches: dangling joins: %zu refused (a junction over the example's per area), %zu "
+                          "refused (a block under the example's 20th percentile)",
+                          stats.dangling_dense, stats.dangling_small_blocks)));
   ereport(DEBUG1, (errmsg("grow_patches: teng-bidarra: %zu fronts bridged (%zu placements tried, %zu junction pairs "
                           "in the library; turned under 5, 5-20, 20+ degrees: %zu, %zu, %zu; %zu of their junctions "
                           "crossings in their patch); %zu initial patches "

@@ -9,6 +9,7 @@
 
 #include "core/growth/grow_example.hpp"
 #include "core/growth/patches.hpp"
+#include "core/metrics/network_graph.hpp"
 #include "core/metrics/network_stats.hpp"
 #include "patch_fixtures.hpp"
 #include "test_support.hpp"
@@ -1251,6 +1252,49 @@ TEST(PatchDangling, SeamsTurnFewerPatchStreetsOnAWeaklyOrderedExample) {
   EXPECT_GT(culs.stats.patches_placed, 0u);
   EXPECT_GE(culs.stats.example_order, 0.15);
   EXPECT_EQ(culs.stats.seam_refused + culs.stats.seam_slid + culs.stats.seam_relaxed, 0u);  // (94 and 320 without the gate)
+}
+
+namespace {
+
+// The areas of a growth's blocks (network_stats' faces of its streets, the whole network).
+std::vector<double> block_areas(GeosContext& geos, const GrowResult& r) {
+  std::vector<Polyline> lines;
+  for (const GrownEdge& e : r.edges) lines.push_back({e.a, e.b});
+  return network_stats(geos, build_network_graph(lines, {}), NetworkStatsOptions{}).block_areas;
+}
+double median_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+}  // namespace
+
+// Dead ends' joins under the example's small blocks (dangling_block_floor): the uneven blocks beside
+// a spider's web (weakly ordered) join their dead ends ahead after growth, and each join splits a
+// block. With the floor, the joins that would close a block under the example's 20th percentile of
+// block perimeters are refused: fewer blocks under half the median (of those without the floor), a
+// larger median block, planar, deterministic.
+// An ordered example (the uneven grid) and a city of cul-de-sacs grow the same graph either way.
+TEST(PatchDangling, DanglingJoinsCloseNoBlockUnderTheExamplesSmallOnes) {
+  Fixture f;
+  const GrowInput in = f.input(blocks_beside_a_web());
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::dangling_block_floor);
+  EXPECT_EQ(off.stats.dangling_small_blocks, 0u);
+  EXPECT_GT(on.stats.dangling_small_blocks, 0u);  // (measured 9, of 53 joins without the floor)
+  const std::vector<double> a_off = block_areas(f.geos, off), a_on = block_areas(f.geos, on);
+  const double small = 0.5 * median_of(a_off);
+  auto count_under = [](const std::vector<double>& v, double x) {
+    return std::count_if(v.begin(), v.end(), [x](double a) { return a < x; });
+  };
+  EXPECT_LT(count_under(a_on, small), count_under(a_off, small));  // (measured 60 against 67)
+  EXPECT_GT(median_of(a_on), median_of(a_off));                    // (11,490 against 11,226 m²)
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
+  for (const GrowInput& other : {f.input(uneven_grid()), f.input(with_culs_de_sac(blocks_beside_a_web()))}) {
+    auto [other_off, other_on] = f.grow_off_on(other, &PatchGrowParams::dangling_block_floor);
+    EXPECT_EQ(other_on.stats.dangling_small_blocks, 0u);
+    expect_same_graph(other_off, other_on);
+  }
 }
 
 // Stems aligned (align_stems): the uneven blocks are a city of crossings (ordered, most junctions

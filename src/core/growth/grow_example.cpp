@@ -3910,6 +3910,14 @@ class Grower {
   // Joins dead end v to a node or street ahead; returns the node it reached (UINT32_MAX: none).
   std::uint32_t connect_end(std::uint32_t v) {
     const double reach = connect_reach();
+    const double floor = dangling_block_floor();
+    // PatchGrowParams::dangling_block_floor: the join v-x (x node a == b, or on street a-b) refused
+    // when it closes a block under the floor.
+    auto under_floor = [&](Point x, std::uint32_t a, std::uint32_t b) {
+      if (!(floor > 0.0) || !closes_cycle_under(v, x, a, b, floor)) return false;
+      ++stats_.dangling_small_blocks;
+      return true;
+    };
     {
       const OEdge edge = edges_[nodes_[v].edges[0]];
       const std::uint32_t back = edge.a == v ? edge.b : edge.a;
@@ -3918,7 +3926,7 @@ class Grower {
       std::vector<std::pair<double, std::uint32_t>> near = nodes_ahead(v, dir);
       std::sort(near.begin(), near.end());
       for (const auto& [d, w] : near) {
-        if (dangling_dense(w)) continue;
+        if (dangling_dense(w) || under_floor(nodes_[w].p, w, w)) continue;
         if (join_ahead(v, dir, w, join_level(edge.level))) {
           ++stats_.dangling_connected;
           return w;
@@ -3933,11 +3941,14 @@ class Grower {
       const double near_end = std::max(snap_, clearance_);
       if (distance(x, qa) <= near_end || distance(x, qb) <= near_end) {
         const std::uint32_t w = distance(x, qa) <= distance(x, qb) ? hit.a : hit.b;
-        if (w == back || dangling_dense(w) || !join_ahead(v, dir, w, join_level(edge.level))) return UINT32_MAX;
+        if (w == back || dangling_dense(w) || under_floor(nodes_[w].p, w, w) ||
+            !join_ahead(v, dir, w, join_level(edge.level))) {
+          return UINT32_MAX;
+        }
         ++stats_.dangling_connected;
         return w;
       }
-      if (dangling_dense(UINT32_MAX)) return UINT32_MAX;
+      if (dangling_dense(UINT32_MAX) || under_floor(x, hit.a, hit.b)) return UINT32_MAX;
       if (!meets_at_min_angle(qb - qa, x - p) || distance(p, x) <= kContact) return UINT32_MAX;
       if (!legal(p, x) || !clear_of_network(p, x, clearance_, v, -1, -1, c.edge)) return UINT32_MAX;
       const std::uint32_t m = split_edge(c.edge, x);
@@ -3946,6 +3957,19 @@ class Grower {
       return m;
     }
   }
+  // PatchGrowParams::dangling_block_floor: the perimeter (m) no dead end's join closes a block under,
+  // the example's kBlockFloorQuantile of its blocks' perimeters; 0 where the rule does not run
+  // (computed once).
+  double dangling_block_floor() {
+    if (block_floor_ < 0.0) {
+      const bool here = params_.patch.dangling_block_floor && styles_ == 1 && !examples_.empty() &&
+                        example_order() < kSeamOrder && weakly_ordered(kWeakSeamOrder);
+      block_floor_ = here ? small_block_perimeter(examples_[0].nodes, kBlockFloorQuantile) : 0.0;
+    }
+    return block_floor_;
+  }
+  double block_floor_ = -1.0;
+  static constexpr double kBlockFloorQuantile = 0.2;
   static constexpr double kConnectReach = 0.5;  // of the mean street
 
   // Degree-3 node v: its lone street, the one whose other two run straight on (within
