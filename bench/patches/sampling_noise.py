@@ -36,14 +36,21 @@ def orientation_bin(bearing):
     return min(max(int(math.floor(shifted / (360.0 / BINS))), 0), BINS - 1)
 
 
+def order_of_histogram(bins):
+    """φ of a length-weighted orientation histogram of BINS bins (each street counted both ways); 0 when empty."""
+    weight = sum(bins)
+    if weight <= 0.0:
+        return 0.0
+    entropy = -sum(b / weight * math.log(b / weight) for b in bins if b > 0.0)
+    return 1.0 - ((entropy - math.log(4)) / (math.log(36) - math.log(4))) ** 2
+
+
 def orientation_order(streets):
     bins = [0.0] * BINS
     for length, bearing in streets:
         bins[orientation_bin(bearing)] += length
         bins[orientation_bin(math.fmod(bearing + 180.0, 360.0))] += length
-    weight = sum(bins)
-    entropy = -sum(b / weight * math.log(b / weight) for b in bins if b > 0.0)
-    return 1.0 - ((entropy - math.log(4)) / (math.log(36) - math.log(4))) ** 2
+    return order_of_histogram(bins)
 
 
 # metric -> (the part a row holds, the statistic of a list of parts)

@@ -23,33 +23,25 @@ Reads CSV rows on stdin:
       a block of the window (network_stats' blocks), in the tile holding its point on surface
   reported,name,,metric,value,,,
       the window's own value as network_stats computes it (printed beside the script's own)
-  grown,name,,seed,per_pair_median,past_15,metrics,
-      a growth as compare_networks scored it (its per-pair median, a share; how many of its
-      headline values are past 15 %, and which: their metric names, space separated), printed
-      beside the resamples
+  grown,name,,seed,per_pair_median,,metrics,
+      a growth as compare_networks scored it (its per-pair median, a share; the metrics whose
+      relative difference is past 15 %, space separated: the headline ones count), printed beside
+      the resamples
 """
 import collections
 import csv
-import math
 import random
 import statistics
 import sys
 
-BINS = 36
+from sampling_noise import BINS, order_of_histogram  # (beside this script)
+
 RESAMPLES = 1000
 HEADLINE = ["street_density", "intersection_density", "mean_degree", "dead_end_share", "degree4_share",
             "connected_node_ratio", "orientation_order", "block_area_median"]
 SHORT = {"street_density": "street", "intersection_density": "junct", "mean_degree": "degree",
          "dead_end_share": "dead", "degree4_share": "4way", "connected_node_ratio": "cnr",
          "orientation_order": "phi", "block_area_median": "blocks"}
-
-
-def orientation_order(histogram):
-    weight = sum(histogram)
-    if weight <= 0.0:
-        return 0.0
-    entropy = -sum(b / weight * math.log(b / weight) for b in histogram if b > 0.0)
-    return 1.0 - ((entropy - math.log(4)) / (math.log(36) - math.log(4))) ** 2
 
 
 class Tile:
@@ -79,7 +71,7 @@ def metrics(tiles):
         "dead_end_share": dead / nodes if nodes else 0.0,
         "degree4_share": sum(d == 4 for d in degrees) / nodes if nodes else 0.0,
         "connected_node_ratio": (nodes - dead) / nodes if nodes else 0.0,
-        "orientation_order": orientation_order(histogram),
+        "orientation_order": order_of_histogram(histogram),
         "block_area_median": statistics.median(blocks) if blocks else 0.0,
     }
 
@@ -112,8 +104,9 @@ def main():
             _, name, _, metric, value = row[:5]
             reported[(name, metric)] = float(value)
         elif row[0] == "grown":
-            _, name, _, _, median, past, past_metrics = row[:7]
-            grown[name].append((float(median), int(float(past)), past_metrics.split()))
+            _, name, _, _, median, _, past_metrics = row[:7]
+            past = [m for m in past_metrics.split() if m in HEADLINE]
+            grown[name].append((float(median), len(past), past))
     print(f"{'name':22s} | {'tile_m':>6s} | {'tiles':>5s} | {'pairs_over_5_pct':>16s} | {'past_15_per_pair':>16s} | "
           f"{'grown_over_5_pct':>16s} | {'grown_past_15':>13s} | past 15 % by metric, resamples / growths (%)")
     checks = []
