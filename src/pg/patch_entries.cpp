@@ -501,6 +501,13 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                             "back there",
                             stats.cap_length, stats.cap_step, stats.cap_fronts_cut)));
   }
+  if (stats.cap_first_length > 0.0) {
+    ereport(DEBUG1, (errmsg("grow_patches: the first growth ended at %.0f m after its joins, over its cap of %.0f m, "
+                            "and was grown again under a cap lowered by that overshoot; %s",
+                            stats.cap_first_length, stats.cap_first_cap,
+                            stats.cap_regrown_kept ? "the second growth, nearer the cap, is kept (its cap above)"
+                                                   : "the second ended farther from the cap: the first is kept")));
+  }
   {
     // Patch size at fronts: legality against size (terciles of the local patches' connector length).
     char buf[1024];

@@ -134,6 +134,13 @@ struct Fixture {
     p.patch.*flag = true;
     return {std::move(off), grow_example(geos, in, p)};
   }
+  // The same with one setting of `p` at `off`, then at `on`.
+  OffOn grow_off_on(const GrowInput& in, double PatchGrowParams::*value, GrowParams p, double off, double on) {
+    p.patch.*value = off;
+    GrowResult first = grow_example(geos, in, p);
+    p.patch.*value = on;
+    return {std::move(first), grow_example(geos, in, p)};
+  }
 };
 
 }  // namespace
@@ -683,14 +690,18 @@ TEST(PatchDangling, ACityOfCulsDeSacCutsItsCopiedCropEnds) {
 // the seed, the growth filled the whole region at the grid's own density; with the cap it stops at
 // the example's street length per area of its hull (the open connectors then queued are cut back
 // to their junctions), planar, deterministic, and leaves no more dead ends inside than without it.
-TEST(PatchDangling, LengthCapKeepsTheExamplesDensityPerHullArea) {
-  Fixture f;
+std::vector<PatchInputEdge> uneven_grid_and_far_cross() {
   std::vector<PatchInputEdge> example = uneven_grid();
   std::int64_t id = 1000;
   for (const Point d : {Point{50.0, 0.0}, Point{-50.0, 0.0}, Point{0.0, 50.0}, Point{0.0, -50.0}}) {
     example.push_back({{{1700.0, 400.0}, {1700.0 + d.x, 400.0 + d.y}}, "street", ++id, false});
   }
-  GrowInput in = f.input(example);
+  return example;
+}
+
+TEST(PatchDangling, LengthCapKeepsTheExamplesDensityPerHullArea) {
+  Fixture f;
+  GrowInput in = f.input(uneven_grid_and_far_cross());
   GrowParams p = Fixture::patch_growth();
   // (the seams off, as measured: with them, seed 4 leaves 9 dead ends inside with the cap, 5 without)
   p.patch.seam_turn = 0.0;
@@ -723,6 +734,45 @@ TEST(PatchDangling, LengthCapKeepsTheExamplesDensityPerHullArea) {
   EXPECT_LE(interior_dead_ends(on), interior_dead_ends(off));
   EXPECT_EQ(crossings_without_node(on), 0);
   expect_same_graph(grow_example(f.geos, in, defaults), on);
+}
+
+// regrow_past_cap: with every default, the growth of the uneven grid and its far cross stops at its
+// cap, and the joins after it take it past (seed 4: 129.9 km against a 124.9 km cap, 1.040 x). It
+// is grown again with the cap lowered by that overshoot and ends nearer the cap (125.6 km), planar,
+// deterministic, with no more dead ends inside. Seed 1's second growth ends farther (132.3 km
+// against the first's 130.4): the first is kept. A growth that ends under its cap (the uneven grid
+// alone fills the region at 0.85 x) is not grown again.
+TEST(PatchDangling, AGrowthThatEndsPastItsCapIsGrownAgainUnderALowerOne) {
+  Fixture f;
+  GrowInput in = f.input(uneven_grid_and_far_cross());
+  GrowParams p = Fixture::patch_growth();
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::regrow_past_cap, p, 0.0, 0.03);
+  const double cap = off.stats.cap_length;
+  ASSERT_GT(cap, 0.0);
+  EXPECT_EQ(off.stats.cap_first_length, 0.0);
+  EXPECT_GT(grown_length(off), 1.03 * cap);
+  EXPECT_NEAR(on.stats.cap_first_length, grown_length(off), 1e-6);
+  EXPECT_EQ(on.stats.cap_first_cap, cap);
+  EXPECT_TRUE(on.stats.cap_regrown_kept);
+  EXPECT_LT(on.stats.cap_length, cap);  // (the second growth's, lowered)
+  EXPECT_LT(std::abs(grown_length(on) - cap), grown_length(off) - cap);
+  EXPECT_LT(grown_length(on), 1.01 * cap);
+  EXPECT_LE(interior_dead_ends(on), interior_dead_ends(off));
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (0.03: its default)
+
+  p.seed = 1;
+  auto [off1, on1] = f.grow_off_on(in, &PatchGrowParams::regrow_past_cap, p, 0.0, 0.03);
+  EXPECT_GT(grown_length(off1), 1.03 * off1.stats.cap_length);
+  EXPECT_GT(on1.stats.cap_first_length, 0.0);
+  EXPECT_FALSE(on1.stats.cap_regrown_kept);
+  expect_same_graph(off1, on1);
+
+  GrowInput under = f.input(uneven_grid());
+  auto [off2, on2] = f.grow_off_on(under, &PatchGrowParams::regrow_past_cap, Fixture::patch_growth(), 0.0, 0.03);
+  EXPECT_LT(grown_length(off2), off2.stats.cap_length);
+  EXPECT_EQ(on2.stats.cap_first_length, 0.0);
+  expect_same_graph(off2, on2);
 }
 
 // patches27: the example's isolated streets (no junction at either end) are in no patch, but the
