@@ -6788,17 +6788,19 @@ GrowResult grow_example(GeosContext& geos, const GrowInput& input, const GrowPar
   // PatchGrowParams::regrow_past_cap: grown again with the cap lowered by the first growth's overshoot.
   const double cap = first.stats.cap_length;
   if (!params.use_patches || !(params.patch.regrow_past_cap > 0.0) || !(cap > 0.0)) return first;
-  double length = 0.0;
-  for (const GrownEdge& e : first.edges) length += distance(e.a, e.b);
+  auto length_of = [](const GrowResult& r) {
+    double total = 0.0;
+    for (const GrownEdge& e : r.edges) total += distance(e.a, e.b);
+    return total;
+  };
+  const double length = length_of(first);
   if (length <= (1.0 + params.patch.regrow_past_cap) * cap) return first;
   GrowParams lowered = params;
   lowered.patch.length_cap *= cap / length;
   GrowResult second = Grower(geos, input, lowered).run();
   // The second growth takes another course from where the lower cap stops it, and its joins may
   // add more: the one that ends nearer the cap is kept.
-  double second_length = 0.0;
-  for (const GrownEdge& e : second.edges) second_length += distance(e.a, e.b);
-  GrowResult& kept = std::abs(second_length - cap) < length - cap ? second : first;
+  GrowResult& kept = std::abs(length_of(second) - cap) < length - cap ? second : first;
   kept.stats.cap_first_length = length;
   kept.stats.cap_first_cap = cap;
   kept.stats.cap_regrown_kept = &kept == &second;
