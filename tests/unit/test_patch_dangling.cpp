@@ -685,11 +685,9 @@ TEST(PatchDangling, ACityOfCulsDeSacCutsItsCopiedCropEnds) {
   expect_same_graph(grow_example(f.geos, in, defaults), on);  // (the switch on: its default)
 }
 
-// length_cap: the uneven grid with one more junction far to its east (a cross of 50 m streets at
-// x = 1700), so a third of its convex hull is land the example leaves empty. Breadth first from
-// the seed, the growth filled the whole region at the grid's own density; with the cap it stops at
-// the example's street length per area of its hull (the open connectors then queued are cut back
-// to their junctions), planar, deterministic, and leaves no more dead ends inside than without it.
+namespace {
+// The uneven grid with one more junction far to its east (a cross of 50 m streets at x = 1700):
+// a third of its convex hull is land the example leaves empty.
 std::vector<PatchInputEdge> uneven_grid_and_far_cross() {
   std::vector<PatchInputEdge> example = uneven_grid();
   std::int64_t id = 1000;
@@ -698,7 +696,13 @@ std::vector<PatchInputEdge> uneven_grid_and_far_cross() {
   }
   return example;
 }
+}  // namespace
 
+// length_cap: the uneven grid with one more junction far to its east (a cross of 50 m streets at
+// x = 1700), so a third of its convex hull is land the example leaves empty. Breadth first from
+// the seed, the growth filled the whole region at the grid's own density; with the cap it stops at
+// the example's street length per area of its hull (the open connectors then queued are cut back
+// to their junctions), planar, deterministic, and leaves no more dead ends inside than without it.
 TEST(PatchDangling, LengthCapKeepsTheExamplesDensityPerHullArea) {
   Fixture f;
   GrowInput in = f.input(uneven_grid_and_far_cross());
