@@ -503,8 +503,9 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   }
   if (stats.cap_first_length > 0.0) {
     ereport(DEBUG1, (errmsg("grow_patches: the first growth ended at %.0f m after its joins, over its cap of %.0f m, "
-                            "and was grown again under a cap lowered by that overshoot; %s",
+                            "and was grown again under a cap lowered by that overshoot (%s); %s",
                             stats.cap_first_length, stats.cap_first_cap,
+                            stats.cap_resumed ? "resumed from its checkpoint" : "from the start",
                             stats.cap_regrown_kept ? "the second growth, nearer the cap, is kept (its cap above)"
                                                    : "the second ended farther from the cap: the first is kept")));
   }

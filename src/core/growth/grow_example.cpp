@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
+#include <optional>
 #include <queue>
 #include <set>
 #include <tuple>
@@ -298,6 +300,10 @@ struct PreparedDeleter {
   }
 };
 using PreparedPtr = std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter>;
+// The Grower's geometries of its region, obstacles and water: set once, then only read, so a
+// copy of the Grower (its checkpoint, PatchGrowParams::regrow_past_cap) shares them.
+using SharedGeom = std::shared_ptr<GEOSGeometry>;
+using SharedPrepared = std::shared_ptr<const GEOSPreparedGeometry>;
 
 bool is_polygonal(GEOSContextHandle_t h, const GEOSGeometry* g) {
   int t = GEOSGeomTypeId_r(h, g);
@@ -315,6 +321,7 @@ class Grower {
   Grower(GeosContext& geos, const GrowInput& input, const GrowParams& params)
       : geos_(geos), params_(params), rng_(params.seed), shape_rng_(params.seed ^ 0x9e3779b97f4a7c15ull), line_(geos) {
     check_params();
+    length_cap_ = params.patch.length_cap;
     weights_ = &input.weights;
     direction_ = &input.direction;
     if (params.parametric) {
@@ -417,35 +424,22 @@ class Grower {
     place_seeds();
   }
 
-  GrowResult run() {
+  // With a checkpoint (PatchGrowParams::regrow_checkpoint), the growth leaves there a copy of
+  // itself taken in its local phase (take_checkpoint), from which resume_under grows on under a
+  // lower cap.
+  GrowResult run(std::unique_ptr<Grower>* checkpoint = nullptr) {
+    checkpoint_ = checkpoint;
     // A growth that dies within its first few edges (a start among the example's shortest
     // segments crowds itself out) starts again from the seeds with the next random draws.
-    for (int restart = 0;; ++restart) {
+    for (restart_ = 0;; ++restart_) {
+      resumable_grow_ = true;
       grow();
       if (hierarchy_ && phase_arterial_ && params_.patch.arterial_fallback_deferred) arterial_fallback_pass();
       if (arterial_refill_on()) arterial_refill();
       if (start_local_phase()) grow();
-      if (params_.use_patches && params_.patch.refill > 0.0 && new_edges_ >= kMinGrowth) refill();
-      // A growth whose fronts all died before the region was covered starts again from a random
-      // legal point farther than r from every edge (as a new seed), until none is found.
-      for (int reseeds = 0; params_.fill && new_edges_ >= kMinGrowth && new_edges_ < params_.max_edges &&
-                            reseeds < kMaxReseeds && reseed();
-           ++reseeds) {
-        grow();
-      }
-      if (new_edges_ >= std::min<std::size_t>(kMinGrowth, params_.max_edges) || restart == kRestarts) {
-        trim_kept_fronts();
-        stats_.own_dead_ends_grown = out_own_dead_ends_;
-        stats_.junctions_grown = out_junctions_;
-        stats_.example_dead_end_share = example_dead_end_share_;
-        if (params_.use_patches && params_.patch.connect_dangling) connect_dangling();
-        if (params_.use_patches && params_.patch.continue_across) continue_across();
-        if (params_.use_patches && (avoid_corners() || cul_de_sac_crop_cuts())) cut_corner_fronts();
-        if (params_.use_patches && params_.patch.straight_corners) straighten_corners();
-        if (params_.use_patches && (params_.patch.prune_dangling || example_without_dead_ends())) prune_dangling();
-        if (params_.use_patches && params_.patch.continue_across && params_.patch.facing_after_cuts) join_facing_after_cuts();
-        break;
-      }
+      resumable_grow_ = false;
+      if (finish_growth()) break;
+      if (checkpoint_ != nullptr) checkpoint_->reset();  // taken in a growth that starts again
       ++stats_.restarts;
       out_junctions_ = 0;
       out_crossings_ = 0;
@@ -469,6 +463,7 @@ class Grower {
       kept_fronts_.clear();
       queue_head_ = 0;
       new_length_ = 0.0;
+      cap_checked_peak_ = 0.0;
       for (LibPatch& lp : library_) lp.uses = 0;
       new_edges_ = 0;
       phase_arterial_ = hierarchy_;
@@ -488,10 +483,71 @@ class Grower {
       load_existing();
       place_seeds();
     }
+    checkpoint_ = nullptr;
+    return result();
+  }
+
+  // The checkpoint grown on under a lower length cap (metres of the example's length per hull
+  // area, as PatchGrowParams::length_cap): the same growth as one run from the start with that
+  // cap, if no length the growth was checked at before its copy reached the lower cap.
+  // Otherwise, or if it would have to start again, nothing: the caller grows from the start.
+  std::optional<GrowResult> resume_under(double length_cap) {
+    length_cap_ = length_cap;
+    stats_.cap_length = 0.0;  // (length_cap_reached computes the lower one)
+    if (length_cap_reached_after(cap_checked_peak_)) return std::nullopt;
+    grow();
+    if (!finish_growth()) return std::nullopt;
     return result();
   }
 
  private:
+  // A copy of the growth as it is (its checkpoint); it takes no checkpoint of its own.
+  Grower(const Grower&) = default;
+  std::unique_ptr<Grower> copy() const {
+    std::unique_ptr<Grower> out(new Grower(*this));
+    out->checkpoint_ = nullptr;
+    return out;
+  }
+  // PatchGrowParams::regrow_checkpoint: at the top of a local-phase growth loop that run() itself
+  // called (not a refill's or a reseed's, which resume_under could not go back into), once the
+  // grown length first reaches the share of the cap.
+  void take_checkpoint() {
+    if (checkpoint_ == nullptr || *checkpoint_ || !resumable_grow_ || phase_arterial_ || new_edges_ < kMinGrowth ||
+        !(stats_.cap_length > 0.0) || !(params_.patch.regrow_checkpoint > 0.0) ||
+        new_length_ < params_.patch.regrow_checkpoint * stats_.cap_length) {
+      return;
+    }
+    *checkpoint_ = copy();
+  }
+
+  // After the growth loops of run(): refill, reseeds, and, when enough has grown (or at the last
+  // start), the joins and mends after the growth. False: the growth starts again.
+  bool finish_growth() {
+    if (params_.use_patches && params_.patch.refill > 0.0 && new_edges_ >= kMinGrowth) refill();
+    // A growth whose fronts all died before the region was covered starts again from a random
+    // legal point farther than r from every edge (as a new seed), until none is found.
+    for (int reseeds = 0; params_.fill && new_edges_ >= kMinGrowth && new_edges_ < params_.max_edges &&
+                          reseeds < kMaxReseeds && reseed();
+         ++reseeds) {
+      grow();
+    }
+    if (new_edges_ < std::min<std::size_t>(kMinGrowth, params_.max_edges) && restart_ != kRestarts) return false;
+    trim_kept_fronts();
+    stats_.own_dead_ends_grown = out_own_dead_ends_;
+    stats_.junctions_grown = out_junctions_;
+    stats_.example_dead_end_share = example_dead_end_share_;
+    if (params_.use_patches && params_.patch.connect_dangling) connect_dangling();
+    if (params_.use_patches && params_.patch.continue_across) continue_across();
+    if (params_.use_patches && (avoid_corners() || cul_de_sac_crop_cuts())) cut_corner_fronts();
+    if (params_.use_patches && params_.patch.straight_corners) straighten_corners();
+    if (params_.use_patches && (params_.patch.prune_dangling || example_without_dead_ends())) prune_dangling();
+    if (params_.use_patches && params_.patch.continue_across && params_.patch.facing_after_cuts) join_facing_after_cuts();
+    return true;
+  }
+  std::unique_ptr<Grower>* checkpoint_ = nullptr;
+  bool resumable_grow_ = false;  // in a growth loop run() called itself (take_checkpoint)
+  int restart_ = 0;
+
   static constexpr std::size_t kMinGrowth = 20;
   // What made a join (GrowStats::node_joins): a free end's snap, a contact, a failed front.
   static constexpr int kJoinSnap = 0, kJoinContact = 1, kJoinFront = 2;
@@ -848,15 +904,22 @@ class Grower {
   // PatchGrowParams::length_cap: whether the local phase (or the one level) has grown the street
   // length the example has per area of its hull (new_length_: the grown edges, kept as edges come and go).
   bool length_cap_reached() {
-    if (!params_.use_patches || phase_arterial_ || !(params_.patch.length_cap > 0.0) || examples_.empty() ||
+    const bool reached = length_cap_reached_after(new_length_);
+    cap_checked_peak_ = std::max(cap_checked_peak_, new_length_);
+    return reached;
+  }
+  bool length_cap_reached_after(double length) {
+    if (!params_.use_patches || phase_arterial_ || !(length_cap_ > 0.0) || examples_.empty() ||
         !(examples_[0].hull_area > 0.0)) {
       return false;
     }
     if (stats_.cap_length == 0.0) {
-      stats_.cap_length = params_.patch.length_cap * examples_[0].total_length / examples_[0].hull_area * region_area_;
+      stats_.cap_length = length_cap_ * examples_[0].total_length / examples_[0].hull_area * region_area_;
     }
-    return new_length_ >= stats_.cap_length;
+    return length >= stats_.cap_length;
   }
+  double length_cap_ = 0.0;  // PatchGrowParams::length_cap (resume_under lowers it)
+  double cap_checked_peak_ = 0.0;  // the largest grown length length_cap_reached was asked about
   // The fronts still queued when the cap stopped the growth: each open connector (a dead end that
   // is not the example's) is cut back to its junction.
   void cut_fronts_at_cap() {
@@ -879,6 +942,7 @@ class Grower {
         cut_fronts_at_cap();
         break;
       }
+      take_checkpoint();
       std::uint32_t v;
       if (params_.use_patches) {  // Nishida's FIFO queue: breadth first from the seeds
         v = unfinished_[queue_head_++];
@@ -4483,9 +4547,9 @@ class Grower {
   double example_dead_end_share_ = 0.0;  // of the library's street ends (not cut), its own dead ends
   std::vector<std::pair<double, char>> example_ends_;  // those street ends: distance to the library's hull, dead end
   std::vector<Polyline> isolated_;  // the first library's isolated streets (role isolated): only counted
-  GeomPtr budget_boundary_;
+  SharedGeom budget_boundary_;
   std::vector<signed char> in_budget_;  // per node: counted in the dead-end budget (-1: not known yet)
-  PreparedPtr budget_boundary_prepared_;
+  SharedPrepared budget_boundary_prepared_;
   int styles_ = 1;
   StreetStatistics style_stats_[2];
   StreetStatistics style_level_stats_[2][2];
@@ -6647,14 +6711,14 @@ class Grower {
     return angle;
   }
   std::vector<BoxValue> guide_hits_;
-  PreparedPtr region_;
+  SharedPrepared region_;
   const GEOSGeometry* region_geom_ = nullptr;
   double region_area_ = 0.0;
   Point env_min_, env_max_;
-  GeomPtr obstacles_{nullptr, GeomDeleter{}};
-  PreparedPtr obstacles_prepared_;
-  GeomPtr water_{nullptr, GeomDeleter{}};
-  PreparedPtr water_prepared_;
+  SharedGeom obstacles_;
+  SharedPrepared obstacles_prepared_;
+  SharedGeom water_;
+  SharedPrepared water_prepared_;
   const GridField* dem_ = nullptr;
   bool has_dem_ = false;
   double max_grade_ = INFINITY;  // max_slope as rise over run
@@ -6680,8 +6744,8 @@ class Grower {
   std::uint32_t open_stamp_ = 0;
   std::vector<std::size_t> at_least_;   // counted nodes by degree, at least d
   double counted_length_ = 0.0;         // metres of the output's edges as counted (counted_length)
-  GeomPtr region_boundary_;
-  PreparedPtr region_boundary_prepared_;
+  SharedGeom region_boundary_;
+  SharedPrepared region_boundary_prepared_;
   std::vector<std::uint32_t> unfinished_;
   std::vector<std::uint8_t> attempts_;
   static constexpr std::uint8_t kAttempts = 4;
@@ -6784,10 +6848,12 @@ bool cut_nears_dead_end_budget(long dead, long street_ends, long dead_after, lon
 }
 
 GrowResult grow_example(GeosContext& geos, const GrowInput& input, const GrowParams& params) {
-  GrowResult first = Grower(geos, input, params).run();
+  std::unique_ptr<Grower> checkpoint;
+  const bool regrow = params.use_patches && params.patch.regrow_past_cap > 0.0;
+  GrowResult first = Grower(geos, input, params).run(regrow ? &checkpoint : nullptr);
   // PatchGrowParams::regrow_past_cap: grown again with the cap lowered by the first growth's overshoot.
   const double cap = first.stats.cap_length;
-  if (!params.use_patches || !(params.patch.regrow_past_cap > 0.0) || !(cap > 0.0)) return first;
+  if (!regrow || !(cap > 0.0)) return first;
   auto length_of = [](const GrowResult& r) {
     double total = 0.0;
     for (const GrownEdge& e : r.edges) total += distance(e.a, e.b);
@@ -6797,13 +6863,18 @@ GrowResult grow_example(GeosContext& geos, const GrowInput& input, const GrowPar
   if (length <= (1.0 + params.patch.regrow_past_cap) * cap) return first;
   GrowParams lowered = params;
   lowered.patch.length_cap *= cap / length;
-  GrowResult second = Grower(geos, input, lowered).run();
+  std::optional<GrowResult> resumed;
+  if (checkpoint) resumed = checkpoint->resume_under(lowered.patch.length_cap);
+  checkpoint.reset();
+  const bool from_checkpoint = resumed.has_value();
+  GrowResult second = from_checkpoint ? std::move(*resumed) : Grower(geos, input, lowered).run();
   // The second growth takes another course from where the lower cap stops it, and its joins may
   // add more: the one that ends nearer the cap is kept.
   GrowResult& kept = std::abs(length_of(second) - cap) < length - cap ? second : first;
   kept.stats.cap_first_length = length;
   kept.stats.cap_first_cap = cap;
   kept.stats.cap_regrown_kept = &kept == &second;
+  kept.stats.cap_resumed = from_checkpoint;
   return std::move(kept);
 }
 

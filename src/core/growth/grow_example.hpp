@@ -381,6 +381,13 @@ struct PatchGrowParams {
   // At 0.01 quito's regrown seeds (48 of 120) came out worse on balance (+0.10 points a pair;
   // README "The cap after the joins"). 0: off.
   double regrow_past_cap = 0.03;
+  // The second growth resumes from a copy of the first taken when its grown length first reached
+  // this share of the cap, in the local phase (the two growths are the same until the lower cap
+  // stops the second), instead of growing again from the start. It can when the lowered cap is
+  // above every length the first growth was checked at before the copy: overshoots up to 1 / 0.9,
+  // 11 %; otherwise, or when the cap was first reached in a refill, the second grows from the
+  // start. Either way the second growth is the same. 0: always from the start.
+  double regrow_checkpoint = 0.9;
   // Arterial refill (levels, after the arterial phase, before the local one): the arterial phase
   // copies the example's arterial network outwards from the seed patch, so it covers only the part
   // of the region the example's arterials reach from there (measured: 6-39 % of the example's
@@ -584,6 +591,7 @@ struct GrowStats {
   double cap_first_length = 0.0;   // metres: PatchGrowParams::regrow_past_cap: the first growth's length (0: not regrown)
   double cap_first_cap = 0.0;      // metres: and its cap
   bool cap_regrown_kept = false;   // the second growth was kept (cap_length is then its lowered cap)
+  bool cap_resumed = false;        // the second growth resumed from the first's checkpoint (regrow_checkpoint)
   // PatchGrowParams::arterial_refill: the main-street length aimed at, the example's widest space
   // between its main streets, the grown main streets when the arterial phase first stopped and at
   // its end, the arterial seeds placed.
