@@ -780,8 +780,8 @@ TEST(PatchDangling, AGrowthThatEndsPastItsCapIsGrownAgainUnderALowerOne) {
 }
 
 // PatchGrowParams::regrow_checkpoint: the second growth resumes from a copy of the first taken in
-// its local phase at 0.9 x the cap, instead of growing again from the start (half the time of
-// a regrown growth, README). It is the growth a start from scratch makes, edge for edge and point
+// its local phase at 0.9 x the cap, instead of growing again from the start (tokyo's 2,770 m
+// square: 1.5-1.6 s against 2.6-2.7 s, README). It is the growth a start from scratch makes, edge for edge and point
 // for point, on seed 4 (the second growth is kept) and seed 1 (the first is): the cap is first
 // checked past the copy, under the lower cap. A copy taken at 0.99 x the cap is past the lower cap
 // (seed 4's 1.040 x lowers it to 0.96 x): the second growth then starts from scratch, the same.
