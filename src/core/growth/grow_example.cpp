@@ -707,6 +707,16 @@ class Grower {
       len += distance(ex.nodes[a].p, ex.nodes[b].p);
     }
     if (main.empty()) return;
+    // The nearest main street of each lattice point through an R-tree (packed once): a city's
+    // library has tens of thousands of main segments, and 4,096 points against each of them took
+    // a third of a growth from the Paris city graph's patches.
+    std::vector<BoxValue> boxes;
+    boxes.reserve(main.size());
+    for (std::size_t k = 0; k < main.size(); ++k) {
+      boxes.emplace_back(box_of(main[k].first, main[k].second), static_cast<std::uint32_t>(k));
+    }
+    const BoxTree tree(boxes.begin(), boxes.end());
+    std::vector<BoxValue> found;
     std::vector<Point> pts;
     pts.reserve(ex.nodes.size());
     for (const ExNode& n : ex.nodes) pts.push_back(n.p);
@@ -726,8 +736,15 @@ class Grower {
           inside = cross(hull[(k + 1) % hull.size()] - hull[k], q - hull[k]) >= 0.0;
         }
         if (!inside) continue;
+        // The nearest boxes' segments bound the distance; every segment nearer than that bound
+        // has its box within it, so the minimum over those is the exact minimum over all.
+        found.clear();
+        tree.query(bgi::nearest(BPoint(q.x, q.y), 4), std::back_inserter(found));
         double d = INFINITY;
-        for (const auto& [a, b] : main) d = std::min(d, point_segment_distance(q, a, b));
+        for (const BoxValue& fv : found) d = std::min(d, point_segment_distance(q, main[fv.second].first, main[fv.second].second));
+        found.clear();
+        tree.query(bgi::intersects(box_around(q, d + kContact)), std::back_inserter(found));
+        for (const BoxValue& fv : found) d = std::min(d, point_segment_distance(q, main[fv.second].first, main[fv.second].second));
         gap = std::max(gap, d);
       }
     }
