@@ -79,4 +79,19 @@ inline void expect_same_graph(const core::GrowResult& again, const core::GrowRes
   }
 }
 
+// The same growth, edge for edge and point for point, copied from the same example edges (one made
+// another way, e.g. resumed from a checkpoint).
+inline void expect_same_edges(const core::GrowResult& a, const core::GrowResult& b) {
+  ASSERT_EQ(a.edges.size(), b.edges.size());
+  for (std::size_t i = 0; i < a.edges.size(); ++i) {
+    EXPECT_EQ(a.edges[i].from_node, b.edges[i].from_node);
+    EXPECT_EQ(a.edges[i].to_node, b.edges[i].to_node);
+    EXPECT_EQ(a.edges[i].a.x, b.edges[i].a.x);
+    EXPECT_EQ(a.edges[i].a.y, b.edges[i].a.y);
+    EXPECT_EQ(a.edges[i].b.x, b.edges[i].b.x);
+    EXPECT_EQ(a.edges[i].b.y, b.edges[i].b.y);
+    EXPECT_EQ(a.edges[i].example, b.edges[i].example);
+  }
+}
+
 }  // namespace streetgen::test

@@ -14,6 +14,7 @@
 using namespace streetgen::core;
 using streetgen::test::avenue_grid;
 using streetgen::test::crosses_without_node;
+using streetgen::test::expect_same_edges;
 using streetgen::test::wkt;
 
 namespace {
@@ -469,14 +470,7 @@ TEST(GrowPatches, ArterialRefillSeedsArterialsWhereThePhaseStopped) {
     for (std::size_t j = i + 1; j < on.edges.size(); ++j) bad += crosses_without_node(on.edges[i], on.edges[j]);
   }
   EXPECT_EQ(bad, 0u);
-  GrowResult again = grow_example(geos, in, p);
-  ASSERT_EQ(again.edges.size(), on.edges.size());
-  for (std::size_t i = 0; i < on.edges.size(); ++i) {
-    EXPECT_EQ(again.edges[i].from_node, on.edges[i].from_node);
-    EXPECT_EQ(again.edges[i].to_node, on.edges[i].to_node);
-    EXPECT_DOUBLE_EQ(again.edges[i].a.x, on.edges[i].a.x);
-    EXPECT_DOUBLE_EQ(again.edges[i].b.y, on.edges[i].b.y);
-  }
+  expect_same_edges(grow_example(geos, in, p), on);
 }
 
 namespace {
