@@ -738,13 +738,15 @@ class Grower {
         if (!inside) continue;
         // The nearest boxes' segments bound the distance; every segment nearer than that bound
         // has its box within it, so the minimum over those is the exact minimum over all.
-        found.clear();
-        tree.query(bgi::nearest(BPoint(q.x, q.y), 4), std::back_inserter(found));
         double d = INFINITY;
-        for (const BoxValue& fv : found) d = std::min(d, point_segment_distance(q, main[fv.second].first, main[fv.second].second));
-        found.clear();
+        auto nearest_of_found = [&] {
+          for (const BoxValue& fv : found) d = std::min(d, point_segment_distance(q, main[fv.second].first, main[fv.second].second));
+          found.clear();
+        };
+        tree.query(bgi::nearest(BPoint(q.x, q.y), 4), std::back_inserter(found));
+        nearest_of_found();
         tree.query(bgi::intersects(box_around(q, d + kContact)), std::back_inserter(found));
-        for (const BoxValue& fv : found) d = std::min(d, point_segment_distance(q, main[fv.second].first, main[fv.second].second));
+        nearest_of_found();
         gap = std::max(gap, d);
       }
     }
