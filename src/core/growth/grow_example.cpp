@@ -301,7 +301,7 @@ struct PreparedDeleter {
 };
 using PreparedPtr = std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter>;
 // The Grower's geometries of its region, obstacles and water: set once, then only read, so a
-// copy of the Grower (its checkpoint, PatchGrowParams::regrow_past_cap) shares them.
+// copy of the Grower (its checkpoint, PatchGrowParams::regrow_checkpoint) shares them.
 using SharedGeom = std::shared_ptr<GEOSGeometry>;
 using SharedPrepared = std::shared_ptr<const GEOSPreparedGeometry>;
 
