@@ -370,8 +370,8 @@ struct PatchGrowParams {
   // growth stopped add street length the cap did not count. Tokyo's growths ended at 1.036 x their
   // cap (median over seeds 1-60, up to 1.065), its street density +4.3 % inside the window; the
   // other examples at 0.95-1.01 x. A growth that ends more than `regrow_past_cap` over its cap is
-  // grown once more from the start with the cap lowered by that overshoot (the same seed: the same
-  // draws until the lower cap stops it), and the one of the two that ends nearer the cap is kept.
+  // grown once more with the cap lowered by that overshoot (the same seed: the same draws until the
+  // lower cap stops it; regrow_checkpoint), and the one of the two that ends nearer the cap is kept.
   // Grown again from the start, the growth cost twice where it applies (bench/patches' speed part,
   // tokyo's 2,770 m square: 298 km in 2.45 s against 311 km in 1.30 s without; the issue asks 300
   // km in under 3 s); regrow_checkpoint saves most of that.
