@@ -4010,7 +4010,7 @@ class Grower {
       std::sort(near.begin(), near.end());
       for (const auto& [d, w] : near) {
         if (dangling_dense(w) || under_floor(nodes_[w].p, w, w)) continue;
-        if (join_ahead(v, dir, w, join_level(edge.level))) {
+        if (dead_end_join_ahead(v, dir, w, join_level(edge.level))) {
           ++stats_.dangling_connected;
           return w;
         }
@@ -4025,7 +4025,7 @@ class Grower {
       if (distance(x, qa) <= near_end || distance(x, qb) <= near_end) {
         const std::uint32_t w = distance(x, qa) <= distance(x, qb) ? hit.a : hit.b;
         if (w == back || dangling_dense(w) || under_floor(nodes_[w].p, w, w) ||
-            !join_ahead(v, dir, w, join_level(edge.level))) {
+            !dead_end_join_ahead(v, dir, w, join_level(edge.level))) {
           return UINT32_MAX;
         }
         ++stats_.dangling_connected;
@@ -4234,16 +4234,38 @@ class Grower {
     const double v_left = within_room(v, side + w_left);
     const bool slid_v = std::abs(v_left) > kSlideMin / 2 && slide_across(v, g, v_left);
     const bool slid_w = std::abs(w_left) > kSlideMin / 2 && slide_across(w, g, w_left);
-    if (!slid_v && !slid_w) return join();
+    // PatchGrowParams::grid_joins: the join, as the nodes are now, more than kGridJoinOff off g.
+    auto off_grid = [&] {
+      return grid_joins_only_ && std::abs(cross(g, unit(nodes_[w].p - nodes_[v].p))) > std::sin(kGridJoinOff);
+    };
+    if (!slid_v && !slid_w) {
+      if (!off_grid()) return join();
+      ++stats_.joins_off_grid;
+      return false;
+    }
     const bool clean = joins_cleanly(v, w) && !(corners_refused_ && (corner_made(v, w) || corner_made(w, v)));
-    if (clean && join()) {
+    const bool short_of_line = clean && off_grid();  // the room let them slide only part of the way
+    if (clean && !short_of_line && join()) {
       stats_.slid_onto_grid += static_cast<std::size_t>(slid_v) + static_cast<std::size_t>(slid_w);
       return true;
     }
     if (slid_w) move_node(w, pw);
     if (slid_v) move_node(v, pv);
+    if (short_of_line || (!clean && off_grid())) {
+      ++stats_.joins_off_grid;
+      return false;
+    }
     return !clean && join();
   }
+  // A dead end's join ahead (connect_end): with PatchGrowParams::grid_joins only along the grid.
+  bool dead_end_join_ahead(std::uint32_t v, Point dir, std::uint32_t w, int level) {
+    grid_joins_only_ = params_.patch.grid_joins;
+    const bool joined = join_ahead(v, dir, w, level);
+    grid_joins_only_ = false;
+    return joined;
+  }
+  bool grid_joins_only_ = false;  // join_slid refuses a join off the grid (dead_end_join_ahead)
+  static constexpr double kGridJoinOff = 20.0 * kPi / 180.0;  // 5 / 10 / 15 / 25 measured (tokyo, README)
   static constexpr double kSlideMin = 0.25;                   // metres: a smaller offset is left
   static constexpr double kSlideTilt = 10.0 * kPi / 180.0;    // a slid T's lone street turns at most this
   static constexpr double kSlideGridOff = 5.0 * kPi / 180.0;  // and ends at most this off the grid
