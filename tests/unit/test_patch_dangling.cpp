@@ -1733,6 +1733,27 @@ double statistical_off_grid(const GrowResult& r, double axis, double limit) {
   return metres;
 }
 
+// The grid rules' checks in common: `flag` on the uneven blocks turned 30 degrees (`axis`) fires
+// (`count` of its stats 0 off, more on) and leaves fewer metres of statistical street more than
+// `limit` off the grid, planar, deterministic; the spider's web (no grid) grows the same graph
+// either way. Returns the turned blocks' growths, off and on.
+template <class Count>
+Fixture::OffOn grid_rule_fires(Fixture& f, bool PatchGrowParams::*flag, Count count, double axis, double limit) {
+  GrowInput in = f.input(turned_about_origin(uneven_blocks(), axis));
+  Fixture::OffOn grown = f.grow_off_on(in, flag);
+  EXPECT_EQ(count(grown.off.stats), 0u);
+  EXPECT_GT(count(grown.on.stats), 0u);
+  EXPECT_LT(statistical_off_grid(grown.on, axis, limit), statistical_off_grid(grown.off, axis, limit));
+  EXPECT_EQ(crossings_without_node(grown.on), 0);
+  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), grown.on);  // (the switch on: its default)
+
+  GrowInput web = f.input(spider_web());
+  auto [web_off, web_on] = f.grow_off_on(web, flag);
+  EXPECT_EQ(count(web_on.stats), 0u);
+  expect_same_graph(web_on, web_off);
+  return grown;
+}
+
 }  // namespace
 
 // Joins slid onto the grid (slide_onto_grid): on an ordered example a facing join, a dead end's
@@ -1744,20 +1765,10 @@ double statistical_off_grid(const GrowResult& r, double axis, double limit) {
 // graph either way.
 TEST(PatchDangling, JoinsSlideOntoTheGridOnAnOrderedExample) {
   Fixture f;
+  auto slid = [](const GrowStats& s) { return s.slid_onto_grid; };
   const double axis = 30.0 * M_PI / 180.0;
-  GrowInput in = f.input(turned_about_origin(uneven_blocks(), axis));
-  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::slide_onto_grid);
-  EXPECT_EQ(off.stats.slid_onto_grid, 0u);
-  ASSERT_GT(on.stats.slid_onto_grid, 0u);
-  EXPECT_LT(statistical_off_grid(on, axis, 10.0 * M_PI / 180.0), statistical_off_grid(off, axis, 10.0 * M_PI / 180.0));
+  auto [off, on] = grid_rule_fires(f, &PatchGrowParams::slide_onto_grid, slid, axis, 10.0 * M_PI / 180.0);
   EXPECT_GT(segment_order(on), segment_order(off));
-  EXPECT_EQ(crossings_without_node(on), 0);
-  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
-
-  GrowInput web = f.input(spider_web());
-  auto [web_off, web_on] = f.grow_off_on(web, &PatchGrowParams::slide_onto_grid);
-  EXPECT_EQ(web_on.stats.slid_onto_grid, 0u);
-  expect_same_graph(web_on, web_off);
 }
 
 namespace {
@@ -1785,19 +1796,8 @@ double street_order(GeosContext& geos, const GrowResult& r) {
 // same graph either way.
 TEST(PatchDangling, DeadEndsJoinAlongTheGridOnAnOrderedExample) {
   Fixture f;
+  auto refused = [](const GrowStats& s) { return s.joins_off_grid; };
   const double axis = 30.0 * M_PI / 180.0;
-  GrowInput in = f.input(turned_about_origin(uneven_blocks(), axis));
-  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::grid_joins);
-  EXPECT_EQ(off.stats.joins_off_grid, 0u);
-  ASSERT_GT(on.stats.joins_off_grid, 0u);
-  const double limit = 20.0 * M_PI / 180.0;
-  EXPECT_LT(statistical_off_grid(on, axis, limit), statistical_off_grid(off, axis, limit));
+  auto [off, on] = grid_rule_fires(f, &PatchGrowParams::grid_joins, refused, axis, 20.0 * M_PI / 180.0);
   EXPECT_GE(street_order(f.geos, on), street_order(f.geos, off));
-  EXPECT_EQ(crossings_without_node(on), 0);
-  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
-
-  GrowInput web = f.input(spider_web());
-  auto [web_off, web_on] = f.grow_off_on(web, &PatchGrowParams::grid_joins);
-  EXPECT_EQ(web_on.stats.joins_off_grid, 0u);
-  expect_same_graph(web_on, web_off);
 }
