@@ -4010,7 +4010,7 @@ class Grower {
       std::sort(near.begin(), near.end());
       for (const auto& [d, w] : near) {
         if (dangling_dense(w) || under_floor(nodes_[w].p, w, w)) continue;
-        if (dead_end_join_ahead(v, dir, w, join_level(edge.level))) {
+        if (join_ahead(v, dir, w, join_level(edge.level), params_.patch.grid_joins)) {
           ++stats_.dangling_connected;
           return w;
         }
@@ -4025,7 +4025,7 @@ class Grower {
       if (distance(x, qa) <= near_end || distance(x, qb) <= near_end) {
         const std::uint32_t w = distance(x, qa) <= distance(x, qb) ? hit.a : hit.b;
         if (w == back || dangling_dense(w) || under_floor(nodes_[w].p, w, w) ||
-            !dead_end_join_ahead(v, dir, w, join_level(edge.level))) {
+            !join_ahead(v, dir, w, join_level(edge.level), params_.patch.grid_joins)) {
           return UINT32_MAX;
         }
         ++stats_.dangling_connected;
@@ -4211,17 +4211,18 @@ class Grower {
     return join_slid(v, w, on_grid(tee_heading(v, lone) - tee_heading(w, lone_w)), 0.5, level);
   }
   // A join from v straight on (heading `dir`: a dead end's, a corner's kept street) to node w
-  // ahead: w slides onto the grid line v heads along.
-  bool join_ahead(std::uint32_t v, Point dir, std::uint32_t w, int level) {
+  // ahead: w slides onto the grid line v heads along. `grid_only` (a dead end's join with
+  // PatchGrowParams::grid_joins): not made if it would still run more than kGridJoinOff off it.
+  bool join_ahead(std::uint32_t v, Point dir, std::uint32_t w, int level, bool grid_only = false) {
     if (!slides_onto_grid()) return try_connect(v, w, level);
-    return join_slid(v, w, on_grid(dir), 0.0, level);
+    return join_slid(v, w, on_grid(dir), 0.0, level, grid_only);
   }
   // Join v-w along g: v and w slide across g (see slide_room) until w lies on the line from v along
   // g, v taking `v_share` of the offset and w the rest, either taking what the other cannot. The
   // slid join's geometry decides whether they stay slid (else they slide back and the join is tried
   // where they were); then try_connect's draw of the example's junction mix whether it is made (a
   // join that draw refused is not tried again unslid: one draw per join tried, as before).
-  bool join_slid(std::uint32_t v, std::uint32_t w, Point g, double v_share, int level) {
+  bool join_slid(std::uint32_t v, std::uint32_t w, Point g, double v_share, int level, bool grid_only = false) {
     auto join = [&] { return try_connect(v, w, level); };
     const Point pv = nodes_[v].p, pw = nodes_[w].p;
     const double side = cross(g, pw - pv);  // w's offset to the left of the line from v along g
@@ -4236,7 +4237,7 @@ class Grower {
     const bool slid_w = std::abs(w_left) > kSlideMin / 2 && slide_across(w, g, w_left);
     // PatchGrowParams::grid_joins: the join, as the nodes are now, more than kGridJoinOff off g.
     auto off_grid = [&] {
-      return grid_joins_only_ && std::abs(cross(g, unit(nodes_[w].p - nodes_[v].p))) > std::sin(kGridJoinOff);
+      return grid_only && std::abs(cross(g, unit(nodes_[w].p - nodes_[v].p))) > std::sin(kGridJoinOff);
     };
     if (!slid_v && !slid_w) {
       if (!off_grid()) return join();
@@ -4257,14 +4258,6 @@ class Grower {
     }
     return !clean && join();
   }
-  // A dead end's join ahead (connect_end): with PatchGrowParams::grid_joins only along the grid.
-  bool dead_end_join_ahead(std::uint32_t v, Point dir, std::uint32_t w, int level) {
-    grid_joins_only_ = params_.patch.grid_joins;
-    const bool joined = join_ahead(v, dir, w, level);
-    grid_joins_only_ = false;
-    return joined;
-  }
-  bool grid_joins_only_ = false;  // join_slid refuses a join off the grid (dead_end_join_ahead)
   static constexpr double kGridJoinOff = 20.0 * kPi / 180.0;  // 5 / 10 / 15 / 25 measured (tokyo, README)
   static constexpr double kSlideMin = 0.25;                   // metres: a smaller offset is left
   static constexpr double kSlideTilt = 10.0 * kPi / 180.0;    // a slid T's lone street turns at most this
