@@ -60,6 +60,7 @@ enum GrowArg {
   kGFallbackCurvature, kGArterialFallback, kGFallbackLocalSeeds,
   // Teng & Bidarra: the first library's patches tagged initial, breadth-first bridging, cell initialisation.
   kGInitials, kGBridgeFronts, kGCellInit, kGMaxTurn, kGCellSpacing,
+  kGPromoteArterials,
   kGArgs
 };
 
@@ -300,7 +301,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       "interpolate road classes", "interpolate patch edges", "interpolate max_uses", "interpolate arterials", "t",
       "blend", "blend_angle", "blend_points x", "blend_points y", "blend_sigma", "prune_dangling", "direction grid",
       "direction", "connect_dangling", "fallback_curvature", "arterial_fallback", "fallback_local_seeds", "initials",
-      "bridge_fronts", "cell_init", "max_turn", "cell_spacing"};
+      "bridge_fronts", "cell_init", "max_turn", "cell_spacing", "promote_arterials"};
   for (int a = kGRegion; a < kGArgs; ++a) {
     if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && a != kGArterials && a != kGWater && a != kGDemGrid &&
         a != kGDemValues && a != kGGuide && !(a >= kGPatchIdsB && a <= kGArterialsB) && a != kGBlendX &&
@@ -371,6 +372,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   params.patch.bridge_fronts = PG_GETARG_BOOL(kGBridgeFronts);
   params.patch.max_turn = PG_GETARG_FLOAT8(kGMaxTurn);
   params.patch.cell_spacing = PG_GETARG_FLOAT8(kGCellSpacing);
+  params.patch.promote_arterials = PG_GETARG_BOOL(kGPromoteArterials);
   {
     const char* cell_init = TextDatumGetCString(PG_GETARG_DATUM(kGCellInit));
     if (strcmp(cell_init, "seeds") == 0) {
@@ -491,6 +493,12 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                             "arterial phase first stopped, %.0f m at its end, %zu arterial seeds",
                             stats.arterial_refill_target, stats.arterial_refill_gap, stats.arterial_refill_before,
                             stats.arterial_refill_after, stats.arterial_reseeds)));
+  }
+  if (stats.arterial_ends > 0) {
+    ereport(DEBUG1, (errmsg("grow_patches: arterials run on: %zu arterial streets ended into local streets inside the "
+                            "margin, %zu continued (%.0f m of local streets promoted), %zu left for the main-street budget",
+                            stats.arterial_ends, stats.arterials_promoted, stats.promoted_length,
+                            stats.arterials_over_budget)));
   }
   ereport(DEBUG1, (errmsg("grow_patches: refill: target %.0f m, gap %.0f m, %.0f m grown when the queue first emptied, "
                           "%zu reseeds (%zu inside the void)",

@@ -185,8 +185,14 @@ SELECT ok((SELECT bool_and(before >= 0.8 * avenues AND first_street > 20) FROM (
                FROM grown g JOIN (SELECT name, min(id) AS first_street FROM grown WHERE road_class = 'street' GROUP BY name) s
                     USING (name) GROUP BY g.name) c),
           'levels: the arterial phase comes first (80 % of the avenue edges before the first street)');
-SELECT is((SELECT count(*) FROM grown g
-             JOIN (SELECT name, min(id) AS first_street FROM grown WHERE road_class = 'street' GROUP BY name) s USING (name)
+-- (read without promote_arterials, which gives local streets an avenue's class after the growth)
+CREATE TEMP TABLE grown_unpromoted AS
+SELECT n AS name, g.* FROM unnest(ARRAY['tokyo', 'canberra_south_large']) AS n,
+       pg_temp.grow(n, '{"seed": 7, "max_edges": 3000, "promote_arterials": false}')
+       AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry);
+SELECT is((SELECT count(*) FROM grown_unpromoted g
+             JOIN (SELECT name, min(id) AS first_street FROM grown_unpromoted WHERE road_class = 'street' GROUP BY name) s
+                  USING (name)
             WHERE g.id > s.first_street AND g.road_class = 'avenue'
               AND NOT EXISTS (SELECT 1 FROM pt WHERE pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin
                                                  AND 'arterial' = ANY (pt.tags))), 0::bigint,
@@ -314,6 +320,60 @@ SELECT ok((SELECT sum(ST_Length(geom)) FILTER (WHERE f = 1) > 1.1 * sum(ST_Lengt
 SELECT is((SELECT count(*) FROM art a JOIN art b ON a.f = 1 AND b.f = 1 AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
             WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
           0::bigint, 'arterial_fallback: planar');
+-- promote_arterials (on by default, so art's f = 0 growth has it): an avenue that ends inside the
+-- region into local streets only goes on by the local streets straight ahead, or by a jog, to the
+-- next main street (or straight on to the margin); those streets take its class. The same growth
+-- with it off: the same edges, only classes differ.
+CREATE TEMP TABLE art_off AS
+SELECT g.* FROM region r,
+       streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', r.geom, r.centre, NULL,
+                              '{"seed": 1, "max_edges": 200000, "promote_arterials": false}') AS g
+ WHERE r.name = 'tokyo';
+CREATE FUNCTION pg_temp.main_class(c text) RETURNS boolean LANGUAGE sql IMMUTABLE AS $$
+  SELECT c ~ '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard|main|arterial)$'
+$$;
+-- Nodes where exactly one main street ends and local streets go on, farther than 50 m inside the region.
+CREATE FUNCTION pg_temp.main_ends_into_local(edges text) RETURNS bigint LANGUAGE plpgsql AS $$
+DECLARE n bigint;
+BEGIN
+  EXECUTE format($q$
+    SELECT count(*) FROM (
+      SELECT node, count(*) FILTER (WHERE pg_temp.main_class(road_class)) AS mains, count(*) AS streets, min(p) AS p
+        FROM (SELECT from_node AS node, road_class, ST_StartPoint(geom)::text AS p FROM (%1$s) e
+              UNION ALL SELECT to_node, road_class, ST_EndPoint(geom)::text FROM (%1$s) e) ends
+       GROUP BY node) nd, region r
+     WHERE r.name = 'tokyo' AND nd.mains = 1 AND nd.streets > 1 AND ST_Within(nd.p::geometry, ST_Buffer(r.geom, -50))$q$, edges)
+    INTO n;
+  RETURN n;
+END $$;
+SELECT is((SELECT count(*) FROM art_off o FULL JOIN (SELECT * FROM art WHERE f = 0) a USING (id)
+            WHERE o.geom IS NULL OR a.geom IS NULL OR NOT ST_Equals(o.geom, a.geom) OR o.from_node <> a.from_node
+               OR o.to_node <> a.to_node OR o.origin <> a.origin),
+          0::bigint, 'promote_arterials: the same edges with it on and off (tokyo)');
+SELECT is((SELECT count(*) FROM art_off o JOIN art a USING (id)
+            WHERE a.f = 0 AND o.road_class <> a.road_class AND NOT (o.road_class = 'street' AND pg_temp.main_class(a.road_class))),
+          0::bigint, 'promote_arterials: a class changes only from a local street to a main class');
+SELECT ok((SELECT count(*) FROM art_off o JOIN art a USING (id) WHERE a.f = 0 AND o.road_class <> a.road_class) > 0,
+          'promote_arterials: local streets promoted (tokyo seed 1)');
+SELECT cmp_ok(pg_temp.main_ends_into_local('SELECT * FROM art WHERE f = 0'), '<',
+              pg_temp.main_ends_into_local('SELECT * FROM art_off'),
+              'promote_arterials: fewer avenues end into local streets inside the region');
+-- Each run of promoted streets links an avenue's end to another main street, or runs on straight to
+-- within 50 m of the region's boundary.
+SELECT is((SELECT count(*) FROM (
+             SELECT (ST_Dump(ST_LineMerge(ST_Union(a.geom)))).geom AS run
+               FROM art_off o JOIN art a USING (id) WHERE a.f = 0 AND o.road_class <> a.road_class) r, region g
+            WHERE g.name = 'tokyo'
+              AND NOT ST_DWithin(r.run, ST_Boundary(g.geom), 50 + 1e-6)
+              AND (SELECT count(*) FROM art_off m WHERE pg_temp.main_class(m.road_class) AND ST_Intersects(m.geom, r.run)) < 2),
+          0::bigint, 'promote_arterials: every promoted run joins two main streets or reaches the margin');
+SELECT ok((SELECT sum(ST_Length(geom)) FILTER (WHERE pg_temp.main_class(road_class)) FROM art WHERE f = 0)
+          <= (SELECT sum(ST_Length(geom)) FILTER (WHERE pg_temp.main_class(road_class)) FROM ex WHERE name = 'tokyo'),
+          'promote_arterials: main streets within the example''s main-street length (the region is its hull)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"promote_arterials": 1}')$$, '22023', 'promote_arterials must be true or false',
+                 'grow_patches: promote_arterials not a boolean (22023)');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
                    (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
                    '{"arterial_fallback": -1}')$$, '22023', 'arterial_fallback must be a number >= 0',

@@ -542,6 +542,7 @@ class Grower {
     if (params_.use_patches && params_.patch.straight_corners) straighten_corners();
     if (params_.use_patches && (params_.patch.prune_dangling || example_without_dead_ends())) prune_dangling();
     if (params_.use_patches && params_.patch.continue_across && params_.patch.facing_after_cuts) join_facing_after_cuts();
+    if (params_.use_patches && params_.patch.promote_arterials) promote_arterials();
     return true;
   }
   std::unique_ptr<Grower>* checkpoint_ = nullptr;
@@ -691,18 +692,29 @@ class Grower {
     }
     return total;
   }
+  bool example_segment_main(const Example& ex, std::uint32_t a, std::uint32_t b) const {
+    for (const ExHalf& half : ex.nodes[a].halves) {
+      if (half.to == b && level_is_main(half.level)) return true;
+    }
+    return false;
+  }
   // The example's main streets: their length, and the largest distance from a point inside its
   // hull to the nearest of them (a 64 x 64 lattice, as largest_gap).
-  void example_main_streets(double& len, double& gap) const {
+  // Computed once (the arterial refill and promote_arterials both ask).
+  void example_main_streets(double& len, double& gap) {
+    if (std::isnan(example_main_gap_)) example_main_streets_now(example_main_length_, example_main_gap_);
+    len = example_main_length_;
+    gap = example_main_gap_;
+  }
+  double example_main_length_ = 0.0, example_main_gap_ = NAN;
+  void example_main_streets_now(double& len, double& gap) const {
     len = 0.0;
     gap = 0.0;
     if (examples_.empty()) return;
     const Example& ex = examples_[0];
     std::vector<std::pair<Point, Point>> main;
     for (const auto& [a, b] : ex.segments) {
-      bool is_main = false;
-      for (const ExHalf& half : ex.nodes[a].halves) is_main = is_main || (half.to == b && level_is_main(half.level));
-      if (!is_main) continue;
+      if (!example_segment_main(ex, a, b)) continue;
       main.emplace_back(ex.nodes[a].p, ex.nodes[b].p);
       len += distance(ex.nodes[a].p, ex.nodes[b].p);
     }
@@ -797,6 +809,132 @@ class Grower {
     }
     stats_.arterial_refill_after = grown_main_length();
   }
+  // PatchGrowParams::promote_arterials: each arterial street that ends at a node inside the
+  // region's margin into local streets only is continued by the cheapest route of local streets
+  // (route_on) to a main street ahead of or beside its end, or straight on to the margin; the
+  // routes take the arterial's class, cheapest first, while the main streets stay within the
+  // example's main-street length per area. Only levels change.
+  void promote_arterials() {
+    if (!hierarchy_ || examples_.empty() || !(examples_[0].hull_area > 0.0)) return;
+    double example_length = 0.0, reach = 0.0;
+    example_main_streets(example_length, reach);
+    const double jog = level_stats_[1].length_mean;
+    if (!(reach > 0.0) || !(jog > 0.0)) return;
+    struct Route {
+      double cost;
+      std::uint32_t start;
+      int level;
+      std::vector<std::uint32_t> edges;
+    };
+    std::vector<Route> routes;
+    for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
+      poll_interrupts();
+      const std::uint32_t arrives = arterial_end(v);
+      if (arrives == UINT32_MAX) continue;
+      ++stats_.arterial_ends;
+      Route route{0.0, v, edges_[arrives].level, {}};
+      if (route_on(v, arrives, reach, jog, route.cost, route.edges)) routes.push_back(std::move(route));
+    }
+    std::sort(routes.begin(), routes.end(), [](const Route& x, const Route& y) {
+      return x.cost != y.cost ? x.cost < y.cost : x.start < y.start;
+    });
+    const double budget = example_length / examples_[0].hull_area * region_area_;
+    double main = grown_main_length();
+    for (const Route& route : routes) {
+      if (std::any_of(route.edges.begin(), route.edges.end(), [&](std::uint32_t e) { return main_edge(e); })) continue;
+      double length = 0.0;
+      for (std::uint32_t e : route.edges) length += distance(nodes_[edges_[e].a].p, nodes_[edges_[e].b].p);
+      if (main + length > budget) {
+        ++stats_.arterials_over_budget;
+        continue;
+      }
+      for (std::uint32_t e : route.edges) edges_[e].level = route.level;
+      main += length;
+      ++stats_.arterials_promoted;
+      stats_.promoted_length += length;
+    }
+  }
+  // The main street that ends at v into local streets only (v farther than the budget margin from
+  // the region's boundary, not on the existing network), or UINT32_MAX.
+  std::uint32_t arterial_end(std::uint32_t v) {
+    if (is_pruned(v) || nodes_[v].edges.size() < 2) return UINT32_MAX;
+    std::uint32_t arrives = UINT32_MAX;
+    std::size_t mains = 0;
+    for (std::uint32_t e : nodes_[v].edges) {
+      if (edges_[e].level < 0) return UINT32_MAX;
+      if (main_edge(e)) {
+        ++mains;
+        arrives = e;
+      }
+    }
+    return mains == 1 && in_budget(v) ? arrives : UINT32_MAX;
+  }
+  // The cheapest route of local streets on from v (its main street `arrives`) to a node of another
+  // main street ahead of or beside v, or, never turning sharper than kPromoteTurn, to a node within
+  // the region's margin: at most `reach` metres long; each turn sharper than kPromoteTurn (none over
+  // kPromoteMaxTurn) costs `jog` metres more; and it turns so at most twice, as a jog: at most `jog`
+  // metres from the first such turn to the second, then on the way the avenue ran (staggered
+  // avenues, where patches met). False: no such route. Dijkstra over labels (node, the edge it was
+  // reached by, sharp turns so far): reach bounds the nodes and the turns the labels per node.
+  bool route_on(std::uint32_t v, std::uint32_t arrives, double reach, double jog, double& cost,
+                std::vector<std::uint32_t>& route) {
+    struct Label {
+      double cost, length, sideways;  // sideways: metres between the first sharp turn and the second
+      std::uint32_t node, by;
+      int sharp;
+      std::int64_t back;  // the label it came from (-1: the start)
+    };
+    std::vector<Label> labels{{0.0, 0.0, 0.0, v, arrives, 0, -1}};
+    using Entry = std::pair<double, std::size_t>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+    open.emplace(0.0, 0);
+    std::set<std::tuple<std::uint32_t, std::uint32_t, int>> settled;
+    const Point ahead = unit(nodes_[v].p - other_end(arrives, v));
+    const double sharp_cos = std::cos(kPromoteTurn), max_cos = std::cos(kPromoteMaxTurn);
+    while (!open.empty()) {
+      const Label at = labels[open.top().second];
+      const std::size_t index = open.top().second;
+      open.pop();
+      if (!settled.emplace(at.node, at.by, at.sharp).second) continue;
+      if (at.node != v) {
+        bool reached = dot(nodes_[at.node].p - nodes_[v].p, ahead) >= 0.0 &&
+                       std::any_of(nodes_[at.node].edges.begin(), nodes_[at.node].edges.end(),
+                                   [&](std::uint32_t e) { return e != at.by && main_edge(e); });
+        reached = reached || (at.sharp == 0 && !in_budget(at.node));
+        if (reached) {
+          cost = at.cost;
+          route.clear();
+          for (std::int64_t k = static_cast<std::int64_t>(index); k > 0; k = labels[static_cast<std::size_t>(k)].back) {
+            route.push_back(labels[static_cast<std::size_t>(k)].by);
+          }
+          return true;
+        }
+      }
+      const Point p = nodes_[at.node].p;
+      const Point in = unit(p - other_end(at.by, at.node));
+      for (std::uint32_t e : nodes_[at.node].edges) {
+        if (e == at.by || edges_[e].level < 0 || main_edge(e)) continue;
+        const std::uint32_t to = edges_[e].a == at.node ? edges_[e].b : edges_[e].a;
+        if (to == v) continue;
+        const double len = distance(p, nodes_[to].p);
+        const Point out = unit(nodes_[to].p - p);
+        const double c = dot(in, out);
+        const int sharp = at.sharp + (c < sharp_cos);
+        if (c < max_cos || sharp > kPromoteJogs || at.length + len > reach) continue;
+        // A jog: sideways for at most a local mean street, then on again the way the avenue ran.
+        const double sideways = at.sideways + (sharp == 1 ? len : 0.0);
+        if (sideways > jog || (sharp == 2 && at.sharp == 1 && dot(out, ahead) < sharp_cos)) continue;
+        labels.push_back({at.cost + len + (c < sharp_cos ? jog : 0.0), at.length + len, sideways, to, e, sharp,
+                          static_cast<std::int64_t>(index)});
+        open.emplace(labels.back().cost, labels.size() - 1);
+      }
+    }
+    return false;
+  }
+  static constexpr double kPromoteTurn = 30.0 * kPi / 180.0;     // a sharper turn is a jog's
+  static constexpr double kPromoteMaxTurn = 100.0 * kPi / 180.0;  // no route turns more than this
+  static constexpr int kPromoteJogs = 2;                          // sharp turns: a jog's two
+
   bool reseed() {
     for (int t = 0; t < 64; ++t) {
       Point q;

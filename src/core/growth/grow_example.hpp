@@ -454,6 +454,18 @@ struct PatchGrowParams {
   // local phase starts at every cut, not only at the street's ends; where no local patch is legal
   // at a cut, the local fallback grows from it (a degree-2 node otherwise gets none).
   bool fallback_local_seeds = false;
+  // Arterials run on (levels, after every other pass): an arterial street that ends at a node
+  // farther than 50 m inside the region, where only local streets go on, is continued by the
+  // cheapest route of local streets to a main street ahead of or beside its end: straight on
+  // (turning at most 30 degrees at each node), or by a jog (two sharper turns, at most a local mean
+  // street apart, then on the way it ran); or straight on to the region's 50 m margin; no longer
+  // than the example's widest space between its main streets. Those streets take the arterial's
+  // class, cheapest routes first, while the main streets stay within the example's main-street
+  // length per area of its hull x the region's area. Nothing moves; only road_class changes.
+  // Patches meet with their avenues staggered, and the arterial phase stops where no arterial patch
+  // is legal: a growth's avenues ended into local streets 2.1-22 times inside the hull shrunk by
+  // 50 m (seeds 1-10) where the example's end 0-4 times (README "Arterials run on").
+  bool promote_arterials = true;
   // Teng & Bidarra (2017, section 3.3, Algorithm 2): breadth-first bridging. At a front of one
   // street (local phase, or one level), before the depth-first draw: the other open fronts (nodes of
   // one street, not yet finished) in line of sight within the library's largest pair distance plus
@@ -614,6 +626,11 @@ struct GrowStats {
   double arterial_refill_target = 0.0, arterial_refill_gap = 0.0;
   double arterial_refill_before = 0.0, arterial_refill_after = 0.0;
   std::size_t arterial_reseeds = 0;
+  // PatchGrowParams::promote_arterials: arterial streets ending into local streets inside the
+  // region's 50 m margin, those continued to a main street or the margin, the local streets' metres
+  // that took the arterial's class, the chains left for the main-street budget.
+  std::size_t arterial_ends = 0, arterials_promoted = 0, arterials_over_budget = 0;
+  double promoted_length = 0.0;
   std::size_t pruned = 0;          // output segments cut back from fronts that could neither grow nor join
   std::size_t patches_placed = 0;  // patch growth: fronts (and seeds) where a patch was glued
   std::size_t patch_candidates = 0;  // patches within max_distance, summed over fronts
