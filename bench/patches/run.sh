@@ -23,7 +23,8 @@
 #    EXTRACT_PARAMS (e.g. EXTRACT_PARAMS='{"levels": false}' for one level).
 #    Then where the density comes from: the main streets' share of the length (example, grown),
 #    the mean connector length of the library and of the patches used, and the share of junctions
-#    with a statistical street (fallback or join).
+#    with a statistical street (fallback or join); and the avenue ends where only local streets go
+#    on (example, grown).
 #    And the orientation order of the main and the local streets apart (example, grown): which level
 #    loses the example's order. And the streets' bends: turn per km and the share of streets that
 #    bend by 10 degrees or more as a whole, the example's against the statistical fallback's.
@@ -221,6 +222,18 @@ WITH k AS (SELECT '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|
 SELECT gr.name, round((ex.len / 1000)::numeric, 1) AS example_main_km,
        string_agg(gr.seed || ': ' || round((coalesce(gr.len, 0) / ex.len)::numeric, 2), ', ' ORDER BY gr.seed) AS grown_over_example
   FROM gr JOIN ex USING (name) GROUP BY gr.name, ex.len ORDER BY gr.name;
+\echo avenue ends (grow_patches, mean over seeds): nodes inside the hull shrunk by 50 m where one main street ends and only local streets go on (promote_arterials continues those it can), example and grown
+WITH k AS (SELECT '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard)$' AS re),
+     nets AS (SELECT name, -1 AS seed, road_class, geom FROM example
+              UNION ALL SELECT name, seed, road_class, geom FROM grown WHERE method = 'patches'),
+     ends AS (SELECT n.name, n.seed, ST_SnapToGrid(e.p, 0.05) AS p, count(*) AS streets,
+                     count(*) FILTER (WHERE n.road_class ~ k.re) AS mains
+                FROM nets n CROSS JOIN k, LATERAL (VALUES (ST_StartPoint(n.geom)), (ST_EndPoint(n.geom))) AS e(p)
+               GROUP BY 1, 2, 3),
+     per_seed AS (SELECT e.name, e.seed, count(*) FILTER (WHERE e.mains = 1 AND e.streets > 1) AS n
+                    FROM ends e JOIN region r USING (name) WHERE ST_Within(e.p, ST_Buffer(r.geom, -50)) GROUP BY 1, 2)
+SELECT name, max(n) FILTER (WHERE seed = -1) AS example, round(avg(n) FILTER (WHERE seed >= 0), 1) AS grown
+  FROM per_seed GROUP BY name ORDER BY name;
 \echo orientation order by level (grow_patches, median over seeds; degree-2 chains merged, inside the hull shrunk by 50 m): main and local streets apart, example and grown
 WITH k AS (SELECT '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard)$' AS re),
      lv AS (SELECT r.name, s.seed, r.geom,
