@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <vector>
 
 #include "core/error.hpp"
@@ -157,4 +158,100 @@ TEST(GrowPatchesArterialFallback, LocalSeedsAlongFallbackArterials) {
   const double spacing = a_on.length / a_on.junctions;
   EXPECT_GT(spacing, 80.0);
   EXPECT_LT(spacing, 130.0);
+}
+
+// Arterials run on (PatchGrowParams::promote_arterials): with the arterial refill, the library's
+// avenue patches (each once) and the refill's leave about 110 avenue ends where only local streets
+// go on; those with local streets leading on straight (or by a jog) to another avenue within the
+// example's widest space between avenues take the avenue class. Nothing else changes.
+TEST(GrowPatchesArterialsRunOn, LocalStreetsContinueAnAvenueToTheNext) {
+  SmallArterialLibrary f;
+  f.p.seed = 2;
+  f.p.patch.arterial_refill = 0.5;
+  f.p.patch.promote_arterials = false;
+  const GrowResult off = grow_example(f.geos, f.in, f.p);
+  f.p.patch.promote_arterials = true;
+  const GrowResult on = grow_example(f.geos, f.in, f.p);
+  streetgen::test::expect_same_edges(on, off);
+  EXPECT_EQ(off.stats.arterials_promoted, 0u);
+  EXPECT_GT(on.stats.arterial_ends, 50u);
+  EXPECT_GT(on.stats.arterials_promoted, 10u);
+  // A class changes only from street to avenue, and the changed edges are the promoted length.
+  std::map<std::int64_t, std::vector<std::size_t>> promoted_at;  // node -> promoted edges there
+  double promoted = 0.0;
+  for (std::size_t i = 0; i < on.edges.size() && i < off.edges.size(); ++i) {
+    if (on.edges[i].road_class == off.edges[i].road_class) continue;
+    EXPECT_EQ(off.edges[i].road_class, "street");
+    EXPECT_EQ(on.edges[i].road_class, "avenue");
+    promoted += distance(on.edges[i].a, on.edges[i].b);
+    promoted_at[on.edges[i].from_node].push_back(i);
+    promoted_at[on.edges[i].to_node].push_back(i);
+  }
+  EXPECT_NEAR(promoted, on.stats.promoted_length, 1e-6 * promoted);
+  // Each run of promoted edges ends, at both ends, on an avenue the growth made (off's avenues) or
+  // within the 50 m margin; along it no turn over 100 degrees and at most two over 30 (a jog).
+  std::map<std::int64_t, int> avenues_off;
+  std::map<std::int64_t, Point> at;
+  for (const GrownEdge& e : off.edges) {
+    at[e.from_node] = e.a;
+    at[e.to_node] = e.b;
+    if (e.road_class == "avenue") ++avenues_off[e.from_node], ++avenues_off[e.to_node];
+  }
+  auto in_margin = [&](std::int64_t n) { return std::max(std::abs(at[n].x), std::abs(at[n].y)) > 1450.0; };
+  std::set<std::size_t> seen;
+  int runs = 0;
+  for (const auto& [start, edges] : promoted_at) {
+    if (edges.size() != 1 || seen.count(edges[0]) != 0) continue;  // a run's first end
+    ++runs;
+    EXPECT_TRUE(avenues_off.count(start) != 0 || in_margin(start)) << "run from node " << start;
+    std::int64_t node = start;
+    std::size_t edge = edges[0];
+    int sharp = 0;
+    double before = 0.0, between = 0.0, after = 0.0;  // metres before, between and after sharp turns
+    Point heading{0.0, 0.0};
+    while (true) {
+      seen.insert(edge);
+      const GrownEdge& e = on.edges[edge];
+      const std::int64_t next = e.from_node == node ? e.to_node : e.from_node;
+      const Point d = unit(at[next] - at[node]);
+      if (heading.x != 0.0 || heading.y != 0.0) {
+        EXPECT_GE(dot(heading, d), std::cos(100.0 * M_PI / 180.0));
+        sharp += dot(heading, d) < std::cos(30.0 * M_PI / 180.0);
+      }
+      (sharp == 0 ? before : sharp == 1 ? between : after) += distance(at[node], at[next]);
+      heading = d;
+      node = next;
+      const std::vector<std::size_t>& there = promoted_at[node];
+      if (there.size() != 2) break;
+      edge = there[0] == edge ? there[1] : there[0];
+    }
+    EXPECT_TRUE(avenues_off.count(node) != 0 || in_margin(node)) << "run to node " << node;
+    EXPECT_LE(sharp, 2);
+    // A jog's sideways part is at most a local mean street (the avenue grid's: 100 m): between the
+    // two sharp turns, or on the side of the one sharp turn away from the avenue it left.
+    if (sharp == 2) {
+      EXPECT_LE(between, 150.0);
+    } else if (sharp == 1) {
+      EXPECT_LE(std::min(before, between), 150.0);
+    }
+  }
+  EXPECT_GT(runs, 10);
+  // Avenue ends where only streets go on, inside the margin: fewer.
+  auto avenue_ends = [&](const GrowResult& r) {
+    std::map<std::int64_t, std::pair<int, int>> degree;  // avenues, all
+    for (const GrownEdge& e : r.edges) {
+      for (std::int64_t n : {e.from_node, e.to_node}) {
+        degree[n].first += e.road_class == "avenue";
+        ++degree[n].second;
+      }
+    }
+    int n = 0;
+    for (const auto& [node, d] : degree) n += d.first == 1 && d.second > 1 && !in_margin(node);
+    return n;
+  };
+  EXPECT_LT(avenue_ends(on), avenue_ends(off) - 10);
+  // Deterministic.
+  const GrowResult again = grow_example(f.geos, f.in, f.p);
+  ASSERT_EQ(again.edges.size(), on.edges.size());
+  for (std::size_t i = 0; i < on.edges.size(); ++i) EXPECT_EQ(again.edges[i].road_class, on.edges[i].road_class);
 }
