@@ -188,53 +188,75 @@ TEST(GrowPatchesArterialsRunOn, LocalStreetsContinueAnAvenueToTheNext) {
     promoted_at[on.edges[i].to_node].push_back(i);
   }
   EXPECT_NEAR(promoted, on.stats.promoted_length, 1e-6 * promoted);
-  // Each run of promoted edges ends, at both ends, on an avenue the growth made (off's avenues) or
-  // within the 50 m margin; along it no turn over 100 degrees and at most two over 30 (a jog).
-  std::map<std::int64_t, int> avenues_off;
-  std::map<std::int64_t, Point> at;
+  // Each run of promoted edges (split at off's avenue nodes) ends, at both ends, on an avenue the
+  // growth made (off's avenues) or within the 50 m margin; along it no turn over 100 degrees; and
+  // from an end where an avenue ended into streets (the route's start) it goes on straight or by a
+  // jog: at most two turns over 30 degrees counting the one off the avenue, at most a local mean
+  // street (the avenue grid's streets: 100 m) from the first to the second, then within 30 degrees
+  // of the way the avenue ran.
+  std::map<std::int64_t, int> avenues_off, degree_off;
+  std::map<std::int64_t, Point> at, avenue_from;  // avenue_from: the far end of a node's one avenue
   for (const GrownEdge& e : off.edges) {
     at[e.from_node] = e.a;
     at[e.to_node] = e.b;
-    if (e.road_class == "avenue") ++avenues_off[e.from_node], ++avenues_off[e.to_node];
+    ++degree_off[e.from_node];
+    ++degree_off[e.to_node];
+    if (e.road_class != "avenue") continue;
+    ++avenues_off[e.from_node];
+    ++avenues_off[e.to_node];
+    avenue_from[e.from_node] = e.b;
+    avenue_from[e.to_node] = e.a;
   }
   auto in_margin = [&](std::int64_t n) { return std::max(std::abs(at[n].x), std::abs(at[n].y)) > 1450.0; };
+  auto run_end = [&](std::int64_t n) { return promoted_at[n].size() != 2 || avenues_off.count(n) != 0 || in_margin(n); };
+  // Whether the run (its nodes in order) leaves the avenue ending at its first node straight on or by a jog.
+  auto straight_or_jog = [&](const std::vector<std::int64_t>& nodes) {
+    if (avenues_off[nodes[0]] != 1 || degree_off[nodes[0]] < 2) return false;
+    const Point ahead = unit(at[nodes[0]] - avenue_from[nodes[0]]);
+    Point heading = ahead;
+    int sharp = 0;
+    double sideways = 0.0;
+    for (std::size_t k = 0; k + 1 < nodes.size(); ++k) {
+      const Point d = unit(at[nodes[k + 1]] - at[nodes[k]]);
+      if (dot(heading, d) < std::cos(30.0 * M_PI / 180.0) && ++sharp == 2 && dot(d, ahead) < std::cos(30.0 * M_PI / 180.0)) {
+        return false;
+      }
+      if (sharp == 1) sideways += distance(at[nodes[k]], at[nodes[k + 1]]);
+      heading = d;
+    }
+    return sharp <= 2 && sideways <= 110.0;
+  };
   std::set<std::size_t> seen;
   int runs = 0;
   for (const auto& [start, edges] : promoted_at) {
-    if (edges.size() != 1 || seen.count(edges[0]) != 0) continue;  // a run's first end
-    ++runs;
-    EXPECT_TRUE(avenues_off.count(start) != 0 || in_margin(start)) << "run from node " << start;
-    std::int64_t node = start;
-    std::size_t edge = edges[0];
-    int sharp = 0;
-    double before = 0.0, between = 0.0, after = 0.0;  // metres before, between and after sharp turns
-    Point heading{0.0, 0.0};
-    while (true) {
-      seen.insert(edge);
-      const GrownEdge& e = on.edges[edge];
-      const std::int64_t next = e.from_node == node ? e.to_node : e.from_node;
-      const Point d = unit(at[next] - at[node]);
-      if (heading.x != 0.0 || heading.y != 0.0) {
-        EXPECT_GE(dot(heading, d), std::cos(100.0 * M_PI / 180.0));
-        sharp += dot(heading, d) < std::cos(30.0 * M_PI / 180.0);
+    if (!run_end(start)) continue;
+    for (std::size_t first : edges) {
+      if (seen.count(first) != 0) continue;
+      ++runs;
+      std::vector<std::int64_t> nodes{start};
+      std::size_t edge = first;
+      while (true) {
+        seen.insert(edge);
+        const GrownEdge& e = on.edges[edge];
+        const std::int64_t next = e.from_node == nodes.back() ? e.to_node : e.from_node;
+        EXPECT_GE(dot(unit(at[next] - at[nodes.back()]), nodes.size() < 2 ? unit(at[next] - at[nodes.back()])
+                                                                          : unit(at[nodes.back()] - at[nodes[nodes.size() - 2]])),
+                  std::cos(100.0 * M_PI / 180.0));
+        nodes.push_back(next);
+        if (run_end(next)) break;
+        const std::vector<std::size_t>& there = promoted_at[next];
+        edge = there[0] == edge ? there[1] : there[0];
       }
-      (sharp == 0 ? before : sharp == 1 ? between : after) += distance(at[node], at[next]);
-      heading = d;
-      node = next;
-      const std::vector<std::size_t>& there = promoted_at[node];
-      if (there.size() != 2) break;
-      edge = there[0] == edge ? there[1] : there[0];
-    }
-    EXPECT_TRUE(avenues_off.count(node) != 0 || in_margin(node)) << "run to node " << node;
-    EXPECT_LE(sharp, 2);
-    // A jog's sideways part is at most a local mean street (the avenue grid's: 100 m): between the
-    // two sharp turns, or on the side of the one sharp turn away from the avenue it left.
-    if (sharp == 2) {
-      EXPECT_LE(between, 150.0);
-    } else if (sharp == 1) {
-      EXPECT_LE(std::min(before, between), 150.0);
+      for (std::int64_t n : {nodes.front(), nodes.back()}) {
+        EXPECT_TRUE(avenues_off.count(n) != 0 || in_margin(n)) << "run end " << n;
+      }
+      const std::vector<std::int64_t> back(nodes.rbegin(), nodes.rend());
+      EXPECT_TRUE(straight_or_jog(nodes) || straight_or_jog(back)) << "run from node " << nodes.front();
     }
   }
+  std::size_t changed = 0;
+  for (const auto& [node, edges] : promoted_at) changed += edges.size();
+  EXPECT_EQ(seen.size() * 2, changed);  // every promoted edge on a run
   EXPECT_GT(runs, 10);
   // Avenue ends where only streets go on, inside the margin: fewer.
   auto avenue_ends = [&](const GrowResult& r) {
