@@ -306,6 +306,10 @@ SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT geom FROM ex'
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
                    (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
                    '{"levels": 1}')$$, '22023', 'levels must be true or false', 'grow_patches: levels not a boolean (22023)');
+-- The main road classes (as core::is_main_class).
+CREATE FUNCTION pg_temp.main_class(c text) RETURNS boolean LANGUAGE sql IMMUTABLE AS $$
+  SELECT c ~ '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard|main|arterial)$'
+$$;
 -- arterial_fallback: tokyo's arterial phase stops at 0.56-0.74 x its example's main-street length
 -- (bench/patches, seeds 1-9); with the fallback, its arterial fronts left dead ends (and its
 -- arterial streets the crop cut) go on straight: more main street, some of it statistical.
@@ -315,7 +319,7 @@ SELECT f, g.* FROM region r, unnest(ARRAY[0, 1]) AS f,
                               jsonb_build_object('seed', 1, 'max_edges', 200000, 'arterial_fallback', f)) AS g
  WHERE r.name = 'tokyo';
 SELECT ok((SELECT sum(ST_Length(geom)) FILTER (WHERE f = 1) > 1.1 * sum(ST_Length(geom)) FILTER (WHERE f = 0)
-             FROM art WHERE road_class ~ '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard)$'),
+             FROM art WHERE pg_temp.main_class(road_class)),
           'arterial_fallback: more than 1.1 x the main-street length without it (tokyo)');
 SELECT is((SELECT count(*) FROM art a JOIN art b ON a.f = 1 AND b.f = 1 AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
             WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
@@ -329,9 +333,6 @@ SELECT g.* FROM region r,
        streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', r.geom, r.centre, NULL,
                               '{"seed": 1, "max_edges": 200000, "promote_arterials": false}') AS g
  WHERE r.name = 'tokyo';
-CREATE FUNCTION pg_temp.main_class(c text) RETURNS boolean LANGUAGE sql IMMUTABLE AS $$
-  SELECT c ~ '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard|main|arterial)$'
-$$;
 -- Nodes where exactly one main street ends and local streets go on, farther than 50 m inside the region.
 CREATE FUNCTION pg_temp.main_ends_into_local(edges text) RETURNS bigint LANGUAGE plpgsql AS $$
 DECLARE n bigint;
