@@ -496,9 +496,10 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   }
   if (stats.arterial_ends > 0) {
     ereport(DEBUG1, (errmsg("grow_patches: arterials run on: %zu arterial streets ended into local streets inside the "
-                            "margin, %zu continued (%.0f m of local streets promoted), %zu left for the main-street budget",
+                            "margin, %zu continued (%.0f m of local streets promoted), %zu left for the main-street "
+                            "budget, %zu stubs past a main junction back to the local class (%.0f m)",
                             stats.arterial_ends, stats.arterials_promoted, stats.promoted_length,
-                            stats.arterials_over_budget)));
+                            stats.arterials_over_budget, stats.arterial_stubs_demoted, stats.demoted_length)));
   }
   ereport(DEBUG1, (errmsg("grow_patches: refill: target %.0f m, gap %.0f m, %.0f m grown when the queue first emptied, "
                           "%zu reseeds (%zu inside the void)",

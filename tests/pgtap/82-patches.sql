@@ -179,17 +179,19 @@ SELECT ok((SELECT sum(ST_Length(ST_Intersection(g.geom, ST_Buffer(r.geom, -50)))
 SELECT is((SELECT count(*) FROM grown g JOIN pt ON pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin
             WHERE g.name = 'tokyo' AND 'roundabout' = ANY (pt.tags)), 0::bigint, 'and none appear from tokyo''s grid');
 -- Levels: arterials first (the rows come in growth order), then local streets seeded along them.
-SELECT ok((SELECT bool_and(before >= 0.8 * avenues AND first_street > 20) FROM (
-             SELECT g.name, count(*) FILTER (WHERE g.road_class = 'avenue' AND g.id < s.first_street) AS before,
-                    count(*) FILTER (WHERE g.road_class = 'avenue') AS avenues, min(s.first_street) AS first_street
-               FROM grown g JOIN (SELECT name, min(id) AS first_street FROM grown WHERE road_class = 'street' GROUP BY name) s
-                    USING (name) GROUP BY g.name) c),
-          'levels: the arterial phase comes first (80 % of the avenue edges before the first street)');
--- (read without promote_arterials, which gives local streets an avenue's class after the growth)
+-- Read without promote_arterials, which changes classes after the growth: local streets to an
+-- avenue's, an avenue's stubs past a main junction to a street's.
 CREATE TEMP TABLE grown_unpromoted AS
 SELECT n AS name, g.* FROM unnest(ARRAY['tokyo', 'canberra_south_large']) AS n,
        pg_temp.grow(n, '{"seed": 7, "max_edges": 3000, "promote_arterials": false}')
        AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry);
+SELECT ok((SELECT bool_and(before >= 0.8 * avenues AND first_street > 20) FROM (
+             SELECT g.name, count(*) FILTER (WHERE g.road_class = 'avenue' AND g.id < s.first_street) AS before,
+                    count(*) FILTER (WHERE g.road_class = 'avenue') AS avenues, min(s.first_street) AS first_street
+               FROM grown_unpromoted g
+               JOIN (SELECT name, min(id) AS first_street FROM grown_unpromoted WHERE road_class = 'street' GROUP BY name) s
+                    USING (name) GROUP BY g.name) c),
+          'levels: the arterial phase comes first (80 % of the avenue edges before the first street)');
 SELECT is((SELECT count(*) FROM grown_unpromoted g
              JOIN (SELECT name, min(id) AS first_street FROM grown_unpromoted WHERE road_class = 'street' GROUP BY name) s
                   USING (name)
@@ -324,14 +326,21 @@ SELECT ok((SELECT sum(ST_Length(geom)) FILTER (WHERE f = 1) > 1.1 * sum(ST_Lengt
 SELECT is((SELECT count(*) FROM art a JOIN art b ON a.f = 1 AND b.f = 1 AND a.id < b.id AND ST_Intersects(a.geom, b.geom)
             WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
           0::bigint, 'arterial_fallback: planar');
--- promote_arterials (on by default, so art's f = 0 growth has it): an avenue that ends inside the
+-- promote_arterials (on by default): an avenue that ends inside the
 -- region into local streets only goes on by the local streets straight ahead, or by a jog, to the
--- next main street (or straight on to the margin); those streets take its class. The same growth
--- with it off: the same edges, only classes differ.
+-- next main street (or straight on to the margin); those streets take its class. One that still
+-- ends so, within a local mean street of a junction of three or more main streets, is a patch's
+-- stub past that junction: it takes the local class. The same growth with it off: the same edges,
+-- only classes differ (tokyo seed 18: both happen).
+CREATE TEMP TABLE art_on AS
+SELECT g.* FROM region r,
+       streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', r.geom, r.centre, NULL,
+                              '{"seed": 18, "max_edges": 200000}') AS g
+ WHERE r.name = 'tokyo';
 CREATE TEMP TABLE art_off AS
 SELECT g.* FROM region r,
        streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', r.geom, r.centre, NULL,
-                              '{"seed": 1, "max_edges": 200000, "promote_arterials": false}') AS g
+                              '{"seed": 18, "max_edges": 200000, "promote_arterials": false}') AS g
  WHERE r.name = 'tokyo';
 -- Nodes where exactly one main street ends and local streets go on, farther than 50 m inside the region.
 CREATE FUNCTION pg_temp.main_ends_into_local(edges text) RETURNS bigint LANGUAGE plpgsql AS $$
@@ -347,28 +356,47 @@ BEGIN
     INTO n;
   RETURN n;
 END $$;
-SELECT is((SELECT count(*) FROM art_off o FULL JOIN (SELECT * FROM art WHERE f = 0) a USING (id)
+SELECT is((SELECT count(*) FROM art_off o FULL JOIN art_on a USING (id)
             WHERE o.geom IS NULL OR a.geom IS NULL OR NOT ST_Equals(o.geom, a.geom) OR o.from_node <> a.from_node
                OR o.to_node <> a.to_node OR o.origin <> a.origin),
           0::bigint, 'promote_arterials: the same edges with it on and off (tokyo)');
-SELECT is((SELECT count(*) FROM art_off o JOIN art a USING (id)
-            WHERE a.f = 0 AND o.road_class <> a.road_class AND NOT (o.road_class = 'street' AND pg_temp.main_class(a.road_class))),
-          0::bigint, 'promote_arterials: a class changes only from a local street to a main class');
-SELECT ok((SELECT count(*) FROM art_off o JOIN art a USING (id) WHERE a.f = 0 AND o.road_class <> a.road_class) > 0,
-          'promote_arterials: local streets promoted (tokyo seed 1)');
-SELECT cmp_ok(pg_temp.main_ends_into_local('SELECT * FROM art WHERE f = 0'), '<',
+SELECT is((SELECT count(*) FROM art_off o JOIN art_on a USING (id)
+            WHERE o.road_class <> a.road_class AND NOT (o.road_class = 'street' AND pg_temp.main_class(a.road_class))
+              AND NOT (pg_temp.main_class(o.road_class) AND a.road_class = 'street')),
+          0::bigint, 'promote_arterials: a class changes only from a local street to a main class, or back');
+SELECT ok((SELECT count(*) FROM art_off o JOIN art_on a USING (id)
+            WHERE o.road_class = 'street' AND pg_temp.main_class(a.road_class)) > 0,
+          'promote_arterials: local streets promoted (tokyo seed 18)');
+SELECT ok((SELECT count(*) FROM art_off o JOIN art_on a USING (id)
+            WHERE pg_temp.main_class(o.road_class) AND a.road_class = 'street') > 0,
+          'promote_arterials: stubs past a main junction back to the local class (tokyo seed 18)');
+-- Each stub: shorter than 50 m (tokyo's local mean street: 44 m), from a node
+-- of one main street (the avenue's end, other streets going on) to one of three or more, both
+-- counted with it off.
+CREATE FUNCTION pg_temp.mains_at(p geometry) RETURNS bigint LANGUAGE sql AS $$
+  SELECT count(*) FROM art_off m WHERE pg_temp.main_class(m.road_class) AND ST_Intersects(m.geom, p)
+$$;
+SELECT is((SELECT count(*) FROM (
+             SELECT (ST_Dump(ST_LineMerge(ST_Union(a.geom)))).geom AS stub
+               FROM art_off o JOIN art_on a USING (id) WHERE pg_temp.main_class(o.road_class) AND a.road_class = 'street') s
+            WHERE ST_Length(s.stub) >= 50
+               OR least(pg_temp.mains_at(ST_StartPoint(s.stub)), pg_temp.mains_at(ST_EndPoint(s.stub))) <> 1
+               OR greatest(pg_temp.mains_at(ST_StartPoint(s.stub)), pg_temp.mains_at(ST_EndPoint(s.stub))) < 3),
+          0::bigint, 'promote_arterials: every stub taken back is short and runs from an avenue''s end to a main junction');
+SELECT cmp_ok(pg_temp.main_ends_into_local('SELECT * FROM art_on'), '<',
               pg_temp.main_ends_into_local('SELECT * FROM art_off'),
               'promote_arterials: fewer avenues end into local streets inside the region');
 -- Each run of promoted streets links an avenue's end to another main street, or runs on straight to
 -- within 50 m of the region's boundary.
 SELECT is((SELECT count(*) FROM (
              SELECT (ST_Dump(ST_LineMerge(ST_Union(a.geom)))).geom AS run
-               FROM art_off o JOIN art a USING (id) WHERE a.f = 0 AND o.road_class <> a.road_class) r, region g
+               FROM art_off o JOIN art_on a USING (id) WHERE o.road_class = 'street' AND pg_temp.main_class(a.road_class)) r,
+                    region g
             WHERE g.name = 'tokyo'
               AND NOT ST_DWithin(r.run, ST_Boundary(g.geom), 50 + 1e-6)
               AND (SELECT count(*) FROM art_off m WHERE pg_temp.main_class(m.road_class) AND ST_Intersects(m.geom, r.run)) < 2),
           0::bigint, 'promote_arterials: every promoted run joins two main streets or reaches the margin');
-SELECT ok((SELECT sum(ST_Length(geom)) FILTER (WHERE pg_temp.main_class(road_class)) FROM art WHERE f = 0)
+SELECT ok((SELECT sum(ST_Length(geom)) FILTER (WHERE pg_temp.main_class(road_class)) FROM art_on)
           <= (SELECT sum(ST_Length(geom)) FILTER (WHERE pg_temp.main_class(road_class)) FROM ex WHERE name = 'tokyo'),
           'promote_arterials: main streets within the example''s main-street length (the region is its hull)');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',

@@ -71,6 +71,25 @@ struct Avenues {
   }
 };
 
+// Nodes where exactly one avenue ends and other streets go on, inside the 3 km square's 50 m margin.
+int avenue_ends(const GrowResult& r) {
+  std::map<std::int64_t, std::pair<int, int>> degree;  // avenues, all
+  std::map<std::int64_t, Point> at;
+  for (const GrownEdge& e : r.edges) {
+    at[e.from_node] = e.a;
+    at[e.to_node] = e.b;
+    for (std::int64_t n : {e.from_node, e.to_node}) {
+      degree[n].first += e.road_class == "avenue";
+      ++degree[n].second;
+    }
+  }
+  int n = 0;
+  for (const auto& [node, d] : degree) {
+    n += d.first == 1 && d.second > 1 && std::max(std::abs(at[node].x), std::abs(at[node].y)) <= 1450.0;
+  }
+  return n;
+}
+
 }  // namespace
 
 // Without the fallback the arterial phase stops where the library's four patches end: their open
@@ -171,6 +190,7 @@ TEST(GrowPatchesArterialsRunOn, LocalStreetsContinueAnAvenueToTheNext) {
   f.p.patch.promote_arterials = false;
   const GrowResult off = grow_example(f.geos, f.in, f.p);
   f.p.patch.promote_arterials = true;
+  f.p.patch.demote_arterial_stubs = false;  // its own test below
   const GrowResult on = grow_example(f.geos, f.in, f.p);
   streetgen::test::expect_same_edges(on, off);
   EXPECT_EQ(off.stats.arterials_promoted, 0u);
@@ -259,21 +279,75 @@ TEST(GrowPatchesArterialsRunOn, LocalStreetsContinueAnAvenueToTheNext) {
   EXPECT_EQ(seen.size() * 2, changed);  // every promoted edge on a run
   EXPECT_GT(runs, 10);
   // Avenue ends where only streets go on, inside the margin: fewer.
-  auto avenue_ends = [&](const GrowResult& r) {
-    std::map<std::int64_t, std::pair<int, int>> degree;  // avenues, all
-    for (const GrownEdge& e : r.edges) {
-      for (std::int64_t n : {e.from_node, e.to_node}) {
-        degree[n].first += e.road_class == "avenue";
-        ++degree[n].second;
-      }
-    }
-    int n = 0;
-    for (const auto& [node, d] : degree) n += d.first == 1 && d.second > 1 && !in_margin(node);
-    return n;
-  };
   EXPECT_LT(avenue_ends(on), avenue_ends(off) - 10);
   // Deterministic.
   const GrowResult again = grow_example(f.geos, f.in, f.p);
   ASSERT_EQ(again.edges.size(), on.edges.size());
   for (std::size_t i = 0; i < on.edges.size(); ++i) EXPECT_EQ(again.edges[i].road_class, on.edges[i].road_class);
+}
+
+// Stubs past a main junction (PatchGrowParams::demote_arterial_stubs): of the avenue ends that no
+// route continued, those whose avenue reaches back to an avenue junction (three or more avenues)
+// within a local mean street (the avenue grid's streets: 100 m, their mean under 110 m) are the
+// patches' stubs past that junction; they take the street class. Each such stub is one avenue end
+// fewer, and none is made.
+TEST(GrowPatchesArterialsRunOn, StubsPastAnAvenueJunctionBecomeStreets) {
+  SmallArterialLibrary f;
+  f.p.seed = 2;
+  f.p.patch.arterial_refill = 0.5;
+  f.p.patch.demote_arterial_stubs = false;
+  const GrowResult off = grow_example(f.geos, f.in, f.p);
+  f.p.patch.demote_arterial_stubs = true;
+  const GrowResult on = grow_example(f.geos, f.in, f.p);
+  streetgen::test::expect_same_edges(on, off);
+  EXPECT_EQ(off.stats.arterial_stubs_demoted, 0u);
+  ASSERT_GT(on.stats.arterial_stubs_demoted, 3u);
+  std::map<std::int64_t, int> avenues_off, avenues_on, degree;
+  std::map<std::int64_t, std::vector<std::size_t>> demoted_at;  // node -> demoted edges there
+  double demoted = 0.0;
+  for (std::size_t i = 0; i < on.edges.size() && i < off.edges.size(); ++i) {
+    const GrownEdge& e = on.edges[i];
+    for (std::int64_t n : {e.from_node, e.to_node}) {
+      ++degree[n];
+      avenues_off[n] += off.edges[i].road_class == "avenue";
+      avenues_on[n] += e.road_class == "avenue";
+    }
+    if (e.road_class == off.edges[i].road_class) continue;
+    EXPECT_EQ(off.edges[i].road_class, "avenue");
+    EXPECT_EQ(e.road_class, "street");
+    demoted += distance(e.a, e.b);
+    demoted_at[e.from_node].push_back(i);
+    demoted_at[e.to_node].push_back(i);
+  }
+  EXPECT_NEAR(demoted, on.stats.demoted_length, 1e-6 * demoted);
+  // Each stub, walked from its avenue end: through nodes of two avenues, shorter than 110 m, to a
+  // node of three or more avenues that keeps two or more.
+  std::size_t stubs = 0, walked = 0;
+  for (const auto& [start, edges] : demoted_at) {
+    if (avenues_off[start] != 1) continue;
+    ++stubs;
+    EXPECT_GT(degree[start], 1) << "stub end " << start;
+    EXPECT_EQ(avenues_on[start], 0) << "stub end " << start;
+    std::int64_t node = start;
+    std::size_t edge = edges[0];
+    double length = 0.0;
+    for (;;) {
+      ++walked;
+      const GrownEdge& e = on.edges[edge];
+      length += distance(e.a, e.b);
+      node = e.from_node == node ? e.to_node : e.from_node;
+      if (avenues_off[node] != 2) break;
+      const std::vector<std::size_t>& there = demoted_at[node];
+      ASSERT_EQ(there.size(), 2u) << "stub through node " << node;
+      edge = there[0] == edge ? there[1] : there[0];
+    }
+    EXPECT_LT(length, 110.0) << "stub from node " << start;
+    EXPECT_GE(avenues_off[node], 3) << "stub from node " << start;
+    EXPECT_GE(avenues_on[node], 2) << "stub from node " << start;
+  }
+  EXPECT_EQ(stubs, on.stats.arterial_stubs_demoted);
+  std::size_t changed = 0;
+  for (const auto& [node, edges] : demoted_at) changed += edges.size();
+  EXPECT_EQ(walked * 2, changed);  // every demoted edge on a stub
+  EXPECT_EQ(avenue_ends(off) - avenue_ends(on), static_cast<int>(stubs));
 }

@@ -853,7 +853,46 @@ class Grower {
       ++stats_.arterials_promoted;
       stats_.promoted_length += length;
     }
+    if (params_.patch.demote_arterial_stubs) demote_arterial_stubs(jog);
   }
+  // PatchGrowParams::demote_arterial_stubs: an arterial street still ending into local streets
+  // inside the margin, whose main street reaches back to a main junction (three or more main
+  // streets) within `shorter_than` metres, takes the local class there: the patch's stub past the
+  // junction, not an avenue of the example's.
+  void demote_arterial_stubs(double shorter_than) {
+    const int local = phase_level_[1];
+    if (level_is_main(local)) return;
+    std::vector<std::uint32_t> stub;
+    for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
+      std::uint32_t e = arterial_end(v);
+      if (e == UINT32_MAX) continue;
+      stub.clear();
+      double length = 0.0;
+      std::uint32_t at = v;
+      for (;;) {
+        stub.push_back(e);
+        length += distance(nodes_[edges_[e].a].p, nodes_[edges_[e].b].p);
+        at = other_node(e, at);
+        std::uint32_t next = UINT32_MAX;
+        std::size_t mains = 0;
+        for (std::uint32_t f : nodes_[at].edges) {
+          if (!main_edge(f)) continue;
+          ++mains;
+          if (f != e) next = f;
+        }
+        if (length >= shorter_than || mains != 2 || at == v) {
+          if (length < shorter_than && mains >= 3) {
+            for (std::uint32_t f : stub) edges_[f].level = local;
+            ++stats_.arterial_stubs_demoted;
+            stats_.demoted_length += length;
+          }
+          break;
+        }
+        e = next;
+      }
+    }
+  }
+  std::uint32_t other_node(std::uint32_t e, std::uint32_t v) const { return edges_[e].a == v ? edges_[e].b : edges_[e].a; }
   // The main street that ends at v into local streets only (v farther than the budget margin from
   // the region's boundary, not on the existing network), or UINT32_MAX.
   std::uint32_t arterial_end(std::uint32_t v) {

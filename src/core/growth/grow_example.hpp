@@ -466,6 +466,7 @@ struct PatchGrowParams {
   // is legal: a growth's avenues ended into local streets 2.1-22 times inside the hull shrunk by
   // 50 m (seeds 1-10) where the example's end 0-4 times (README "Arterials run on").
   bool promote_arterials = true;
+  bool demote_arterial_stubs = true;
   // Teng & Bidarra (2017, section 3.3, Algorithm 2): breadth-first bridging. At a front of one
   // street (local phase, or one level), before the depth-first draw: the other open fronts (nodes of
   // one street, not yet finished) in line of sight within the library's largest pair distance plus
@@ -631,6 +632,8 @@ struct GrowStats {
   // that took the arterial's class, the chains left for the main-street budget.
   std::size_t arterial_ends = 0, arterials_promoted = 0, arterials_over_budget = 0;
   double promoted_length = 0.0;
+  std::size_t arterial_stubs_demoted = 0;
+  double demoted_length = 0.0;
   std::size_t pruned = 0;          // output segments cut back from fronts that could neither grow nor join
   std::size_t patches_placed = 0;  // patch growth: fronts (and seeds) where a patch was glued
   std::size_t patch_candidates = 0;  // patches within max_distance, summed over fronts
