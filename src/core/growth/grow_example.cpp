@@ -858,7 +858,7 @@ class Grower {
   // PatchGrowParams::demote_arterial_stubs: an arterial street still ending into local streets
   // inside the margin, whose main street reaches back to a main junction (three or more main
   // streets) within `shorter_than` metres, takes the local class there: the patch's stub past the
-  // junction, not an avenue of the example's.
+  // junction, not an avenue of the example's. A stub with a bridge stays: no local street crosses water.
   void demote_arterial_stubs(double shorter_than) {
     const int local = phase_level_[1];
     if (level_is_main(local)) return;
@@ -881,7 +881,8 @@ class Grower {
           if (f != e) next = f;
         }
         if (length >= shorter_than || mains != 2 || at == v) {
-          if (length < shorter_than && mains >= 3) {
+          if (length < shorter_than && mains >= 3 &&
+              std::none_of(stub.begin(), stub.end(), [&](std::uint32_t f) { return edges_[f].bridge; })) {
             for (std::uint32_t f : stub) edges_[f].level = local;
             ++stats_.arterial_stubs_demoted;
             stats_.demoted_length += length;
