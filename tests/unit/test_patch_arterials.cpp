@@ -42,6 +42,15 @@ struct SmallArterialLibrary {
   }
 };
 
+// The same library with the arterial refill (its default 0.5), seed 2: about 110 avenue ends where
+// only local streets go on, for the passes after the growth (promote_arterials) to work on.
+struct RefilledArterialLibrary : SmallArterialLibrary {
+  RefilledArterialLibrary() {
+    p.seed = 2;
+    p.patch.arterial_refill = 0.5;
+  }
+};
+
 // The avenue (main street) graph of a result: per node, its avenue edges; and the largest distance
 // of an avenue node from the seed.
 struct Avenues {
@@ -184,9 +193,7 @@ TEST(GrowPatchesArterialFallback, LocalSeedsAlongFallbackArterials) {
 // go on; those with local streets leading on straight (or by a jog) to another avenue within the
 // example's widest space between avenues take the avenue class. Nothing else changes.
 TEST(GrowPatchesArterialsRunOn, LocalStreetsContinueAnAvenueToTheNext) {
-  SmallArterialLibrary f;
-  f.p.seed = 2;
-  f.p.patch.arterial_refill = 0.5;
+  RefilledArterialLibrary f;
   f.p.patch.promote_arterials = false;
   const GrowResult off = grow_example(f.geos, f.in, f.p);
   f.p.patch.promote_arterials = true;
@@ -292,9 +299,7 @@ TEST(GrowPatchesArterialsRunOn, LocalStreetsContinueAnAvenueToTheNext) {
 // patches' stubs past that junction; they take the street class. Each such stub is one avenue end
 // fewer, and none is made.
 TEST(GrowPatchesArterialsRunOn, StubsPastAnAvenueJunctionBecomeStreets) {
-  SmallArterialLibrary f;
-  f.p.seed = 2;
-  f.p.patch.arterial_refill = 0.5;
+  RefilledArterialLibrary f;
   f.p.patch.demote_arterial_stubs = false;
   const GrowResult off = grow_example(f.geos, f.in, f.p);
   f.p.patch.demote_arterial_stubs = true;

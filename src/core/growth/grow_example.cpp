@@ -858,7 +858,8 @@ class Grower {
   // PatchGrowParams::demote_arterial_stubs: an arterial street still ending into local streets
   // inside the margin, whose main street reaches back to a main junction (three or more main
   // streets) within `shorter_than` metres, takes the local class there: the patch's stub past the
-  // junction, not an avenue of the example's. A stub with a bridge stays: no local street crosses water.
+  // junction, not an avenue of the example's. A stub with a bridge stays: no local street crosses
+  // water.
   void demote_arterial_stubs(double shorter_than) {
     const int local = phase_level_[1];
     if (level_is_main(local)) return;
@@ -893,7 +894,6 @@ class Grower {
       }
     }
   }
-  std::uint32_t other_node(std::uint32_t e, std::uint32_t v) const { return edges_[e].a == v ? edges_[e].b : edges_[e].a; }
   // The main street that ends at v into local streets only (v farther than the budget margin from
   // the region's boundary, not on the existing network), or UINT32_MAX.
   std::uint32_t arterial_end(std::uint32_t v) {
@@ -1796,6 +1796,10 @@ class Grower {
     add_edge(m, old.b, old.level, old.example_id, old.source, old.bridge);
     edges_.back().step = old.step;
     return m;
+  }
+  // The node at e's other end from v.
+  std::uint32_t other_node(std::uint32_t e, std::uint32_t v) const {
+    return edges_[e].a == v ? edges_[e].b : edges_[e].a;
   }
   Point other_end(std::uint32_t e, std::uint32_t v) const {
     const OEdge& edge = edges_[e];
