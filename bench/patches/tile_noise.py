@@ -13,6 +13,8 @@ Each resample is scored as compare_networks scores a growth: the relative differ
 headline metric from the example's own (all tiles once), the per-pair median of their absolute
 values (each capped at 100 %; where the example's value is 0, a metric counts as 0 when the
 resample's is 0 too and is left out otherwise, as in compare_networks), and the values past 15 %.
+The goal also asks that the example's junction mix be kept: the 4-way and dead-end shares within 5
+percentage points of the example's. A resample misses that when either share is farther off.
 
 Reads CSV rows on stdin:
   tile,name,size,id,area,length,degrees,histogram
@@ -23,10 +25,11 @@ Reads CSV rows on stdin:
       a block of the window (network_stats' blocks), in the tile holding its point on surface
   reported,name,,metric,value,,,
       the window's own value as network_stats computes it (printed beside the script's own)
-  grown,name,,seed,per_pair_median,,metrics,
-      a growth as compare_networks scored it (its per-pair median, a share; the metrics whose
-      relative difference is past 15 %, space separated: the headline ones count), printed beside
-      the resamples
+  grown,name,,seed,per_pair_median,mix_gap,metrics,
+      a growth as compare_networks scored it (its per-pair median, a share; the larger of its 4-way
+      and dead-end shares' differences from the example's, a share; the metrics whose relative
+      difference is past 15 %, space separated: the headline ones count), printed beside the
+      resamples
 """
 import collections
 import csv
@@ -37,6 +40,7 @@ import sys
 from sampling_noise import BINS, order_of_histogram  # (beside this script)
 
 RESAMPLES = 1000
+MIX_GAP = 0.05  # the junction mix kept: the 4-way and dead-end shares within 5 percentage points
 HEADLINE = ["street_density", "intersection_density", "mean_degree", "dead_end_share", "degree4_share",
             "connected_node_ratio", "orientation_order", "block_area_median"]
 SHORT = {"street_density": "street", "intersection_density": "junct", "mean_degree": "degree",
@@ -87,10 +91,15 @@ def score(values, own):
     return statistics.median(differences.values()), differences
 
 
+def mix_gap(values, own):
+    """The larger of the 4-way and dead-end shares' differences from the example's (a share)."""
+    return max(abs(values[m] - own[m]) for m in ("degree4_share", "dead_end_share"))
+
+
 def main():
     tiles = collections.defaultdict(dict)  # (name, size) -> id -> Tile
     reported = {}
-    grown = collections.defaultdict(list)  # name -> (per-pair median, values past 15 %, their metrics) per seed
+    grown = collections.defaultdict(list)  # name -> (per-pair median, values past 15 %, their metrics, mix gap) per seed
     for row in csv.reader(sys.stdin):
         if row[0] == "tile":
             _, name, size, tile_id, area, length, degrees, histogram = row
@@ -104,11 +113,12 @@ def main():
             _, name, _, metric, value = row[:5]
             reported[(name, metric)] = float(value)
         elif row[0] == "grown":
-            _, name, _, _, median, _, past_metrics = row[:7]
+            _, name, _, _, median, gap, past_metrics = row[:7]
             past = [m for m in past_metrics.split() if m in HEADLINE]
-            grown[name].append((float(median), len(past), past))
+            grown[name].append((float(median), len(past), past, float(gap)))
     print(f"{'name':22s} | {'tile_m':>6s} | {'tiles':>5s} | {'pairs_over_5_pct':>16s} | {'past_15_per_pair':>16s} | "
-          f"{'grown_over_5_pct':>16s} | {'grown_past_15':>13s} | past 15 % by metric, resamples / growths (%)")
+          f"{'grown_over_5_pct':>16s} | {'grown_past_15':>13s} | {'mix_off_5pp_pct':>15s} | {'grown_mix_off_pct':>17s} | "
+          f"past 15 % by metric, resamples / growths (%)")
     checks = []
     for key in sorted(tiles):
         name, size = key
@@ -118,11 +128,14 @@ def main():
         checks.append((name, size, own))
         over5 = 0
         past15 = 0
+        mix_off = 0
         past_by_metric = collections.Counter()
         for _ in range(RESAMPLES):
             sample = [own_tiles[rng.randrange(len(own_tiles))] for _ in own_tiles]
-            median, differences = score(metrics(sample), own)
+            values = metrics(sample)
+            median, differences = score(values, own)
             over5 += median > 0.05
+            mix_off += mix_gap(values, own) > MIX_GAP
             for metric, difference in differences.items():
                 if difference > 0.15:
                     past15 += 1
@@ -130,13 +143,15 @@ def main():
         seeds = grown.get(name, [])
 
         def growths_past(metric):
-            return f"/{100.0 * sum(metric in past for _, _, past in seeds) / len(seeds):.0f}" if seeds else ""
+            return f"/{100.0 * sum(metric in past for _, _, past, _ in seeds) / len(seeds):.0f}" if seeds else ""
 
         by_metric = " ".join(f"{SHORT[m]} {100.0 * past_by_metric[m] / RESAMPLES:.1f}{growths_past(m)}" for m in HEADLINE)
-        grown_over5 = f"{100.0 * sum(m > 0.05 for m, _, _ in seeds) / len(seeds):16.1f}" if seeds else f"{'':>16s}"
-        grown_past15 = f"{sum(p for _, p, _ in seeds) / len(seeds):13.2f}" if seeds else f"{'':>13s}"
+        grown_over5 = f"{100.0 * sum(m > 0.05 for m, _, _, _ in seeds) / len(seeds):16.1f}" if seeds else f"{'':>16s}"
+        grown_past15 = f"{sum(p for _, p, _, _ in seeds) / len(seeds):13.2f}" if seeds else f"{'':>13s}"
+        grown_mix = f"{100.0 * sum(g > MIX_GAP for _, _, _, g in seeds) / len(seeds):17.1f}" if seeds else f"{'':>17s}"
         print(f"{name:22s} | {size:6.0f} | {len(own_tiles):5d} | {100.0 * over5 / RESAMPLES:16.1f} | "
-              f"{past15 / RESAMPLES:16.2f} | {grown_over5} | {grown_past15} | {by_metric}")
+              f"{past15 / RESAMPLES:16.2f} | {grown_over5} | {grown_past15} | {100.0 * mix_off / RESAMPLES:15.1f} | "
+              f"{grown_mix} | {by_metric}")
     # The script's own values of all tiles once against network_stats' of the window: nodes on a
     # tile's edge count in both tiles, and the histogram is weighted by each tile's length, so they
     # are near equal, not equal.
