@@ -25,9 +25,10 @@ Reads CSV rows on stdin:
       a block of the window (network_stats' blocks), in the tile holding its point on surface
   reported,name,,metric,value,,,
       the window's own value as network_stats computes it (printed beside the script's own)
-  grown,name,,seed,per_pair_median,mix_gap,metrics,
+  grown,name,,seed,per_pair_median,mix_gap,metrics,mix_differences
       a growth as compare_networks scored it (its per-pair median, a share; the larger of its 4-way
-      and dead-end shares' differences from the example's, a share; the metrics whose relative
+      and dead-end shares' differences from the example's, a share; its 4-way and dead-end shares'
+      differences, signed, space separated; the metrics whose relative
       difference is past 15 %, space separated: the headline ones count), printed beside the
       resamples
 """
@@ -41,6 +42,7 @@ from sampling_noise import BINS, order_of_histogram  # (beside this script)
 
 RESAMPLES = 1000
 MIX_GAP = 0.05  # the junction mix kept: the 4-way and dead-end shares within 5 percentage points
+MIX = ("degree4_share", "dead_end_share")
 HEADLINE = ["street_density", "intersection_density", "mean_degree", "dead_end_share", "degree4_share",
             "connected_node_ratio", "orientation_order", "block_area_median"]
 SHORT = {"street_density": "street", "intersection_density": "junct", "mean_degree": "degree",
@@ -93,13 +95,21 @@ def score(values, own):
 
 def mix_gap(values, own):
     """The larger of the 4-way and dead-end shares' differences from the example's (a share)."""
-    return max(abs(values[m] - own[m]) for m in ("degree4_share", "dead_end_share"))
+    return max(abs(values[m] - own[m]) for m in MIX)
+
+
+def spread(differences):
+    """Mean and standard deviation of differences in shares, in percentage points."""
+    if len(differences) < 2:
+        return "-"
+    return f"{100.0 * statistics.mean(differences):+.1f} ± {100.0 * statistics.stdev(differences):.1f}"
 
 
 def main():
     tiles = collections.defaultdict(dict)  # (name, size) -> id -> Tile
     reported = {}
     grown = collections.defaultdict(list)  # name -> (per-pair median, values past 15 %, their metrics, mix gap) per seed
+    grown_mix = collections.defaultdict(list)  # name -> (4-way, dead-end share differences) per seed
     for row in csv.reader(sys.stdin):
         if row[0] == "tile":
             _, name, size, tile_id, area, length, degrees, histogram = row
@@ -113,13 +123,15 @@ def main():
             _, name, _, metric, value = row[:5]
             reported[(name, metric)] = float(value)
         elif row[0] == "grown":
-            _, name, _, _, median, gap, past_metrics = row[:7]
+            _, name, _, _, median, gap, past_metrics, differences = row[:8]
             past = [m for m in past_metrics.split() if m in HEADLINE]
             grown[name].append((float(median), len(past), past, float(gap)))
+            grown_mix[name].append(tuple(float(d) for d in differences.split()))
     print(f"{'name':22s} | {'tile_m':>6s} | {'tiles':>5s} | {'pairs_over_5_pct':>16s} | {'past_15_per_pair':>16s} | "
           f"{'grown_over_5_pct':>16s} | {'grown_past_15':>13s} | {'mix_off_5pp_pct':>15s} | {'grown_mix_off_pct':>17s} | "
           f"past 15 % by metric, resamples / growths (%)")
     checks = []
+    mix_rows = []
     for key in sorted(tiles):
         name, size = key
         own_tiles = list(tiles[key].values())
@@ -129,6 +141,7 @@ def main():
         over5 = 0
         past15 = 0
         mix_off = 0
+        mix_differences = []
         past_by_metric = collections.Counter()
         for _ in range(RESAMPLES):
             sample = [own_tiles[rng.randrange(len(own_tiles))] for _ in own_tiles]
@@ -136,6 +149,7 @@ def main():
             median, differences = score(values, own)
             over5 += median > 0.05
             mix_off += mix_gap(values, own) > MIX_GAP
+            mix_differences.append(tuple(values[m] - own[m] for m in MIX))
             for metric, difference in differences.items():
                 if difference > 0.15:
                     past15 += 1
@@ -148,13 +162,21 @@ def main():
         by_metric = " ".join(f"{SHORT[m]} {100.0 * past_by_metric[m] / RESAMPLES:.1f}{growths_past(m)}" for m in HEADLINE)
         grown_over5 = f"{100.0 * sum(m > 0.05 for m, _, _, _ in seeds) / len(seeds):16.1f}" if seeds else f"{'':>16s}"
         grown_past15 = f"{sum(p for _, p, _, _ in seeds) / len(seeds):13.2f}" if seeds else f"{'':>13s}"
-        grown_mix = f"{100.0 * sum(g > MIX_GAP for _, _, _, g in seeds) / len(seeds):17.1f}" if seeds else f"{'':>17s}"
+        grown_mix_off = f"{100.0 * sum(g > MIX_GAP for _, _, _, g in seeds) / len(seeds):17.1f}" if seeds else f"{'':>17s}"
         print(f"{name:22s} | {size:6.0f} | {len(own_tiles):5d} | {100.0 * over5 / RESAMPLES:16.1f} | "
               f"{past15 / RESAMPLES:16.2f} | {grown_over5} | {grown_past15} | {100.0 * mix_off / RESAMPLES:15.1f} | "
-              f"{grown_mix} | {by_metric}")
+              f"{grown_mix_off} | {by_metric}")
+        mix_rows.append((name, size, mix_differences))
     # The script's own values of all tiles once against network_stats' of the window: nodes on a
     # tile's edge count in both tiles, and the histogram is weighted by each tile's length, so they
     # are near equal, not equal.
+    print()
+    print("the junction mix, percentage points from the example's (mean ± sd): the draws' beside the growths'")
+    for name, size, draws in mix_rows:
+        seeds = grown_mix.get(name, [])
+        cells = " | ".join(f"{SHORT[m]} {spread([d[i] for d in draws])} / {spread([d[i] for d in seeds])}"
+                           for i, m in enumerate(MIX))
+        print(f"  {name:22s} {size:4.0f} m: {cells}")
     print()
     print("the script's own values (all tiles once) / network_stats' of the window:")
     for name, size, own in checks:
