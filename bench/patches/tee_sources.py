@@ -12,7 +12,11 @@ are counted as skew) is classed by its lone street: statistical (a fallback stre
 end once degree-2 nodes are passed: a crossing, a T, a dead end or another junction. Printed per
 example: the example's junctions, crossings and T's, and the same as a mean per grown network;
 then the T's by class (the example's, and the mean per grown network), with the T's the example's
-4-way share would leave at the grown networks' junctions.
+4-way share would leave at the grown networks' junctions. Then the junctions split by level: those
+on a main street (one of their streets main) and the local ones, each with its share of crossings,
+and the share of crossings the growths would have with the example's split at their own shares per
+level. Junctions on main streets are crossings more often than local ones in most examples, so a
+growth with fewer main streets has fewer crossings even where each level's share is the example's.
 
 Reads CSV rows `source,name,seed,kind,level,inside_a,inside_b,coords` on stdin, one per edge:
 source example or grown; kind patch or statistical; level main or local; inside_a / inside_b 1
@@ -36,7 +40,8 @@ def wrap(a):
 
 
 def tees(edges):
-    """(junctions, crossings, Counter of T classes) of one network's edges, inside the window."""
+    """(junctions, crossings, Counter of T classes, Counter of junctions by (on a main street, crossing))
+    of one network's edges, inside the window."""
     arms = collections.defaultdict(list)  # node -> [(edge, other end node, bearing)]
     inside = {}
     for i, e in enumerate(edges):
@@ -48,11 +53,13 @@ def tees(edges):
         arms[b].append((i, a, math.atan2(pts[-2][1] - pts[-1][1], pts[-2][0] - pts[-1][0])))
     junctions = crossings = 0
     classes = collections.Counter()
+    by_level = collections.Counter()  # (on a main street, crossing) -> junctions
     for node, at in arms.items():
         if not inside[node] or len(at) < 3:
             continue
         junctions += 1
         crossings += len(at) >= 4
+        by_level[(any(edges[i]["level"] == "main" for i, _, _ in at), len(at) >= 4)] += 1
         if len(at) != 3:
             continue
         best, lone = math.inf, None
@@ -72,7 +79,16 @@ def tees(edges):
             steps += 1
         far = {1: "a dead end", 3: "a T", 4: "a crossing"}.get(len(arms[cur]), "another junction")
         classes[(e["kind"], e["level"], far)] += 1
-    return junctions, crossings, classes
+    return junctions, crossings, classes, by_level
+
+
+def level_split(by_level, count=1):
+    """Junctions on a main street and local ones (means over `count` networks), each level's share of crossings."""
+    split = {}
+    for main in (True, False):
+        n = (by_level[(main, True)] + by_level[(main, False)]) / count
+        split[main] = (n, by_level[(main, True)] / count / n if n else 0.0)
+    return split
 
 
 def main():
@@ -106,6 +122,15 @@ def main():
                 kind, level, far = cls
                 label = "skew (no lone street)" if kind == "skew" else f"{kind}, {level}, its far end {far}"
                 print(f"{'':22} {'':8} {ex[2][cls]:9d} {total[cls] / count:9.1f}  {label}")
+        levels = collections.Counter()
+        for g in grown:
+            levels.update(g[3])
+        ex_split, grown_split = level_split(ex[3]), level_split(levels, count)
+        on_example_split = sum(ex_split[m][0] * grown_split[m][1] for m in (True, False)) / ex[0] if ex[0] else float("nan")
+        print(f"{'':22} {'':8} by level: on a main street {ex_split[True][0]:.0f} ({ex_split[True][1]:.3f} crossings) / "
+              f"{grown_split[True][0]:.1f} ({grown_split[True][1]:.3f}), local {ex_split[False][0]:.0f} "
+              f"({ex_split[False][1]:.3f}) / {grown_split[False][0]:.1f} ({grown_split[False][1]:.3f}), example / grown; "
+              f"with the example's split the growths' 4-way share would be {on_example_split:.3f}")
 
 
 if __name__ == "__main__":
