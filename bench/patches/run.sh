@@ -392,7 +392,7 @@ SELECT 'four_way', s.name, d, NULL, s.degree4_share FROM st s, unnest(s.degrees)
 SQL
 
 echo
-echo "the realism goal as the example itself would score it (tile_noise.py): the window cut into square tiles of ${TILES:-250 500} m, as many drawn with replacement $(grep -m1 '^RESAMPLES' "$repo/bench/patches/tile_noise.py" | cut -d' ' -f3) times, each draw one network scored as compare_networks scores a growth; the share of draws whose per-pair median is over 5 % and their values past 15 % a pair, beside the growths' (grow_patches, this run's seeds), the share of draws and of growths whose 4-way or dead-end share is more than 5 percentage points off the example's (and below, those shares' spread), and by metric the share of draws / of growths past 15 %"
+echo "the realism goal as the example itself would score it (tile_noise.py): the window cut into square tiles of ${TILES:-250 500} m, as many drawn with replacement $(grep -m1 '^RESAMPLES' "$repo/bench/patches/tile_noise.py" | cut -d' ' -f3) times, each draw one network scored as compare_networks scores a growth; the share of draws whose per-pair median is over 5 % and their values past 15 % a pair, beside the growths' (grow_patches, this run's seeds), the share of draws and of growths whose 4-way or dead-end share is more than 5 percentage points off the example's (and below, those shares' spread), the share of draws and of growths that meet the whole goal (all three), and by metric the share of draws / of growths past 15 %"
 psql -X -q -A -F, -t -v ON_ERROR_STOP=1 -v tiles="{${TILES:-250 500}}" <<'SQL' | /usr/bin/python3 "$repo/bench/patches/tile_noise.py"
 WITH win AS (SELECT name, ST_Buffer(geom, -50) AS geom FROM region),
      size AS (SELECT unnest(translate(:'tiles', ' ', ',')::float8[]) AS m),

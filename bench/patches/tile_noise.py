@@ -14,7 +14,8 @@ headline metric from the example's own (all tiles once), the per-pair median of 
 values (each capped at 100 %; where the example's value is 0, a metric counts as 0 when the
 resample's is 0 too and is left out otherwise, as in compare_networks), and the values past 15 %.
 The goal also asks that the example's junction mix be kept: the 4-way and dead-end shares within 5
-percentage points of the example's. A resample misses that when either share is farther off.
+percentage points of the example's. A resample misses that when either share is farther off. The
+share of resamples (and of growths) that meet all three is printed too.
 
 Reads CSV rows on stdin:
   tile,name,size,id,area,length,degrees,histogram
@@ -98,6 +99,12 @@ def mix_gap(values, own):
     return max(abs(values[m] - own[m]) for m in MIX)
 
 
+def goal_met(median, past15, gap):
+    """The whole goal on one network: per-pair median 5 % or less, no headline value past 15 %, the
+    junction mix within 5 percentage points."""
+    return median <= 0.05 and past15 == 0 and gap <= MIX_GAP
+
+
 def spread(differences):
     """Mean and standard deviation of differences in shares, in percentage points."""
     if len(differences) < 2:
@@ -129,7 +136,7 @@ def main():
             grown_mix[name].append(tuple(float(d) for d in differences.split()))
     print(f"{'name':22s} | {'tile_m':>6s} | {'tiles':>5s} | {'pairs_over_5_pct':>16s} | {'past_15_per_pair':>16s} | "
           f"{'grown_over_5_pct':>16s} | {'grown_past_15':>13s} | {'mix_off_5pp_pct':>15s} | {'grown_mix_off_pct':>17s} | "
-          f"past 15 % by metric, resamples / growths (%)")
+          f"{'goal_met_pct':>12s} | {'grown_goal_met_pct':>18s} | past 15 % by metric, resamples / growths (%)")
     checks = []
     mix_rows = []
     for key in sorted(tiles):
@@ -141,6 +148,7 @@ def main():
         over5 = 0
         past15 = 0
         mix_off = 0
+        met = 0
         mix_differences = []
         past_by_metric = collections.Counter()
         for _ in range(RESAMPLES):
@@ -150,10 +158,10 @@ def main():
             over5 += median > 0.05
             mix_off += mix_gap(values, own) > MIX_GAP
             mix_differences.append(tuple(values[m] - own[m] for m in MIX))
-            for metric, difference in differences.items():
-                if difference > 0.15:
-                    past15 += 1
-                    past_by_metric[metric] += 1
+            past = [metric for metric, difference in differences.items() if difference > 0.15]
+            past15 += len(past)
+            past_by_metric.update(past)
+            met += goal_met(median, len(past), mix_gap(values, own))
         seeds = grown.get(name, [])
 
         def growths_past(metric):
@@ -163,9 +171,11 @@ def main():
         grown_over5 = f"{100.0 * sum(m > 0.05 for m, _, _, _ in seeds) / len(seeds):16.1f}" if seeds else f"{'':>16s}"
         grown_past15 = f"{sum(p for _, p, _, _ in seeds) / len(seeds):13.2f}" if seeds else f"{'':>13s}"
         grown_mix_off = f"{100.0 * sum(g > MIX_GAP for _, _, _, g in seeds) / len(seeds):17.1f}" if seeds else f"{'':>17s}"
+        grown_met = (f"{100.0 * sum(goal_met(m, p, g) for m, p, _, g in seeds) / len(seeds):18.1f}" if seeds
+                     else f"{'':>18s}")
         print(f"{name:22s} | {size:6.0f} | {len(own_tiles):5d} | {100.0 * over5 / RESAMPLES:16.1f} | "
               f"{past15 / RESAMPLES:16.2f} | {grown_over5} | {grown_past15} | {100.0 * mix_off / RESAMPLES:15.1f} | "
-              f"{grown_mix_off} | {by_metric}")
+              f"{grown_mix_off} | {100.0 * met / RESAMPLES:12.1f} | {grown_met} | {by_metric}")
         mix_rows.append((name, size, mix_differences))
     # The script's own values of all tiles once against network_stats' of the window: nodes on a
     # tile's edge count in both tiles, and the histogram is weighted by each tile's length, so they
