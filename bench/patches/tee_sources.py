@@ -79,6 +79,7 @@ def tees(edges):
             steps += 1
         far = {1: "a dead end", 3: "a T", 4: "a crossing"}.get(len(arms[cur]), "another junction")
         classes[(e["kind"], e["level"], far)] += 1
+    assert sum(by_level.values()) == junctions and by_level[(True, True)] + by_level[(False, True)] == crossings
     return junctions, crossings, classes, by_level
 
 
