@@ -27,11 +27,10 @@ Reads CSV rows on stdin:
   reported,name,,metric,value,,,
       the window's own value as network_stats computes it (printed beside the script's own)
   grown,name,,seed,per_pair_median,mix_gap,metrics,mix_differences
-      a growth as compare_networks scored it (its per-pair median, a share; the larger of its 4-way
-      and dead-end shares' differences from the example's, a share; its 4-way and dead-end shares'
-      differences, signed, space separated; the metrics whose relative
-      difference is past 15 %, space separated: the headline ones count), printed beside the
-      resamples
+      a growth as compare_networks scored it, printed beside the resamples: its per-pair median (a
+      share); the larger of its 4-way and dead-end shares' differences from the example's (a share);
+      the metrics whose relative difference is past 15 % (space separated; the headline ones
+      count); its 4-way and dead-end shares' differences, signed (space separated)
 """
 import collections
 import csv
@@ -156,12 +155,13 @@ def main():
             values = metrics(sample)
             median, differences = score(values, own)
             over5 += median > 0.05
-            mix_off += mix_gap(values, own) > MIX_GAP
+            gap = mix_gap(values, own)
+            mix_off += gap > MIX_GAP
             mix_differences.append(tuple(values[m] - own[m] for m in MIX))
             past = [metric for metric, difference in differences.items() if difference > 0.15]
             past15 += len(past)
             past_by_metric.update(past)
-            met += goal_met(median, len(past), mix_gap(values, own))
+            met += goal_met(median, len(past), gap)
         seeds = grown.get(name, [])
 
         def growths_past(metric):
