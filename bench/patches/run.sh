@@ -420,8 +420,7 @@ SELECT 'reported', s.name, NULL, m.metric, m.value, NULL, NULL, NULL
                              ('orientation_order', s.orientation_order),
                              ('block_area_median', s.block_area_median)) AS m(metric, value)
 UNION ALL
-SELECT 'grown', name, NULL, seed::text, max(score) FILTER (WHERE metric = 'median_abs_relative_difference'),
-       max(abs(candidate_value - reference_value)) FILTER (WHERE metric IN ('degree4_share', 'dead_end_share')),
+SELECT 'grown', name, NULL, seed::text, max(score) FILTER (WHERE metric = 'median_abs_relative_difference'), NULL,
        string_agg(metric, ' ') FILTER (WHERE abs(relative_difference) > 0.15),
        max(candidate_value - reference_value) FILTER (WHERE metric = 'degree4_share') || ' ' ||
        max(candidate_value - reference_value) FILTER (WHERE metric = 'dead_end_share')

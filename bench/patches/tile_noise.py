@@ -26,11 +26,11 @@ Reads CSV rows on stdin:
       a block of the window (network_stats' blocks), in the tile holding its point on surface
   reported,name,,metric,value,,,
       the window's own value as network_stats computes it (printed beside the script's own)
-  grown,name,,seed,per_pair_median,mix_gap,metrics,mix_differences
+  grown,name,,seed,per_pair_median,,metrics,mix_differences
       a growth as compare_networks scored it, printed beside the resamples: its per-pair median (a
-      share); the larger of its 4-way and dead-end shares' differences from the example's (a share);
-      the metrics whose relative difference is past 15 % (space separated; the headline ones
-      count); its 4-way and dead-end shares' differences, signed (space separated)
+      share); the metrics whose relative difference is past 15 % (space separated; the headline ones
+      count); its 4-way and dead-end shares' differences from the example's (shares, signed, space
+      separated)
 """
 import collections
 import csv
@@ -93,9 +93,9 @@ def score(values, own):
     return statistics.median(differences.values()), differences
 
 
-def mix_gap(values, own):
+def mix_gap(differences):
     """The larger of the 4-way and dead-end shares' differences from the example's (a share)."""
-    return max(abs(values[m] - own[m]) for m in MIX)
+    return max(abs(d) for d in differences)
 
 
 def goal_met(median, past15, gap):
@@ -129,10 +129,11 @@ def main():
             _, name, _, metric, value = row[:5]
             reported[(name, metric)] = float(value)
         elif row[0] == "grown":
-            _, name, _, _, median, gap, past_metrics, differences = row[:8]
+            _, name, _, _, median, _, past_metrics, mix = row[:8]
             past = [m for m in past_metrics.split() if m in HEADLINE]
-            grown[name].append((float(median), len(past), past, float(gap)))
-            grown_mix[name].append(tuple(float(d) for d in differences.split()))
+            mix = tuple(float(d) for d in mix.split())
+            grown[name].append((float(median), len(past), past, mix_gap(mix)))
+            grown_mix[name].append(mix)
     print(f"{'name':22s} | {'tile_m':>6s} | {'tiles':>5s} | {'pairs_over_5_pct':>16s} | {'past_15_per_pair':>16s} | "
           f"{'grown_over_5_pct':>16s} | {'grown_past_15':>13s} | {'mix_off_5pp_pct':>15s} | {'grown_mix_off_pct':>17s} | "
           f"{'goal_met_pct':>12s} | {'grown_goal_met_pct':>18s} | past 15 % by metric, resamples / growths (%)")
@@ -155,9 +156,10 @@ def main():
             values = metrics(sample)
             median, differences = score(values, own)
             over5 += median > 0.05
-            gap = mix_gap(values, own)
+            mix = tuple(values[m] - own[m] for m in MIX)
+            gap = mix_gap(mix)
             mix_off += gap > MIX_GAP
-            mix_differences.append(tuple(values[m] - own[m] for m in MIX))
+            mix_differences.append(mix)
             past = [metric for metric, difference in differences.items() if difference > 0.15]
             past15 += len(past)
             past_by_metric.update(past)
