@@ -1801,3 +1801,26 @@ TEST(PatchDangling, DeadEndsJoinAlongTheGridOnAnOrderedExample) {
   auto [off, on] = grid_rule_fires(f, &PatchGrowParams::grid_joins, refused, axis, 20.0 * M_PI / 180.0);
   EXPECT_GE(street_order(f.geos, on), street_order(f.geos, off));
 }
+
+// The grid rules follow PatchGrowParams::rotation: the uneven grid's patches turned 30 degrees by
+// the parameter grow about as the example turned 30 degrees does, their statistical streets kept to
+// the turned grid. The grid axis once added the rotation to the example graph's, whose streets are
+// already turned: 30 degrees off, it turned streets off the grid (measured, seed 4 to 4,000 edges:
+// statistical length more than 10 degrees off the grid 77 % against the turned example's 66 %, the
+// streets' φ 0.207 against 0.287; with the axis right 58 % and 0.276).
+TEST(PatchDangling, GridRulesFollowThePatchRotation) {
+  Fixture f;
+  const double axis = 30.0 * M_PI / 180.0;
+  GrowParams p = Fixture::patch_growth();
+  p.max_edges = 4000;
+  const GrowResult turned_example = grow_example(f.geos, f.input(turned_about_origin(uneven_grid(), axis)), p);
+  p.patch.rotation = 30.0;
+  const GrowResult turned_patches = grow_example(f.geos, f.input(uneven_grid()), p);
+  const auto [off_example, all_example] = statistical_off_grid(turned_example, axis);
+  const auto [off_patches, all_patches] = statistical_off_grid(turned_patches, axis);
+  ASSERT_GT(all_example, 20000.0);
+  ASSERT_GT(all_patches, 20000.0);
+  EXPECT_LT(off_patches / all_patches, off_example / all_example + 0.05);
+  EXPECT_GT(street_order(f.geos, turned_patches), street_order(f.geos, turned_example) - 0.05);
+  EXPECT_EQ(crossings_without_node(turned_patches), 0);
+}

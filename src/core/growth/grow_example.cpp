@@ -5913,8 +5913,10 @@ class Grower {
   // median 2.66 → 2.72 %; its example's own resampled φ sd is 20 %).
   static constexpr double kWeakSeamOrder = 0.15;
   // Patch growth on an ordered example (φ at least kSeamOrder, one style): the example's grid axis
-  // (radians, mod 90°: the length-weighted mean of its segments' directions times four, over four),
-  // turned as the patches are; NaN elsewhere (PatchGrowParams::fallback_grid, dangling_corners).
+  // (radians, mod 90°: the length-weighted mean of its segments' directions times four, over four);
+  // NaN elsewhere (PatchGrowParams::fallback_grid, dangling_corners). The example graph is built
+  // from the patch streets already turned by PatchGrowParams::rotation, so its axis is turned with
+  // them (adding the rotation again put the axis that far off the grown grid).
   double grid_axis() {
     if (!params_.use_patches || styles_ != 1 || examples_.empty() || example_order() < kSeamOrder) return NAN;
     if (std::isnan(grid_axis_)) {
@@ -5925,7 +5927,7 @@ class Grower {
           s += h.length * std::sin(4.0 * h.angle);
         }
       }
-      grid_axis_ = wrap(0.25 * std::atan2(s, c) + params_.patch.rotation * kPi / 180.0);
+      grid_axis_ = wrap(0.25 * std::atan2(s, c));
     }
     return grid_axis_;
   }
