@@ -188,6 +188,9 @@ TEST(PatchDangling, DanglingStreetsJoinTheNetworkAhead) {
   p.patch.align_lines = false;
   // (and the dead ends left kept: the avenue grid has none of its own, so they would be pruned)
   p.patch.prune_without_own_dead_ends = false;
+  // (and the askew statistical streets not turned onto the grid: turned, the growth stopped by
+  // max_edges again leaves no open front with a node or street within half a street ahead)
+  p.patch.fallback_grid_askew = false;
   auto [open, joined] = f.grow_off_on(in, &PatchGrowParams::connect_dangling, p);
   EXPECT_EQ(open.stats.dangling_connected, 0u);
   EXPECT_GT(joined.stats.dangling_connected, 0u);
@@ -374,6 +377,9 @@ TEST(PatchDangling, LocalTeesContinueToTheNodeOrStreetAhead) {
   // (and the joins not slid onto the grid: slid, the walled growth's share of crossings ends at
   // 0.6405, a hair over the bound below, 0.6400)
   p.patch.slide_onto_grid = false;
+  // (and the askew statistical streets not turned onto the grid: turned, the walled growth keeps 196
+  // T's with the rule against 185 without)
+  p.patch.fallback_grid_askew = false;
   auto [off, on] = f.grow_off_on(in, &PatchGrowParams::continue_local_tees, p);
   EXPECT_EQ(off.stats.local_tees_continued, 0u);
   ASSERT_GT(on.stats.local_tees_continued, 0u);
@@ -756,6 +762,9 @@ TEST(PatchDangling, AGrowthThatEndsPastItsCapIsGrownAgainUnderALowerOne) {
   GrowInput in = f.input(uneven_grid_and_far_cross());
   GrowParams p = Fixture::patch_growth();
   p.seed = 1;
+  // (the askew statistical streets not turned onto the grid: turned, seed 1's second growth keeps 9
+  // dead ends inside against the first's 7, and seed 12's is kept)
+  p.patch.fallback_grid_askew = false;
   auto [off, on] = f.grow_off_on(in, &PatchGrowParams::regrow_past_cap, p, 0.0, 0.03);
   const double cap = off.stats.cap_length;
   ASSERT_GT(cap, 0.0);
@@ -806,6 +815,7 @@ TEST(PatchDangling, TheSecondGrowthResumesFromTheFirstsCheckpoint) {
     SCOPED_TRACE(seed);
     GrowParams p = Fixture::patch_growth();
     p.seed = seed;
+    p.patch.fallback_grid_askew = false;  // (turned onto the grid, seed 12's second growth is kept too)
     auto [scratch, resumed] = f.grow_off_on(in, &PatchGrowParams::regrow_checkpoint, p, 0.0, 0.9);
     ASSERT_GT(resumed.stats.cap_first_length, 0.0);  // (regrown)
     EXPECT_TRUE(resumed.stats.cap_resumed);
@@ -816,6 +826,7 @@ TEST(PatchDangling, TheSecondGrowthResumesFromTheFirstsCheckpoint) {
   }
   GrowParams p = Fixture::patch_growth();
   p.seed = 1;
+  p.patch.fallback_grid_askew = false;
   const GrowResult resumed = grow_example(f.geos, in, p);
   GrowParams lowered = p;
   lowered.patch.regrow_past_cap = 0.0;
@@ -1733,13 +1744,14 @@ double statistical_off_grid(const GrowResult& r, double axis, double limit) {
   return metres;
 }
 
-// The grid rules' checks in common: `flag` on the uneven blocks turned 30 degrees (`axis`) fires
-// (`count` of its stats 0 off, more on) and leaves fewer metres of statistical street more than
-// `limit` off the grid, planar, deterministic; the spider's web (no grid) grows the same graph
-// either way. Returns the turned blocks' growths, off and on.
+// The grid rules' checks in common: `flag` on `example` (the uneven blocks unless given) turned by
+// `axis` fires (`count` of its stats 0 off, more on) and leaves fewer metres of statistical street
+// more than `limit` off the grid, planar, deterministic; the spider's web (no grid) grows the same
+// graph either way. Returns the turned example's growths, off and on.
 template <class Count>
-Fixture::OffOn grid_rule_fires(Fixture& f, bool PatchGrowParams::*flag, Count count, double axis, double limit) {
-  GrowInput in = f.input(turned_about_origin(uneven_blocks(), axis));
+Fixture::OffOn grid_rule_fires(Fixture& f, bool PatchGrowParams::*flag, Count count, double axis, double limit,
+                               const std::vector<PatchInputEdge>& example = uneven_blocks()) {
+  GrowInput in = f.input(turned_about_origin(example, axis));
   Fixture::OffOn grown = f.grow_off_on(in, flag);
   EXPECT_EQ(count(grown.off.stats), 0u);
   EXPECT_GT(count(grown.on.stats), 0u);
@@ -1799,6 +1811,43 @@ TEST(PatchDangling, DeadEndsJoinAlongTheGridOnAnOrderedExample) {
   auto refused = [](const GrowStats& s) { return s.joins_off_grid; };
   const double axis = 30.0 * M_PI / 180.0;
   auto [off, on] = grid_rule_fires(f, &PatchGrowParams::grid_joins, refused, axis, 20.0 * M_PI / 180.0);
+  EXPECT_GE(street_order(f.geos, on), street_order(f.geos, off));
+}
+
+namespace {
+
+// The uneven blocks with a district askew to their grid beside them: a 4 x 4 node grid of 80 m
+// blocks, turned 30 degrees off the blocks' axis, whose corner is the blocks' lower right node (as
+// tokyo's south-east lies askew to the rest of its grid). Orientation order about 0.7.
+std::vector<PatchInputEdge> blocks_with_an_askew_district() {
+  std::vector<PatchInputEdge> out = uneven_blocks();
+  const Point corner = out.back().line.back();  // (the last street ends at the top right node)
+  Point origin{corner.x, 0.0};
+  const double c = std::cos(-M_PI / 6.0), s = std::sin(-M_PI / 6.0);
+  auto at = [&](int i, int j) { return origin + Point{c * i * 80.0 - s * j * 80.0, s * i * 80.0 + c * j * 80.0}; };
+  std::int64_t id = static_cast<std::int64_t>(out.size());
+  for (int i = 0; i <= 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      out.push_back({{at(j, i), at(j + 1, i)}, "street", ++id, false});
+      out.push_back({{at(i, j), at(i, j + 1)}, "street", ++id, false});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+// Askew streets turn onto the grid (fallback_grid_askew): on an ordered example, while the output
+// is less ordered than the example, a statistical street leaving a street more than 15 degrees off
+// the grid turns onto the grid too. The uneven blocks turned 30 degrees: it fires, fewer metres of
+// statistical street more than 15 degrees off the grid, an output no less ordered, planar,
+// deterministic. The spider's web (no grid) grows the same graph either way.
+TEST(PatchDangling, AskewStatisticalStreetsTurnOntoAnOrderedExamplesGrid) {
+  Fixture f;
+  auto turned = [](const GrowStats& s) { return s.fallback_askew_turned; };
+  const double axis = 30.0 * M_PI / 180.0;
+  auto [off, on] = grid_rule_fires(f, &PatchGrowParams::fallback_grid_askew, turned, axis, 15.0 * M_PI / 180.0,
+                                   blocks_with_an_askew_district());
   EXPECT_GE(street_order(f.geos, on), street_order(f.geos, off));
 }
 

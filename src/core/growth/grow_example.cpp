@@ -2245,15 +2245,18 @@ class Grower {
       if (!params_.parametric) dev = 0.0;
     } else if (!incident.empty()) {
       base = incident[0];
-      // On an ordered example a street a little off its grid goes on along the grid instead.
+      // On an ordered example a street a little off its grid goes on along the grid instead, and
+      // one far off it too while the output is less ordered than the example (fallback_grid_askew).
       const double axis = fallback_grid_here() ? grid_axis() : NAN;
       if (!std::isnan(axis)) {
         const double quarter = 0.5 * kPi;
         const double off = std::remainder(base - axis, quarter);
-        if (std::abs(off) <= kGridTurn) {
+        const bool askew = std::abs(off) > kGridTurn;
+        if (!askew || (params_.patch.fallback_grid_askew && output_order() < example_order())) {
           base = wrap(base - off);
           dev = 0.0;
           stats_.fallback_grid_turned += std::abs(off) > kOnGrid;
+          stats_.fallback_askew_turned += askew;
         }
       }
     } else {
