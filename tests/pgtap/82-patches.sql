@@ -252,8 +252,9 @@ SELECT ok((SELECT count(*) FROM (
              SELECT ST_AsEWKB(geom) FROM pg_temp.grow('canberra_south_large', '{"seed": 8, "max_edges": 3000}')
                AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry)) d) > 100,
           'another seed gives another network');
--- max_uses: with max_uses 1 no patch gives more road than it holds (a split keeps the length; a
--- dead end joined to the network counts as statistical growth).
+-- max_uses: with max_uses 1 no patch gives more road than it holds (a split keeps the length, to the
+-- millimetre the growth merges nodes at: tokyo seed 7's patch 12, split into 37 pieces, sums 0.07 mm
+-- over its 1,236.56 m; a dead end joined to the network counts as statistical growth).
 SELECT is((SELECT count(*) FROM (
              SELECT g.origin, sum(ST_Length(g.geom)) AS len
                FROM pg_temp.grow('tokyo', '{"seed": 7, "max_edges": 1500, "max_uses": 1}')
@@ -261,7 +262,7 @@ SELECT is((SELECT count(*) FROM (
               GROUP BY g.origin) u
             JOIN (SELECT 'grow_patches:' || patch_id AS origin, sum(ST_Length(geom)) AS len FROM pt WHERE name = 'tokyo'
                    GROUP BY patch_id) l USING (origin)
-           WHERE u.len > l.len + 1e-6), 0::bigint, 'max_uses 1: no patch is copied twice');
+           WHERE u.len > l.len + 1e-3), 0::bigint, 'max_uses 1: no patch is copied twice');
 SELECT ok((SELECT count(*) FROM (
              SELECT g.origin, sum(ST_Length(g.geom)) AS len
                FROM pg_temp.grow('tokyo', '{"seed": 7, "max_edges": 1500}')
@@ -331,16 +332,17 @@ SELECT is((SELECT count(*) FROM art a JOIN art b ON a.f = 1 AND b.f = 1 AND a.id
 -- next main street (or straight on to the margin); those streets take its class. One that still
 -- ends so, within a local mean street of a junction of three or more main streets, is a patch's
 -- stub past that junction: it takes the local class. The same growth with it off: the same edges,
--- only classes differ (tokyo seed 18: both happen).
+-- only classes differ (tokyo seed 27: both happen; seed 18 did until the askew statistical streets
+-- turned onto the grid, fallback_grid_askew).
 CREATE TEMP TABLE art_on AS
 SELECT g.* FROM region r,
        streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', r.geom, r.centre, NULL,
-                              '{"seed": 18, "max_edges": 200000}') AS g
+                              '{"seed": 27, "max_edges": 200000}') AS g
  WHERE r.name = 'tokyo';
 CREATE TEMP TABLE art_off AS
 SELECT g.* FROM region r,
        streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', r.geom, r.centre, NULL,
-                              '{"seed": 18, "max_edges": 200000, "promote_arterials": false}') AS g
+                              '{"seed": 27, "max_edges": 200000, "promote_arterials": false}') AS g
  WHERE r.name = 'tokyo';
 -- Nodes where exactly one main street ends and local streets go on, farther than 50 m inside the region.
 CREATE FUNCTION pg_temp.main_ends_into_local(edges text) RETURNS bigint LANGUAGE plpgsql AS $$
@@ -366,10 +368,10 @@ SELECT is((SELECT count(*) FROM art_off o JOIN art_on a USING (id)
           0::bigint, 'promote_arterials: a class changes only from a local street to a main class, or back');
 SELECT ok((SELECT count(*) FROM art_off o JOIN art_on a USING (id)
             WHERE o.road_class = 'street' AND pg_temp.main_class(a.road_class)) > 0,
-          'promote_arterials: local streets promoted (tokyo seed 18)');
+          'promote_arterials: local streets promoted (tokyo seed 27)');
 SELECT ok((SELECT count(*) FROM art_off o JOIN art_on a USING (id)
             WHERE pg_temp.main_class(o.road_class) AND a.road_class = 'street') > 0,
-          'promote_arterials: stubs past a main junction back to the local class (tokyo seed 18)');
+          'promote_arterials: stubs past a main junction back to the local class (tokyo seed 27)');
 -- Each stub: shorter than 50 m (tokyo's local mean street: 44 m), from a node
 -- of one main street (the avenue's end, other streets going on) to one of three or more, both
 -- counted with it off.
