@@ -554,8 +554,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           "ends' joins refused off the grid; %zu short dead ends cut back instead of joined (a "
                           "weakly ordered example)",
                           stats.fallback_grid_turned, stats.fallback_askew_turned, stats.fallback_snaps_off_line,
-                          stats.dangling_corners_cut,
-                          stats.joins_off_grid, stats.short_ends_cut)));
+                          stats.dangling_corners_cut, stats.joins_off_grid, stats.short_ends_cut)));
   ereport(DEBUG1, (errmsg("grow_patches: corners: %zu gone on straight (the other street dropped; %zu of them "
                           "junctions an earlier drop left corners), %zu gone on to a T (%zu of them for the "
                           "junctions), %zu changes refused (a weakly ordered example's junctions per area)",

@@ -276,9 +276,9 @@ struct PatchGrowParams {
   // more than 15 degrees off it. A patch copied from a district of the example that lies askew to
   // its grid (tokyo's south-east, about 30 degrees off) left fronts along its own axis, and the
   // statistical streets carried that axis on, street after street: tokyo's growths past 15 % on φ
-  // were those whose askew districts had grown to twice the example's share of the length. Tokyo,
-  // seeds 1-120: φ past 15 % on 9 -> 1 seeds, its per-pair median 1.84 -> 1.68 %; README "Askew
-  // districts are not carried on".
+  // were those whose askew districts had grown to up to twice the example's share of the length.
+  // Tokyo, seeds 1-120: φ past 15 % on 9 -> 1 seeds, its per-pair median 1.84 -> 1.68 %; README
+  // "Askew districts are not carried on".
   bool fallback_grid_askew = true;
   // Dangling corners (grid41; an ordered example, as fallback_grid): connect_dangling first joins
   // only what leaves no corner (a node of two streets turning by more than 45 degrees) at either end;
