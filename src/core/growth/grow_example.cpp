@@ -542,6 +542,7 @@ class Grower {
     if (params_.use_patches && params_.patch.straight_corners) straighten_corners();
     if (params_.use_patches && (params_.patch.prune_dangling || example_without_dead_ends())) prune_dangling();
     if (params_.use_patches && params_.patch.continue_across && params_.patch.facing_after_cuts) join_facing_after_cuts();
+    if (params_.use_patches && settles_here()) settle_onto_grid();
     if (params_.use_patches && params_.patch.promote_arterials) promote_arterials();
     return true;
   }
@@ -4513,13 +4514,21 @@ class Grower {
     Point u;
     if (!slide_street(t, g, lone, u)) return false;
     const Point np = nodes_[t].p + (left / cross(g, u)) * u;
+    if (!may_move(t, np)) return false;
+    move_node(t, np);
+    return true;
+  }
+  // Whether node t may move to np: no other node within the clearance of np, and each of its
+  // streets, moved, legal, touching no other street, clear of the network, and meeting the other
+  // streets at its far end at min_angle or more.
+  bool may_move(std::uint32_t t, Point np) {
     point_hits_.clear();
     node_tree_.query(bgi::nearest(BPoint(np.x, np.y), 2), std::back_inserter(point_hits_));
     for (const PointValue& pv : point_hits_) {
       if (pv.second != t && distance(nodes_[pv.second].p, np) < clearance_) return false;
     }
     for (std::uint32_t e : nodes_[t].edges) {
-      const std::uint32_t o = edges_[e].a == t ? edges_[e].b : edges_[e].a;
+      const std::uint32_t o = other_node(e, t);
       const Point q = nodes_[o].p;
       if (!legal(np, q) || first_contact(np, q, t, o).found || !clear_of_network(np, q, clearance_, t, o, -1)) return false;
       const double out = std::atan2(np.y - q.y, np.x - q.x);
@@ -4529,9 +4538,102 @@ class Grower {
         if (std::abs(wrap(std::atan2(r.y - q.y, r.x - q.x) - out)) < min_angle_) return false;
       }
     }
-    move_node(t, np);
     return true;
   }
+
+  // ---- nodes settled onto the grid (PatchGrowParams::settle_onto_grid) -------------------------
+  // The joins and the fallback's streets are made one at a time between nodes that patches placed
+  // where their own example put them, so they run across the grid at the nodes' offsets, and slide
+  // (above) moves only the two nodes of a join, along one street each. Settling moves every node
+  // with such a street at once, a few rounds, each to the point its streets' lines agree on best.
+  bool settles_here() {
+    return params_.patch.settle_onto_grid && slides_onto_grid() && guide_segments_.empty() && direction_->empty();
+  }
+  void settle_onto_grid() {
+    const double axis = grid_axis();
+    const double reach = kSettleMove * snap_;
+    std::vector<Point> grown_at(nodes_.size());  // where growth left each node
+    for (std::size_t n = 0; n < nodes_.size(); ++n) grown_at[n] = nodes_[n].p;
+    std::vector<double> heading(edges_.size());  // each street's direction as growth left it
+    for (std::size_t e = 0; e < edges_.size(); ++e) {
+      const Point d = nodes_[edges_[e].b].p - nodes_[edges_[e].a].p;
+      heading[e] = std::atan2(d.y, d.x);
+    }
+    for (int round = 0; round < kSettleRounds; ++round) {
+      std::size_t moved = 0;
+      for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
+        Point np;
+        if (!settled_point(v, axis, heading, np)) continue;
+        const Point from_grown = np - grown_at[v];
+        if (norm(from_grown) > reach) np = grown_at[v] + (reach / norm(from_grown)) * from_grown;
+        if (distance(np, nodes_[v].p) < kSettleStep || !may_settle(v, np)) continue;
+        move_node(v, np);
+        ++moved;
+      }
+      if (moved == 0) break;
+    }
+    for (std::uint32_t v = 0; v < nodes_.size(); ++v) stats_.settled_onto_grid += distance(nodes_[v].p, grown_at[v]) > kContact;
+  }
+  // The point node v's streets agree on (false: v stays): the least-squares point of their lines,
+  // a patch street's its own (heading) through its far end, weighted kSettlePatchWeight, a join's
+  // or statistical street's within kSettleOff of the grid the grid's line through its far end. Only
+  // a junction or dead end with such a street off the grid moves, and none of the existing
+  // network's: the metrics read each street from junction to junction, and a street's shape points
+  // keep its curve (moving them too measured alike on tokyo and new-york). (A small pull to where v
+  // is keeps the system solvable where the lines are parallel or there is one.)
+  bool settled_point(std::uint32_t v, double axis, const std::vector<double>& heading, Point& out) const {
+    if (nodes_[v].edges.size() == 2) return false;
+    const Point p = nodes_[v].p;
+    double a11 = kSettleHold, a12 = 0.0, a22 = kSettleHold, b1 = kSettleHold * p.x, b2 = kSettleHold * p.y;
+    bool off_grid = false;
+    for (std::uint32_t e : nodes_[v].edges) {
+      const OEdge& edge = edges_[e];
+      if (edge.level < 0) return false;
+      const Point q = other_end(e, v);
+      if (distance(p, q) <= kContact) continue;
+      double weight = kSettlePatchWeight, along = heading[e];
+      if (edge.source < 0) {
+        const double off = std::remainder(std::atan2(p.y - q.y, p.x - q.x) - axis, 0.5 * kPi);
+        if (std::abs(off) > kSettleOff) continue;
+        off_grid = off_grid || std::abs(off) > kSettleAligned;
+        weight = 1.0;
+        along = axis + 0.5 * kPi * std::round((std::atan2(p.y - q.y, p.x - q.x) - axis) / (0.5 * kPi));
+      }
+      const Point n{-std::sin(along), std::cos(along)};  // v on the line: dot(n, v - q) = 0
+      const double c = dot(n, q);
+      a11 += weight * n.x * n.x;
+      a12 += weight * n.x * n.y;
+      a22 += weight * n.y * n.y;
+      b1 += weight * n.x * c;
+      b2 += weight * n.y * c;
+    }
+    if (!off_grid) return false;
+    const double det = a11 * a22 - a12 * a12;
+    if (!(std::abs(det) > 1e-12)) return false;
+    out = {(a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det};
+    return true;
+  }
+  // may_move, and v's streets, moved, keep min_length (those that had it) and meet each other at
+  // min_angle or more.
+  bool may_settle(std::uint32_t v, Point np) {
+    const std::vector<std::uint32_t>& es = nodes_[v].edges;
+    for (std::size_t i = 0; i < es.size(); ++i) {
+      const Point q = other_end(es[i], v);
+      if (distance(np, q) < min_length_ && distance(nodes_[v].p, q) >= min_length_) return false;
+      for (std::size_t k = i + 1; k < es.size(); ++k) {
+        const Point r = other_end(es[k], v);
+        if (std::abs(wrap(std::atan2(r.y - np.y, r.x - np.x) - std::atan2(q.y - np.y, q.x - np.x))) < min_angle_) return false;
+      }
+    }
+    return may_move(v, np);
+  }
+  static constexpr int kSettleRounds = 5;                        // 5 / 20 measured alike (tokyo, README)
+  static constexpr double kSettleMove = 0.5;                     // of snap: 0.25 / 0.5 / 1 measured (README)
+  static constexpr double kSettleOff = 30.0 * kPi / 180.0;       // 20 / 30 / 45 measured (README)
+  static constexpr double kSettlePatchWeight = 4.0;              // 1 / 4 / 10 measured (README)
+  static constexpr double kSettleAligned = 0.5 * kPi / 180.0;    // a street this near the grid is on it
+  static constexpr double kSettleHold = 1e-3;
+  static constexpr double kSettleStep = 0.05;                    // metres: a smaller move is not made
   // PatchGrowParams::facing_after_cuts: the facing joins again once the cuts are done.
   void join_facing_after_cuts() {
     const std::size_t before = stats_.continued_across;
