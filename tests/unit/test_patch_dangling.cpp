@@ -1873,11 +1873,12 @@ std::map<std::int64_t, Point> node_places(const GrowResult& r) {
 // the patch streets keep their direction. The uneven blocks turned 30 degrees (measured, seed 4:
 // 391 nodes settled; statistical edges more than 10 degrees off the grid 8.5 -> 4.3 km; φ of the
 // streets from junction to junction 0.918 -> 0.931; the farthest move 22.4 m, half the snap
-// distance; with the existing street, 27 of its nodes stay): it fires, fewer metres of statistical street more than 10 degrees off the grid, a
-// more ordered output as compare_networks reads it, planar, deterministic; the same streets between
-// the same nodes, each node at most half a snap distance from where growth left it. With a street
-// of the existing network across the region, its nodes (where grown streets join it) stay. The
-// spider's web (no grid) grows the same graph either way.
+// distance; with the existing street, 27 of its nodes stay): it fires, fewer metres of statistical
+// street more than 10 degrees off the grid, a more ordered output as compare_networks reads it,
+// planar, deterministic; the same streets between the same nodes, each node at most half a snap
+// distance from where growth left it. With a street of the existing network across the region,
+// its nodes (where grown streets join it) stay. The spider's web (no grid) grows the same graph
+// either way.
 TEST(PatchDangling, NodesSettleOntoAnOrderedExamplesGrid) {
   Fixture f;
   auto settled = [](const GrowStats& s) { return s.settled_onto_grid; };

@@ -4572,7 +4572,9 @@ class Grower {
       }
       if (moved == 0) break;
     }
-    for (std::uint32_t v = 0; v < nodes_.size(); ++v) stats_.settled_onto_grid += distance(nodes_[v].p, grown_at[v]) > kContact;
+    for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
+      stats_.settled_onto_grid += distance(nodes_[v].p, grown_at[v]) > kContact;
+    }
   }
   // The point node v's streets agree on (false: v stays): the least-squares point of their lines,
   // a patch street's its own (heading) through its far end, weighted kSettlePatchWeight, a join's
@@ -4620,9 +4622,10 @@ class Grower {
     for (std::size_t i = 0; i < es.size(); ++i) {
       const Point q = other_end(es[i], v);
       if (distance(np, q) < min_length_ && distance(nodes_[v].p, q) >= min_length_) return false;
+      const double to_q = std::atan2(q.y - np.y, q.x - np.x);
       for (std::size_t k = i + 1; k < es.size(); ++k) {
         const Point r = other_end(es[k], v);
-        if (std::abs(wrap(std::atan2(r.y - np.y, r.x - np.x) - std::atan2(q.y - np.y, q.x - np.x))) < min_angle_) return false;
+        if (std::abs(wrap(std::atan2(r.y - np.y, r.x - np.x) - to_q)) < min_angle_) return false;
       }
     }
     return may_move(v, np);
@@ -4632,7 +4635,7 @@ class Grower {
   static constexpr double kSettleOff = 30.0 * kPi / 180.0;       // 20 / 30 / 45 measured (README)
   static constexpr double kSettlePatchWeight = 4.0;              // 1 / 4 / 10 measured (README)
   static constexpr double kSettleAligned = 0.5 * kPi / 180.0;    // a street this near the grid is on it
-  static constexpr double kSettleHold = 1e-3;
+  static constexpr double kSettleHold = 1e-3;                    // the small pull to where the node is
   static constexpr double kSettleStep = 0.05;                    // metres: a smaller move is not made
   // PatchGrowParams::facing_after_cuts: the facing joins again once the cuts are done.
   void join_facing_after_cuts() {
