@@ -182,15 +182,16 @@ struct PatchGrowParams {
   // no better.
   bool grid_joins = true;
   // On an ordered example (as slide_onto_grid; not under a guide or direction raster, whose warp
-  // has no one grid), once the growth is done its nodes settle: each moves to the least-squares
-  // point of the lines its streets ask for, so that its joins and statistical streets run along the
-  // grid while its patch streets keep their direction. A patch street asks for its own line
-  // through its far end (4 times the weight), a join or statistical street within 30 degrees of the
-  // grid for the grid's line through its far end; one more than 30 degrees off asks for nothing. Five
-  // rounds over the nodes; no node moves more than half a snap distance from where growth left it,
-  // and a move is made only where the moved streets stay legal, touch no other street, keep the
-  // clearance, min_angle and min_length; the existing network's nodes stay. The joins and the
-  // fallback held most of tokyo's φ gap. Tokyo, seeds 1-60 / 61-120: φ −6.6 / −7.2 → −4.4 / −4.7 %
+  // has no one grid), once the growth is done its junctions and dead ends settle: each with a join
+  // or statistical street off the grid moves to the least-squares point of the lines its streets
+  // ask for, so that those run along the grid while its patch streets keep their direction. A patch
+  // street asks for its own line through its far end (4 times the weight), a join or statistical
+  // street within 30 degrees of the grid for the grid's line through its far end; one more than 30
+  // degrees off asks for nothing. Five rounds over the nodes; no node moves more than half a snap
+  // distance from where growth left it, and a move is made only where the moved streets stay legal,
+  // touch no other street, keep the clearance, min_angle and min_length. The streets' shape points
+  // and the existing network's nodes stay, and so does the topology. The joins and the fallback held
+  // most of tokyo's φ gap. Tokyo, seeds 1-60 / 61-120: φ −6.6 / −7.2 → −4.4 / −4.7 %
   // at the median, per-pair median 1.63 / 1.75 → 1.53 / 1.66 %; new-york φ −2.8 / −2.6 → −2.3 /
   // −2.1 %, per-pair median 1.49 / 1.59 → 1.36 / 1.49 %; the junctions are unchanged (README "Nodes
   // settle onto the grid").
