@@ -4550,7 +4550,6 @@ class Grower {
     return params_.patch.settle_onto_grid && slides_onto_grid() && guide_segments_.empty() && direction_->empty();
   }
   void settle_onto_grid() {
-    const double axis = grid_axis();
     const double reach = kSettleMove * snap_;
     std::vector<Point> grown_at(nodes_.size());  // where growth left each node
     for (std::size_t n = 0; n < nodes_.size(); ++n) grown_at[n] = nodes_[n].p;
@@ -4563,7 +4562,7 @@ class Grower {
       std::size_t moved = 0;
       for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
         Point np;
-        if (!settled_point(v, axis, heading, np)) continue;
+        if (!settled_point(v, heading, np)) continue;
         const Point from_grown = np - grown_at[v];
         if (norm(from_grown) > reach) np = grown_at[v] + (reach / norm(from_grown)) * from_grown;
         if (distance(np, nodes_[v].p) < kSettleStep || !may_settle(v, np)) continue;
@@ -4578,12 +4577,12 @@ class Grower {
   }
   // The point node v's streets agree on (false: v stays): the least-squares point of their lines,
   // a patch street's its own (heading) through its far end, weighted kSettlePatchWeight, a join's
-  // or statistical street's within kSettleOff of the grid the grid's line through its far end. Only
-  // a junction or dead end with such a street off the grid moves, and none of the existing
-  // network's: the metrics read each street from junction to junction, and a street's shape points
-  // keep its curve (moving them too measured alike on tokyo and new-york). (A small pull to where v
-  // is keeps the system solvable where the lines are parallel or there is one.)
-  bool settled_point(std::uint32_t v, double axis, const std::vector<double>& heading, Point& out) const {
+  // or statistical street's within kSettleOff of the grid the grid's line (on_grid) through its far
+  // end. Only a junction or dead end with such a street off the grid moves, and none of the
+  // existing network's: the metrics read each street from junction to junction, and a street's
+  // shape points keep its curve (moving them too measured alike on tokyo and new-york). (A small
+  // pull to where v is keeps the system solvable where the lines are parallel or there is one.)
+  bool settled_point(std::uint32_t v, const std::vector<double>& heading, Point& out) {
     if (nodes_[v].edges.size() == 2) return false;
     const Point p = nodes_[v].p;
     double a11 = kSettleHold, a12 = 0.0, a22 = kSettleHold, b1 = kSettleHold * p.x, b2 = kSettleHold * p.y;
@@ -4593,15 +4592,16 @@ class Grower {
       if (edge.level < 0) return false;
       const Point q = other_end(e, v);
       if (distance(p, q) <= kContact) continue;
-      double weight = kSettlePatchWeight, along = heading[e];
+      double weight = kSettlePatchWeight;
+      Point n{-std::sin(heading[e]), std::cos(heading[e])};  // v on the line: dot(n, v - q) = 0
       if (edge.source < 0) {
-        const double off = std::remainder(std::atan2(p.y - q.y, p.x - q.x) - axis, 0.5 * kPi);
-        if (std::abs(off) > kSettleOff) continue;
-        off_grid = off_grid || std::abs(off) > kSettleAligned;
+        const Point d = unit(p - q), g = on_grid(d);
+        const double off = std::abs(cross(g, d));  // the sine of the angle between them
+        if (off > std::sin(kSettleOff)) continue;
+        off_grid = off_grid || off > std::sin(kSettleAligned);
         weight = 1.0;
-        along = axis + 0.5 * kPi * std::round((std::atan2(p.y - q.y, p.x - q.x) - axis) / (0.5 * kPi));
+        n = {-g.y, g.x};
       }
-      const Point n{-std::sin(along), std::cos(along)};  // v on the line: dot(n, v - q) = 0
       const double c = dot(n, q);
       a11 += weight * n.x * n.x;
       a12 += weight * n.x * n.y;
