@@ -1913,6 +1913,71 @@ TEST(PatchDangling, NodesSettleOntoAnOrderedExamplesGrid) {
   EXPECT_EQ(crossings_without_node(kept_on), 0);
 }
 
+namespace {
+
+// Metres of statistical street more than `limit` off the grid the patch streets make around it: the
+// four-fold length-weighted mean direction of the patch segments whose midpoints lie within
+// `radius` of the statistical segment's midpoint (left out where they agree on less than 0.6 of it).
+double statistical_off_local_grid(const GrowResult& r, double radius, double limit) {
+  double metres = 0.0;
+  for (const GrownEdge& e : r.edges) {
+    if (e.example >= 0) continue;
+    const Point mid = 0.5 * (e.a + e.b);
+    double c = 0.0, s = 0.0, total = 0.0;
+    for (const GrownEdge& patch : r.edges) {
+      if (patch.example < 0 || distance(0.5 * (patch.a + patch.b), mid) > radius) continue;
+      const Point d = patch.b - patch.a;
+      const double l = std::hypot(d.x, d.y), angle = std::atan2(d.y, d.x);
+      c += l * std::cos(4.0 * angle);
+      s += l * std::sin(4.0 * angle);
+      total += l;
+    }
+    if (!(total > 0.0) || std::hypot(c, s) < 0.6 * total) continue;
+    const Point d = e.b - e.a;
+    const double off = std::remainder(std::atan2(d.y, d.x) - 0.25 * std::atan2(s, c), 0.5 * M_PI);
+    if (std::abs(off) > limit) metres += std::hypot(d.x, d.y);
+  }
+  return metres;
+}
+
+}  // namespace
+
+// Nodes settle onto local grids (weak_order_settle): the uneven blocks beside a spider's web (φ
+// under 0.6, so it has no one grid) settle each junction and dead end onto the grid its patch
+// streets make around it (measured: 158 nodes settled; statistical length more than 10 degrees off
+// the local grid 10.8 -> 8.7 km; φ of the streets 0.1052 -> 0.1072; the farthest move 22.3 m, half
+// a snap 22.3 m). It fires, fewer metres of statistical street off the
+// local grid, a more ordered output, the same edges and nodes, no node moved more than half a snap,
+// planar, deterministic. A city of cul-de-sacs is left alone.
+TEST(PatchDangling, NodesSettleOntoLocalGridsOnAWeaklyOrderedExample) {
+  Fixture f;
+  const GrowInput in = f.input(blocks_beside_a_web());
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::weak_order_settle);
+  EXPECT_GE(on.stats.example_order, 0.15);
+  EXPECT_LT(on.stats.example_order, 0.6);
+  EXPECT_EQ(off.stats.settled_onto_grid, 0u);
+  EXPECT_GT(on.stats.settled_onto_grid, 0u);
+  const double limit = 10.0 * M_PI / 180.0, radius = 100.0;
+  EXPECT_LT(statistical_off_local_grid(on, radius, limit), statistical_off_local_grid(off, radius, limit));
+  EXPECT_GT(street_order(f.geos, on), street_order(f.geos, off));
+  ASSERT_EQ(on.edges.size(), off.edges.size());
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    EXPECT_EQ(on.edges[i].from_node, off.edges[i].from_node);
+    EXPECT_EQ(on.edges[i].to_node, off.edges[i].to_node);
+  }
+  const std::map<std::int64_t, Point> before = node_places(off), after = node_places(on);
+  double farthest = 0.0;
+  for (const auto& [node, p] : after) farthest = std::max(farthest, distance(p, before.at(node)));
+  EXPECT_GT(farthest, 1.0);
+  EXPECT_LE(farthest, 0.5 * on.stats.snap + 1e-9);
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
+
+  const GrowResult culs = grow_example(f.geos, f.input(with_culs_de_sac(blocks_beside_a_web())), Fixture::patch_growth());
+  EXPECT_GT(culs.stats.patches_placed, 0u);
+  EXPECT_EQ(culs.stats.settled_onto_grid, 0u);
+}
+
 // The grid rules follow PatchGrowParams::rotation: the uneven grid's patches turned 30 degrees by
 // the parameter grow about as the example turned 30 degrees does, their statistical streets kept to
 // the turned grid. The grid axis once added the rotation to the example graph's, whose streets are

@@ -4383,8 +4383,9 @@ class Grower {
     return params_.patch.slide_onto_grid && !std::isnan(grid_axis());
   }
   // The grid's direction nearest `dir` (with slides_onto_grid).
-  Point on_grid(Point dir) {
-    const double axis = grid_axis();
+  Point on_grid(Point dir) { return on_axis(grid_axis(), dir); }
+  // The direction nearest `dir` of the grid whose axis is `axis` (radians, mod 90 degrees).
+  static Point on_axis(double axis, Point dir) {
     const double a = std::atan2(dir.y, dir.x);
     const double on = axis + 0.5 * kPi * std::round((a - axis) / (0.5 * kPi));
     return {std::cos(on), std::sin(on)};
@@ -4547,10 +4548,43 @@ class Grower {
   // (above) moves only the two nodes of a join, along one street each. Settling moves every node
   // with such a street at once, a few rounds, each to the point its streets' lines agree on best.
   bool settles_here() {
-    return params_.patch.settle_onto_grid && slides_onto_grid() && guide_segments_.empty() && direction_->empty();
+    return params_.patch.settle_onto_grid && (slides_onto_grid() || settles_on_local_grids()) && guide_segments_.empty() &&
+           direction_->empty();
+  }
+  // PatchGrowParams::weak_order_settle: an example with no one grid, but weakly ordered.
+  bool settles_on_local_grids() {
+    return params_.patch.weak_order_settle && styles_ == 1 && !examples_.empty() && std::isnan(grid_axis()) &&
+           weakly_ordered(kWeakSeamOrder);
+  }
+  // The grid the patch streets make around p (radians, mod 90 degrees): their length-weighted
+  // four-fold mean direction, over the patch streets whose boxes reach within r of p; NaN where they
+  // agree on less than kLocalGridAgreement of it (the mean vector's length over the streets' length).
+  double local_grid_axis(Point p, double r) {
+    hits_.clear();
+    edge_tree_.query(bgi::intersects(box_around(p, r)), std::back_inserter(hits_));
+    double c = 0.0, s = 0.0, total = 0.0;
+    for (const BoxValue& hit : hits_) {
+      const OEdge& e = edges_[hit.second];
+      if (e.source < 0 || e.level < 0) continue;
+      const Point a = nodes_[e.a].p, b = nodes_[e.b].p;
+      const double l = distance(a, b), angle = std::atan2(b.y - a.y, b.x - a.x);
+      c += l * std::cos(4.0 * angle);
+      s += l * std::sin(4.0 * angle);
+      total += l;
+    }
+    if (!(total > 0.0) || std::hypot(c, s) < kLocalGridAgreement * total) return NAN;
+    return 0.25 * std::atan2(s, c);
   }
   void settle_onto_grid() {
     const double reach = kSettleMove * snap_;
+    // Each node's grid: the example's, or on a weakly ordered example the one around the node as
+    // growth left it (NaN: the node stays). Shape points never move.
+    const bool local = !slides_onto_grid();
+    settle_axis_.assign(nodes_.size(), NAN);
+    for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
+      if (nodes_[v].edges.size() == 2) continue;
+      settle_axis_[v] = local ? local_grid_axis(nodes_[v].p, kLocalGridReach * street_stats_.length_mean) : grid_axis();
+    }
     std::vector<Point> grown_at(nodes_.size());  // where growth left each node
     for (std::size_t n = 0; n < nodes_.size(); ++n) grown_at[n] = nodes_[n].p;
     std::vector<double> heading(edges_.size());  // each street's direction as growth left it
@@ -4562,7 +4596,7 @@ class Grower {
       std::size_t moved = 0;
       for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
         Point np;
-        if (!settled_point(v, heading, np)) continue;
+        if (std::isnan(settle_axis_[v]) || !settled_point(v, heading, np)) continue;
         const Point from_grown = np - grown_at[v];
         if (norm(from_grown) > reach) np = grown_at[v] + (reach / norm(from_grown)) * from_grown;
         if (distance(np, nodes_[v].p) < kSettleStep || !may_settle(v, np)) continue;
@@ -4577,8 +4611,8 @@ class Grower {
   }
   // The point node v's streets agree on (false: v stays): the least-squares point of their lines,
   // a patch street's its own (heading) through its far end, weighted kSettlePatchWeight, a join's
-  // or statistical street's within kSettleOff of the grid the grid's line (on_grid) through its far
-  // end. Only a junction or dead end with such a street off the grid moves, and none of the
+  // or statistical street's within kSettleOff of v's grid (settle_axis_) that grid's line through its
+  // far end. Only a junction or dead end with such a street off the grid moves, and none of the
   // existing network's: the metrics read each street from junction to junction, and a street's
   // shape points keep its curve (moving them too measured alike on tokyo and new-york). (A small
   // pull to where v is keeps the system solvable where the lines are parallel or there is one.)
@@ -4595,7 +4629,7 @@ class Grower {
       double weight = kSettlePatchWeight;
       Point n{-std::sin(heading[e]), std::cos(heading[e])};  // v on the line: dot(n, v - q) = 0
       if (edge.source < 0) {
-        const Point d = unit(p - q), g = on_grid(d);
+        const Point d = unit(p - q), g = on_axis(settle_axis_[v], d);
         const double off = std::abs(cross(g, d));  // the sine of the angle between them
         if (off > std::sin(kSettleOff)) continue;
         off_grid = off_grid || off > std::sin(kSettleAligned);
@@ -4630,6 +4664,9 @@ class Grower {
     }
     return may_move(v, np);
   }
+  std::vector<double> settle_axis_;  // settle_onto_grid: each node's grid axis (NaN: it stays)
+  static constexpr double kLocalGridReach = 1.0;       // mean streets: 0.5 / 1 / 2 measured (README)
+  static constexpr double kLocalGridAgreement = 0.6;   // 0.4 / 0.6 / 0.8 measured (README)
   static constexpr int kSettleRounds = 5;                        // 5 / 20 measured alike (tokyo, README)
   static constexpr double kSettleMove = 0.5;                     // of snap: 0.25 / 0.5 / 1 measured (README)
   static constexpr double kSettleOff = 30.0 * kPi / 180.0;       // 20 / 30 / 45 measured (README)
