@@ -551,8 +551,8 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   ereport(DEBUG1, (errmsg("grow_patches: grid: %zu statistical streets turned onto the ordered example's grid (%zu "
                           "of them leaving a street more than 15 degrees off it), %zu free-end snaps refused off "
                           "their street's line, %zu dead ends cut back instead of joined at a corner, %zu dead "
-                          "ends' joins refused off the grid, %zu nodes settled onto the grid; %zu short dead ends "
-                          "cut back instead of joined (a weakly ordered example)",
+                          "ends' joins refused off the grid, %zu nodes settled onto the grid (or onto local "
+                          "grids); %zu short dead ends cut back instead of joined (a weakly ordered example)",
                           stats.fallback_grid_turned, stats.fallback_askew_turned, stats.fallback_snaps_off_line,
                           stats.dangling_corners_cut, stats.joins_off_grid, stats.settled_onto_grid,
                           stats.short_ends_cut)));
