@@ -212,13 +212,14 @@ Datum _streetgen_grow_example(PG_FUNCTION_ARGS) {
                           "%zu accepted, %zu snapped, %zu clipped, %zu rejected, %zu pruned, %zu reseeds, %zu restarts; "
                           "example dead-end share %.3f, small block %.1f m (%zu joins refused), "
                           "median block %.1f m (%zu failed fronts' joins refused), "
-                          "%zu sibling joins refused, %zu short example segments contracted",
+                          "%zu sibling joins refused, %zu short example segments contracted, %zu segments under "
+                          "0.5 m dropped",
                           stats.steps, stats.coherent, stats.unmatched, stats.fallback, stats.guided, stats.directed,
                           stats.weighted, stats.proposals,
                           stats.accepted, stats.snapped, stats.clipped, stats.rejected, stats.pruned, stats.reseeds,
                           stats.restarts, stats.dead_end_share, stats.small_block, stats.small_cycles_refused,
                           stats.median_block, stats.median_joins_refused, stats.sibling_joins_refused,
-                          stats.example_contracted)));
+                          stats.example_contracted, stats.short_segments_dropped)));
   // The junction mix: where dead ends and 4-way junctions are made or lost.
   ereport(DEBUG1, (errmsg("grow junctions: dead-end copies %zu, made %zu, lost %zu/%zu/%zu/%zu (angle, clipped, "
                           "short, crowded); node joins by degree 0/1/2/3/4+: snap %zu/%zu/%zu/%zu/%zu, contact "

@@ -289,6 +289,19 @@ SELECT geom, CASE road_class WHEN 'avenue' THEN 12 ELSE 6 END, CASE road_class W
 SELECT ok((SELECT count(*) FROM grown_patches.axis) BETWEEN 100 AND 200, 'grown edges inserted into a model''s axis table');
 SELECT ok((SELECT count(*) FROM grown_patches.section) >= (SELECT count(*) FROM grown_patches.axis),
           'and the model''s sections follow');
+-- No grown segment under the model's snap tolerance (0.5 m by default), whose axis would get no
+-- surface (degenerate_axis): tokyo's whole hull, seed 1, grew one of 5 mm beside a junction and one
+-- of 0.22 m before they were dropped at the end of the growth.
+SELECT streetgen.create_model('grown_whole', 0);
+UPDATE grown_whole.settings SET details = false;
+INSERT INTO grown_whole.axis (geom, roadway_width, speed_kmh, road_class, source)
+SELECT geom, 6, 30, road_class, origin FROM pg_temp.grow('tokyo', '{"seed": 1, "max_edges": 200000}')
+  AS g(id bigint, from_node bigint, to_node bigint, road_class text, origin text, geom geometry);
+SELECT ok((SELECT count(*) FROM grown_whole.axis) > 2000, 'tokyo''s whole hull grown into a model''s axes');
+SELECT is((SELECT count(*) FROM grown_whole.axis WHERE ST_Length(geom) < 0.5), 0::bigint,
+          'no grown segment shorter than the model''s snap tolerance');
+SELECT is((SELECT count(*) FROM grown_whole.issue WHERE kind = 'degenerate_axis'), 0::bigint,
+          'so every grown axis has a surface');
 
 -- Bad input.
 SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT geom FROM ex WHERE false')$$, '22023',

@@ -713,6 +713,7 @@ struct GrowStats {
   std::size_t slid_onto_grid = 0;          // slide_onto_grid: nodes slid for a join along the grid
   std::size_t joins_off_grid = 0;          // grid_joins: dead ends' joins ahead refused off the grid
   std::size_t settled_onto_grid = 0;       // settle_onto_grid (and weak_order_settle): nodes moved
+  std::size_t short_segments_dropped = 0;  // segments under 0.5 m dropped at the end (drop_short_segments)
   std::size_t wide_redundant_dropped = 0;  // wide_redundant: patch streets left out that snap would have kept
   std::size_t local_tees_continued = 0;  // continue_local_tees: local T's gone on to the node or street ahead
   std::size_t local_tees_long = 0;       // continue_local_tees: joins refused for the example's street length per area
