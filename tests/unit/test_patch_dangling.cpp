@@ -1946,9 +1946,9 @@ double statistical_off_local_grid(const GrowResult& r, double radius, double lim
 // under 0.6, so it has no one grid) settle each junction and dead end onto the grid its patch
 // streets make around it (measured: 158 nodes settled; statistical length more than 10 degrees off
 // the local grid 10.8 -> 8.7 km; φ of the streets 0.1052 -> 0.1072; the farthest move 22.3 m, half
-// a snap 22.3 m). It fires, fewer metres of statistical street off the
-// local grid, a more ordered output, the same edges and nodes, no node moved more than half a snap,
-// planar, deterministic. A city of cul-de-sacs is left alone.
+// a snap 22.3 m). It fires, fewer metres of statistical street off the local grid, a more ordered
+// output, the same edges and nodes, no node moved more than half a snap, planar, deterministic. A
+// city of cul-de-sacs is left alone.
 TEST(PatchDangling, NodesSettleOntoLocalGridsOnAWeaklyOrderedExample) {
   Fixture f;
   const GrowInput in = f.input(blocks_beside_a_web());
