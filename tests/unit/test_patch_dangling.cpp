@@ -1866,6 +1866,22 @@ std::map<std::int64_t, Point> node_places(const GrowResult& r) {
   return at;
 }
 
+// Settling moved nodes, and only nodes: the same streets between the same nodes in `on` as in
+// `off`, some node more than a metre from where it was, none more than half a snap distance.
+void expect_settled_in_place(const Fixture::OffOn& grown) {
+  const GrowResult &off = grown.off, &on = grown.on;
+  ASSERT_EQ(on.edges.size(), off.edges.size());
+  for (std::size_t i = 0; i < on.edges.size(); ++i) {
+    EXPECT_EQ(on.edges[i].from_node, off.edges[i].from_node);
+    EXPECT_EQ(on.edges[i].to_node, off.edges[i].to_node);
+  }
+  const std::map<std::int64_t, Point> before = node_places(off), after = node_places(on);
+  double farthest = 0.0;
+  for (const auto& [node, p] : after) farthest = std::max(farthest, distance(p, before.at(node)));
+  EXPECT_GT(farthest, 1.0);
+  EXPECT_LE(farthest, 0.5 * on.stats.snap + 1e-9);
+}
+
 }  // namespace
 
 // Nodes settle onto the grid (settle_onto_grid): on an ordered example, once growth is done, its
@@ -1883,18 +1899,9 @@ TEST(PatchDangling, NodesSettleOntoAnOrderedExamplesGrid) {
   Fixture f;
   auto settled = [](const GrowStats& s) { return s.settled_onto_grid; };
   const double axis = 30.0 * M_PI / 180.0;
-  auto [off, on] = grid_rule_fires(f, &PatchGrowParams::settle_onto_grid, settled, axis, 10.0 * M_PI / 180.0);
-  EXPECT_GT(street_order(f.geos, on), street_order(f.geos, off));
-  ASSERT_EQ(on.edges.size(), off.edges.size());
-  for (std::size_t i = 0; i < on.edges.size(); ++i) {
-    EXPECT_EQ(on.edges[i].from_node, off.edges[i].from_node);
-    EXPECT_EQ(on.edges[i].to_node, off.edges[i].to_node);
-  }
-  const std::map<std::int64_t, Point> before = node_places(off), after = node_places(on);
-  double farthest = 0.0;
-  for (const auto& [node, p] : after) farthest = std::max(farthest, distance(p, before.at(node)));
-  EXPECT_GT(farthest, 1.0);
-  EXPECT_LE(farthest, 0.5 * on.stats.snap + 1e-9);
+  const Fixture::OffOn turned = grid_rule_fires(f, &PatchGrowParams::settle_onto_grid, settled, axis, 10.0 * M_PI / 180.0);
+  EXPECT_GT(street_order(f.geos, turned.on), street_order(f.geos, turned.off));
+  expect_settled_in_place(turned);
 
   // A street of the existing network along the grid, 150 m from the seed.
   const Point along{std::cos(axis), std::sin(axis)}, across{-std::sin(axis), std::cos(axis)};
@@ -1952,7 +1959,8 @@ double statistical_off_local_grid(const GrowResult& r, double radius, double lim
 TEST(PatchDangling, NodesSettleOntoLocalGridsOnAWeaklyOrderedExample) {
   Fixture f;
   const GrowInput in = f.input(blocks_beside_a_web());
-  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::weak_order_settle);
+  const Fixture::OffOn grown = f.grow_off_on(in, &PatchGrowParams::weak_order_settle);
+  const GrowResult &off = grown.off, &on = grown.on;
   EXPECT_GE(on.stats.example_order, 0.15);
   EXPECT_LT(on.stats.example_order, 0.6);
   EXPECT_EQ(off.stats.settled_onto_grid, 0u);
@@ -1960,16 +1968,7 @@ TEST(PatchDangling, NodesSettleOntoLocalGridsOnAWeaklyOrderedExample) {
   const double limit = 10.0 * M_PI / 180.0, radius = 100.0;
   EXPECT_LT(statistical_off_local_grid(on, radius, limit), statistical_off_local_grid(off, radius, limit));
   EXPECT_GT(street_order(f.geos, on), street_order(f.geos, off));
-  ASSERT_EQ(on.edges.size(), off.edges.size());
-  for (std::size_t i = 0; i < on.edges.size(); ++i) {
-    EXPECT_EQ(on.edges[i].from_node, off.edges[i].from_node);
-    EXPECT_EQ(on.edges[i].to_node, off.edges[i].to_node);
-  }
-  const std::map<std::int64_t, Point> before = node_places(off), after = node_places(on);
-  double farthest = 0.0;
-  for (const auto& [node, p] : after) farthest = std::max(farthest, distance(p, before.at(node)));
-  EXPECT_GT(farthest, 1.0);
-  EXPECT_LE(farthest, 0.5 * on.stats.snap + 1e-9);
+  expect_settled_in_place(grown);
   EXPECT_EQ(crossings_without_node(on), 0);
   expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
 
