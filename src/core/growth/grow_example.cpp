@@ -254,6 +254,19 @@ std::vector<Point> convex_hull(std::vector<Point> pts) {
   return h;
 }
 
+// The length-weighted mean of directions taken four times (a grid's four directions count as one):
+// the grid's axis, mod 90 degrees, and how well the directions agree on it.
+struct FourFoldMean {
+  double c = 0.0, s = 0.0, total = 0.0;
+  void add(double angle, double length) {
+    c += length * std::cos(4.0 * angle);
+    s += length * std::sin(4.0 * angle);
+    total += length;
+  }
+  double axis() const { return 0.25 * std::atan2(s, c); }
+  double resultant() const { return std::hypot(c, s); }  // total when every direction is on the axis
+};
+
 struct Match {
   std::uint32_t node;
   double theta;
@@ -4603,18 +4616,26 @@ class Grower {
   double local_grid_axis(Point p, double r) {
     hits_.clear();
     edge_tree_.query(bgi::intersects(box_around(p, r)), std::back_inserter(hits_));
-    double c = 0.0, s = 0.0, total = 0.0;
+    FourFoldMean mean;
     for (const BoxValue& hit : hits_) {
       const OEdge& e = edges_[hit.second];
       if (e.source < 0 || e.level < 0) continue;
       const Point a = nodes_[e.a].p, b = nodes_[e.b].p;
-      const double l = distance(a, b), angle = std::atan2(b.y - a.y, b.x - a.x);
-      c += l * std::cos(4.0 * angle);
-      s += l * std::sin(4.0 * angle);
-      total += l;
+      mean.add(std::atan2(b.y - a.y, b.x - a.x), distance(a, b));
     }
-    if (!(total > 0.0) || std::hypot(c, s) < kLocalGridAgreement * total) return NAN;
-    return 0.25 * std::atan2(s, c);
+    if (!(mean.total > 0.0) || mean.resultant() < kLocalGridAgreement * mean.total) return NAN;
+    return mean.axis();
+  }
+  // Only a junction or dead end with a join or statistical street, and none of the existing
+  // network's, can settle (settled_point).
+  bool may_need_settling(std::uint32_t v) const {
+    if (nodes_[v].edges.size() == 2) return false;
+    bool grown_street = false;
+    for (std::uint32_t e : nodes_[v].edges) {
+      if (edges_[e].level < 0) return false;
+      grown_street = grown_street || edges_[e].source < 0;
+    }
+    return grown_street;
   }
   void settle_onto_grid() {
     const double reach = kSettleMove * snap_;
@@ -4623,7 +4644,7 @@ class Grower {
     const bool local = !slides_onto_grid();
     settle_axis_.assign(nodes_.size(), NAN);
     for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
-      if (nodes_[v].edges.size() == 2) continue;
+      if (!may_need_settling(v)) continue;
       settle_axis_[v] = local ? local_grid_axis(nodes_[v].p, kLocalGridReach * street_stats_.length_mean) : grid_axis();
     }
     std::vector<Point> grown_at(nodes_.size());  // where growth left each node
@@ -6106,14 +6127,11 @@ class Grower {
   double grid_axis() {
     if (!params_.use_patches || styles_ != 1 || examples_.empty() || example_order() < kSeamOrder) return NAN;
     if (std::isnan(grid_axis_)) {
-      double c = 0.0, s = 0.0;
+      FourFoldMean mean;
       for (const ExNode& n : ex().nodes) {
-        for (const ExHalf& h : n.halves) {
-          c += h.length * std::cos(4.0 * h.angle);
-          s += h.length * std::sin(4.0 * h.angle);
-        }
+        for (const ExHalf& h : n.halves) mean.add(h.angle, h.length);
       }
-      grid_axis_ = wrap(0.25 * std::atan2(s, c));
+      grid_axis_ = wrap(mean.axis());
     }
     return grid_axis_;
   }
