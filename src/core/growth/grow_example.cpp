@@ -4334,14 +4334,16 @@ class Grower {
   // the far side in the same direction) is joined to the nearest such T it can legally join,
   // nearest pairs first, while the network's 4-way share among its junctions is under the
   // example's. With wide_facing in a city of crossings, within wide_reach_streets and
-  // kWideFacingCone. `junctions` and `crossings` come back counted (the network's, after the joins);
+  // kWideFacingCone; with weak_order_facing on a weakly ordered example, within wide_reach_streets
+  // and kWeakFacingCone. `junctions` and `crossings` come back counted (the network's, after the joins);
   // false when growth must stop there (the share reached, or max_edges).
   bool join_facing_tees(double reach_streets, double wide_reach_streets, long& junctions, long& crossings) {
-    const bool wide = params_.patch.wide_facing && city_of_crossings();
+    const bool city = params_.patch.wide_facing && city_of_crossings();
+    const bool wide = city || weak_order_facing_here();
     const double narrow_reach = std::max(snap_, reach_streets * street_stats_.length_mean);
     const double reach = wide ? std::max(narrow_reach, wide_reach_streets * street_stats_.length_mean) : narrow_reach;
     const double narrow_cone = params_.patch.angle_window * kPi / 180.0;
-    const double cone = wide ? std::max(narrow_cone, kWideFacingCone) : narrow_cone;
+    const double cone = wide ? std::max(narrow_cone, city ? kWideFacingCone : kWeakFacingCone) : narrow_cone;
     const bool through = params_.patch.facing_through && city_of_crossings();
     const double target = crossing_target();
     // A join makes two crossings: with front_crossings, in a city of cul-de-sacs (a few crossings, so
@@ -4898,6 +4900,13 @@ class Grower {
   // PatchGrowParams::wide_facing: 50 degrees measured against 40 and 60, four mean streets against
   // three and six (new-york, seeds 1-30, README "Where the T's come from").
   static constexpr double kWideFacingCone = 50.0 * kPi / 180.0;
+  static constexpr double kWeakFacingCone = 35.0 * kPi / 180.0;  // 35 / 40 / 50 measured (README)
+  // PatchGrowParams::weak_order_facing: a weakly ordered example, as weak_order_corners takes it
+  // (no one grid, φ from kCornerMinOrder, not a city of cul-de-sacs), one style.
+  bool weak_order_facing_here() {
+    return params_.patch.weak_order_facing && styles_ == 1 && !examples_.empty() && example_order() < kSeamOrder &&
+           weakly_ordered(kCornerMinOrder);
+  }
   static constexpr double kWideLateReach = 4.0;  // of the mean street
   static constexpr int kAcrossPasses = 4;
   // PatchGrowParams::facing_through: T v joined to T w across up to kThroughStreets streets, each

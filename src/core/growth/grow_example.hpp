@@ -150,6 +150,18 @@ struct PatchGrowParams {
   // 4-way share -6.5 -> -5.5 pp on seeds 1-30, -7.6 -> -6.6 on 31-60; tokyo's and strasbourg's φ
   // fell with it ungated; bench/patches, README "Where the T's come from").
   bool wide_facing = true;
+  // Wide facing joins on a weakly ordered example (as weak_order_corners: φ from 0.05 and under 0.6,
+  // not a city of cul-de-sacs; barcelona, strasbourg, quito): the facing joins take a T within 35
+  // degrees of the heading (angle_window otherwise), and after the cuts within four mean streets
+  // (two otherwise). The joins stopped short of the example's share of crossings among junctions
+  // (strasbourg: 0.343 over the region, seeds 1-30, against its joins' target 0.400), for want of
+  // T's facing each other within 30 degrees: its 4-way share was -7.0 / -7.7 % at the mean over
+  // seeds 1-60 / 61-120, past 15 % on 15 / 15 of them. With it -0.3 / -1.3 % (4 / 13), its per-pair
+  // median 2.88 / 2.89 -> 2.56 / 2.73 %, barcelona's 1.67 / 1.78 -> 1.69 / 1.61 %, quito's 2.30 /
+  // 1.98 -> 2.09 / 2.00 %. 40 and 50 degrees cost more φ (quito's, strasbourg's); on tokyo
+  // (ordered, not a city of crossings) 35 degrees raised the per-pair median 1.53 -> 1.68 % (README
+  // "Wide facing joins on a weakly ordered example").
+  bool weak_order_facing = true;
   // With continue_across, in a city of crossings (as wide_facing): a T whose facing T (within the
   // same cone and reach) lies beyond one or two streets, so that no plain join reaches it, is joined
   // to it across them, each street split where the join crosses it: two T's and the streets crossed
