@@ -1492,6 +1492,28 @@ TEST(PatchDangling, WideFacingJoinsInACityOfCrossings) {
   expect_a_rule_of_a_city_of_crossings(&PatchGrowParams::wide_facing, &GrowStats::wide_facing_joins);
 }
 
+// Wide facing joins on a weakly ordered example (weak_order_facing): the uneven blocks beside a
+// spider's web (φ under 0.6, no city of crossings) join T's beyond angle_window of the heading, and
+// after the cuts beyond two mean streets; more of its junctions are crossings, planar, deterministic
+// (measured: 15 such joins, 30 -> 46 facing joins, 307 -> 275 T's, 247 -> 279 crossings). The same
+// with a cul-de-sac off every street (a city of cul-de-sacs) is left alone.
+TEST(PatchDangling, WideFacingJoinsOnAWeaklyOrderedExample) {
+  Fixture f;
+  const GrowInput in = f.input(blocks_beside_a_web());
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::weak_order_facing);
+  EXPECT_EQ(off.stats.wide_facing_joins, 0u);
+  ASSERT_GT(on.stats.wide_facing_joins, 0u);
+  EXPECT_GT(on.stats.continued_across, off.stats.continued_across);
+  EXPECT_GT(crossing_share(on), crossing_share(off));
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, Fixture::patch_growth()), on);  // (the switch on: its default)
+
+  const GrowInput culs = f.input(with_culs_de_sac(blocks_beside_a_web()));
+  auto [culs_off, culs_on] = f.grow_off_on(culs, &PatchGrowParams::weak_order_facing);
+  EXPECT_EQ(culs_on.stats.wide_facing_joins, 0u);
+  expect_same_graph(culs_on, culs_off);
+}
+
 // Facing joins across streets: a T whose facing T lies beyond one or two streets is joined to it
 // across them, each split where the join crosses it (measured: 14 joins across 19 streets, 592 ->
 // 613 crossings, 349 -> 347 T's).
