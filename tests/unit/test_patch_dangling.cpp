@@ -1499,7 +1499,8 @@ TEST(PatchDangling, WideFacingJoinsInACityOfCrossings) {
 // spider's web (φ under 0.6, no city of crossings) join T's beyond angle_window of the heading, and
 // after the cuts beyond two mean streets; more of its junctions are crossings, planar, deterministic
 // (measured: 15 such joins, 30 -> 46 facing joins, 307 -> 275 T's, 247 -> 279 crossings). The same
-// with a cul-de-sac off every street (a city of cul-de-sacs) is left alone.
+// with a cul-de-sac off every street (a city of cul-de-sacs) is left alone, and so is an ordered
+// example (the uneven grid).
 TEST(PatchDangling, WideFacingJoinsOnAWeaklyOrderedExample) {
   Fixture f;
   const GrowInput in = f.input(blocks_beside_a_web());
@@ -1515,6 +1516,9 @@ TEST(PatchDangling, WideFacingJoinsOnAWeaklyOrderedExample) {
   auto [culs_off, culs_on] = f.grow_off_on(culs, &PatchGrowParams::weak_order_facing);
   EXPECT_EQ(culs_on.stats.wide_facing_joins, 0u);
   expect_same_graph(culs_on, culs_off);
+
+  auto [grid_off, grid_on] = f.grow_off_on(f.input(uneven_grid()), &PatchGrowParams::weak_order_facing);
+  expect_same_graph(grid_on, grid_off);
 }
 
 // Facing joins across streets: a T whose facing T lies beyond one or two streets is joined to it

@@ -4335,8 +4335,8 @@ class Grower {
   // nearest pairs first, while the network's 4-way share among its junctions is under the
   // example's. With wide_facing in a city of crossings, within wide_reach_streets and
   // kWideFacingCone; with weak_order_facing on a weakly ordered example, within wide_reach_streets
-  // and kWeakFacingCone. `junctions` and `crossings` come back counted (the network's, after the joins);
-  // false when growth must stop there (the share reached, or max_edges).
+  // and kWeakFacingCone. `junctions` and `crossings` come back counted (the network's, after the
+  // joins); false when growth must stop there (the share reached, or max_edges).
   bool join_facing_tees(double reach_streets, double wide_reach_streets, long& junctions, long& crossings) {
     const bool city = params_.patch.wide_facing && city_of_crossings();
     const bool wide = city || weak_order_facing_here();
@@ -4900,7 +4900,7 @@ class Grower {
   // PatchGrowParams::wide_facing: 50 degrees measured against 40 and 60, four mean streets against
   // three and six (new-york, seeds 1-30, README "Where the T's come from").
   static constexpr double kWideFacingCone = 50.0 * kPi / 180.0;
-  static constexpr double kWeakFacingCone = 35.0 * kPi / 180.0;  // 35 / 40 / 50 measured (README)
+  static constexpr double kWeakFacingCone = 35.0 * kPi / 180.0;  // 35 / 40 / 45 / 50 measured (README)
   // PatchGrowParams::weak_order_facing: a weakly ordered example, as weak_order_corners takes it
   // (no one grid, φ from kCornerMinOrder, not a city of cul-de-sacs), one style.
   bool weak_order_facing_here() {
