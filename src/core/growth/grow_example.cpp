@@ -557,6 +557,7 @@ class Grower {
     if (params_.use_patches && params_.patch.continue_across && params_.patch.facing_after_cuts) join_facing_after_cuts();
     if (params_.use_patches && settles_here()) settle_onto_grid();
     if (params_.use_patches && params_.patch.promote_arterials) promote_arterials();
+    if (params_.use_patches && params_.patch.join_islands) join_islands();
     drop_short_segments();
     return true;
   }
@@ -597,6 +598,70 @@ class Grower {
       }
     }
   }
+  // PatchGrowParams::join_islands: the parts of the network no street links to the rest (the part
+  // with the most grown street, or one holding the existing network), largest first, each joined by
+  // the shortest legal street from one of its nodes to a node of a linked part within kIslandReach
+  // mean streets (joins_cleanly: min_angle at both ends, legal, touching no other street, clear of
+  // the network); rounds until no join is made, so a part joined links the parts beyond it.
+  void join_islands() {
+    UnionFind parts(nodes_.size());
+    for (const OEdge& e : edges_) {
+      if (e.level != kRemoved) parts.unite(e.a, e.b);
+    }
+    std::unordered_map<std::size_t, double> grown;  // part -> its grown street length
+    std::unordered_set<std::size_t> linked;         // parts holding the existing network
+    for (const OEdge& e : edges_) {
+      if (e.level == kRemoved) continue;
+      const std::size_t part = parts.find(e.a);
+      if (e.level < 0) linked.insert(part);
+      grown[part] += e.level >= 0 ? distance(nodes_[e.a].p, nodes_[e.b].p) : 0.0;
+    }
+    if (grown.size() < 2) return;
+    std::vector<std::pair<double, std::size_t>> islands;
+    for (const auto& [part, length] : grown) islands.emplace_back(length, part);
+    std::sort(islands.begin(), islands.end(), [](const auto& x, const auto& y) {
+      return x.first != y.first ? x.first > y.first : x.second < y.second;
+    });
+    linked.insert(islands.front().second);
+    std::unordered_map<std::size_t, std::vector<std::uint32_t>> members;
+    for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
+      if (!nodes_[v].edges.empty()) members[parts.find(v)].push_back(v);
+    }
+    const double reach = kIslandReach * street_stats_.length_mean;
+    for (bool joined = true; joined;) {
+      joined = false;
+      for (const auto& [length, part] : islands) {
+        poll_interrupts();
+        if (linked.count(parts.find(part)) != 0 || new_edges_ + 1 > params_.max_edges) continue;
+        std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> joins;  // (length, from, to)
+        for (std::uint32_t v : members[part]) {
+          if (nodes_[v].edges.size() >= max_degree_) continue;
+          point_hits_.clear();
+          node_tree_.query(bgi::intersects(box_around(nodes_[v].p, reach)), std::back_inserter(point_hits_));
+          for (const PointValue& pv : point_hits_) {
+            const std::uint32_t w = pv.second;
+            const double d = distance(nodes_[v].p, nodes_[w].p);
+            if (d <= reach && !nodes_[w].edges.empty() && linked.count(parts.find(w)) != 0) joins.emplace_back(d, v, w);
+          }
+        }
+        std::sort(joins.begin(), joins.end());
+        for (const auto& [d, v, w] : joins) {
+          if (!joins_cleanly(v, w)) continue;
+          add_edge(v, w, join_level(edges_[nodes_[v].edges[0]].level), -1, -1);
+          const std::size_t whole = parts.find(w);
+          parts.unite(v, w);
+          linked.insert(parts.find(v));
+          linked.insert(whole);
+          ++stats_.islands_joined;
+          joined = true;
+          break;
+        }
+      }
+    }
+    for (const auto& [length, part] : islands) stats_.islands_left += linked.count(parts.find(part)) == 0;
+  }
+  static constexpr double kIslandReach = 1.0;  // mean streets
+
   // A node left without streets leaves the node index.
   void drop_node(std::uint32_t v) { node_tree_.remove(PointValue(BPoint(nodes_[v].p.x, nodes_[v].p.y), v)); }
   static constexpr double kShortestSegment = 0.5;  // metres: streetgen's default snap_tolerance

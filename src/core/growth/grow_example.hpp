@@ -162,6 +162,10 @@ struct PatchGrowParams {
   // (ordered, not a city of crossings) 35 degrees raised the per-pair median 1.53 -> 1.68 % (README
   // "Wide facing joins on a weakly ordered example").
   bool weak_order_facing = true;
+  // Islands joined (after every other pass): a part of the network that no street links to the rest
+  // is joined to it by the shortest legal street from one of its nodes to a node within a mean
+  // street of it; parts farther away stay.
+  bool join_islands = true;
   // With continue_across, in a city of crossings (as wide_facing): a T whose facing T (within the
   // same cone and reach) lies beyond one or two streets, so that no plain join reaches it, is joined
   // to it across them, each street split where the join crosses it: two T's and the streets crossed
@@ -724,6 +728,8 @@ struct GrowStats {
   std::size_t facing_through_crossed = 0;  // and the streets they crossed (each split: a crossing more)
   std::size_t slid_onto_grid = 0;          // slide_onto_grid: nodes slid for a join along the grid
   std::size_t joins_off_grid = 0;          // grid_joins: dead ends' joins ahead refused off the grid
+  std::size_t islands_joined = 0;          // join_islands: parts of the network joined to the rest
+  std::size_t islands_left = 0;            // and those left apart (none within reach, or no legal join)
   std::size_t settled_onto_grid = 0;       // settle_onto_grid (and weak_order_settle): nodes moved
   std::size_t short_segments_dropped = 0;  // segments under 0.5 m dropped at the end (drop_short_segments)
   std::size_t wide_redundant_dropped = 0;  // wide_redundant: patch streets left out that snap would have kept
