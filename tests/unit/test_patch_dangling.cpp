@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "core/growth/grow_example.hpp"
 #include "core/growth/patches.hpp"
 #include "core/metrics/network_graph.hpp"
 #include "core/metrics/network_stats.hpp"
+#include "core/union_find.hpp"
 #include "patch_fixtures.hpp"
 #include "test_support.hpp"
 
@@ -2032,4 +2034,54 @@ TEST(PatchDangling, GridRulesFollowThePatchRotation) {
   EXPECT_LT(off_patches / all_patches, off_example / all_example + 0.05);
   EXPECT_GT(street_order(f.geos, turned_patches), street_order(f.geos, turned_example) - 0.06);
   EXPECT_EQ(crossings_without_node(turned_patches), 0);
+}
+
+namespace {
+
+// The parts of a grown network that no street links to each other.
+std::size_t parts_of(const GrowResult& r) {
+  std::map<std::int64_t, std::int64_t> index;
+  for (const GrownEdge& e : r.edges) {
+    index.emplace(e.from_node, static_cast<std::int64_t>(index.size()));
+    index.emplace(e.to_node, static_cast<std::int64_t>(index.size()));
+  }
+  UnionFind parts(index.size());
+  for (const GrownEdge& e : r.edges) {
+    parts.unite(static_cast<std::size_t>(index[e.from_node]), static_cast<std::size_t>(index[e.to_node]));
+  }
+  std::set<std::size_t> roots;
+  for (const auto& [node, k] : index) roots.insert(parts.find(static_cast<std::size_t>(k)));
+  return roots.size();
+}
+
+}  // namespace
+
+// Islands joined (join_islands): the uneven grid with culs-de-sac, seed 1, leaves a part that no
+// street links to the rest; with the switch one street joins it, so the network is one part, planar,
+// deterministic. Two growths on either side of a wall across the region stay two parts: no join
+// crosses it.
+TEST(PatchDangling, IslandsAreJoinedToTheRest) {
+  Fixture f;
+  const GrowInput in = f.input(uneven_grid_with_culs_de_sac());
+  GrowParams p = Fixture::patch_growth();
+  p.seed = 1;
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::join_islands, p);
+  EXPECT_EQ(off.stats.islands_joined, 0u);
+  EXPECT_EQ(parts_of(off), 2u);
+  EXPECT_EQ(on.stats.islands_joined, 1u);
+  EXPECT_EQ(on.stats.islands_left, 0u);
+  EXPECT_EQ(parts_of(on), 1u);
+  EXPECT_EQ(on.edges.size(), off.edges.size() + 1);
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, p), on);  // (the switch on: its default)
+
+  GrowInput walled = f.input(uneven_grid());
+  GeomPtr wall = wkt(f.geos, "POLYGON((-60 -1600, 60 -1600, 60 1600, -60 1600, -60 -1600))");
+  walled.obstacles = {wall.get()};
+  walled.seeds = {{-800.0, 0.0}, {800.0, 0.0}};
+  const GrowResult apart = grow_example(f.geos, walled, Fixture::patch_growth());
+  EXPECT_EQ(parts_of(apart), 2u);
+  EXPECT_EQ(apart.stats.islands_joined, 0u);
+  EXPECT_EQ(apart.stats.islands_left, 1u);
+  for (const GrownEdge& e : apart.edges) EXPECT_TRUE((e.a.x < -60.0 && e.b.x < -60.0) || (e.a.x > 60.0 && e.b.x > 60.0));
 }
