@@ -602,7 +602,8 @@ class Grower {
   // with the most grown street, or one holding the existing network), largest first, each joined by
   // the shortest legal street from one of its nodes to a node of a linked part within kIslandReach
   // mean streets (joins_cleanly: min_angle at both ends, legal, touching no other street, clear of
-  // the network); rounds until no join is made, so a part joined links the parts beyond it.
+  // the network); rounds until no join is made, so a part joined links the parts beyond it. A part
+  // still apart with less street than a mean street is removed.
   void join_islands() {
     UnionFind parts(nodes_.size());
     for (const OEdge& e : edges_) {
@@ -658,9 +659,23 @@ class Grower {
         }
       }
     }
-    for (const auto& [length, part] : islands) stats_.islands_left += linked.count(parts.find(part)) == 0;
+    // A part left apart with less street than kIslandKept mean streets is a scrap (a piece a cut-back
+    // or a crop left): it goes. A larger one stays, a neighbourhood beyond a void or an obstacle.
+    for (const auto& [length, part] : islands) {
+      if (linked.count(parts.find(part)) != 0) continue;
+      if (length >= kIslandKept * street_stats_.length_mean) {
+        ++stats_.islands_left;
+        continue;
+      }
+      for (std::uint32_t v : members[part]) {
+        while (!nodes_[v].edges.empty()) remove_edge(nodes_[v].edges.back());
+        drop_node(v);
+      }
+      ++stats_.islands_dropped;
+    }
   }
   static constexpr double kIslandReach = 1.0;  // mean streets
+  static constexpr double kIslandKept = 1.0;   // mean streets
 
   // A node left without streets leaves the node index.
   void drop_node(std::uint32_t v) { node_tree_.remove(PointValue(BPoint(nodes_[v].p.x, nodes_[v].p.y), v)); }

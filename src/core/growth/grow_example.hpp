@@ -163,8 +163,12 @@ struct PatchGrowParams {
   // "Wide facing joins on a weakly ordered example").
   bool weak_order_facing = true;
   // Islands joined (after every other pass): a part of the network that no street links to the rest
-  // is joined to it by the shortest legal street from one of its nodes to a node within a mean
-  // street of it; parts farther away stay.
+  // (the part with the most grown street, or one holding the existing network) is joined to it by
+  // the shortest legal street from one of its nodes to a node within a mean street of it. A part
+  // still apart with less street than a mean street is removed; larger ones stay (a neighbourhood
+  // beyond a void the length cap left, or beyond an obstacle). Growths of seeds 1-60 of the six
+  // examples had 86 such parts (41 of them barcelona's, most 5-400 m long and 7-27 m from the
+  // rest: pieces the cut-backs and the cap left apart); README "Islands joined".
   bool join_islands = true;
   // With continue_across, in a city of crossings (as wide_facing): a T whose facing T (within the
   // same cone and reach) lies beyond one or two streets, so that no plain join reaches it, is joined
@@ -730,6 +734,7 @@ struct GrowStats {
   std::size_t joins_off_grid = 0;          // grid_joins: dead ends' joins ahead refused off the grid
   std::size_t islands_joined = 0;          // join_islands: parts of the network joined to the rest
   std::size_t islands_left = 0;            // and those left apart (none within reach, or no legal join)
+  std::size_t islands_dropped = 0;         // and those removed (less street than a mean street)
   std::size_t settled_onto_grid = 0;       // settle_onto_grid (and weak_order_settle): nodes moved
   std::size_t short_segments_dropped = 0;  // segments under 0.5 m dropped at the end (drop_short_segments)
   std::size_t wide_redundant_dropped = 0;  // wide_redundant: patch streets left out that snap would have kept
