@@ -2059,7 +2059,7 @@ std::size_t parts_of(const GrowResult& r) {
 // Islands joined (join_islands): the uneven grid with culs-de-sac, seed 1, leaves a part that no
 // street links to the rest; with the switch one street joins it, so the network is one part, planar,
 // deterministic. Two growths on either side of a wall across the region stay two parts: no join
-// crosses it.
+// crosses it. A scrap beyond any join's reach is removed.
 TEST(PatchDangling, IslandsAreJoinedToTheRest) {
   Fixture f;
   const GrowInput in = f.input(uneven_grid_with_culs_de_sac());
@@ -2083,5 +2083,27 @@ TEST(PatchDangling, IslandsAreJoinedToTheRest) {
   EXPECT_EQ(parts_of(apart), 2u);
   EXPECT_EQ(apart.stats.islands_joined, 0u);
   EXPECT_EQ(apart.stats.islands_left, 1u);
-  for (const GrownEdge& e : apart.edges) EXPECT_TRUE((e.a.x < -60.0 && e.b.x < -60.0) || (e.a.x > 60.0 && e.b.x > 60.0));
+  for (const GrownEdge& e : apart.edges) {
+    EXPECT_TRUE((e.a.x < -60.0 && e.b.x < -60.0) || (e.a.x > 60.0 && e.b.x > 60.0));
+  }
+
+  // A seed in a walled pocket at the region's corner grows a scrap (93 m of street) beyond the
+  // reach of any join: it is removed.
+  GrowInput pocket = f.input(uneven_grid());
+  GeomPtr walls = wkt(f.geos, "POLYGON((1420 1420, 1500 1420, 1500 1440, 1440 1440, 1440 1500, 1420 1500, 1420 1420))");
+  pocket.obstacles = {walls.get()};
+  pocket.seeds = {{0.0, 0.0}, {1470.0, 1470.0}};
+  auto in_pocket = [](const GrowResult& r) {
+    double metres = 0.0;
+    for (const GrownEdge& e : r.edges) {
+      if (e.a.x > 1440.0 && e.a.y > 1440.0) metres += std::hypot(e.b.x - e.a.x, e.b.y - e.a.y);
+    }
+    return metres;
+  };
+  auto [kept, scrapped] = f.grow_off_on(pocket, &PatchGrowParams::join_islands);
+  EXPECT_EQ(parts_of(kept), 2u);
+  EXPECT_GT(in_pocket(kept), 0.0);
+  EXPECT_EQ(scrapped.stats.islands_dropped, 1u);
+  EXPECT_EQ(parts_of(scrapped), 1u);
+  EXPECT_EQ(in_pocket(scrapped), 0.0);
 }
