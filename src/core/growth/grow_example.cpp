@@ -602,8 +602,10 @@ class Grower {
   // with the most grown street, or one holding the existing network), largest first, each joined by
   // the shortest legal street from one of its nodes to a node of a linked part within kIslandReach
   // mean streets (joins_cleanly: min_angle at both ends, legal, touching no other street, clear of
-  // the network); rounds until no join is made, so a part joined links the parts beyond it. A part
-  // still apart with less street than a mean street is removed.
+  // the network); rounds until no join is made, so a part joined links the parts beyond it. Then,
+  // only when no near join is left, the largest part with a mean street or more is joined within
+  // kFarIslandReach (a neighbourhood beyond a void the length cap left), and the near rounds go on.
+  // A part still apart with less street than a mean street is removed.
   void join_islands() {
     UnionFind parts(nodes_.size());
     for (const OEdge& e : edges_) {
@@ -628,12 +630,15 @@ class Grower {
     for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
       if (!nodes_[v].edges.empty()) members[parts.find(v)].push_back(v);
     }
-    const double reach = kIslandReach * street_stats_.length_mean;
-    for (bool joined = true; joined;) {
-      joined = false;
+    const double kept = kIslandKept * street_stats_.length_mean;
+    // Joins the first part of `islands` (largest first) still apart with at least `min_length` of
+    // street to a linked part, by its shortest clean street within `reach`; false when none is.
+    auto join_one = [&](double reach, double min_length) {
       for (const auto& [length, part] : islands) {
         poll_interrupts();
-        if (linked.count(parts.find(part)) != 0 || new_edges_ + 1 > params_.max_edges) continue;
+        if (length < min_length || linked.count(parts.find(part)) != 0 || new_edges_ + 1 > params_.max_edges) {
+          continue;
+        }
         std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> joins;  // (length, from, to)
         for (std::uint32_t v : members[part]) {
           if (nodes_[v].edges.size() >= max_degree_) continue;
@@ -654,16 +659,21 @@ class Grower {
           linked.insert(parts.find(v));
           linked.insert(whole);
           ++stats_.islands_joined;
-          joined = true;
-          break;
+          if (min_length > 0.0) ++stats_.islands_joined_far;
+          return true;
         }
       }
-    }
+      return false;
+    };
+    do {
+      while (join_one(kIslandReach * street_stats_.length_mean, 0.0)) {
+      }
+    } while (join_one(kFarIslandReach * street_stats_.length_mean, kept));
     // A part left apart with less street than kIslandKept mean streets is a scrap (a piece a cut-back
     // or a crop left): it goes. A larger one stays, a neighbourhood beyond a void or an obstacle.
     for (const auto& [length, part] : islands) {
       if (linked.count(parts.find(part)) != 0) continue;
-      if (length >= kIslandKept * street_stats_.length_mean) {
+      if (length >= kept) {
         ++stats_.islands_left;
         continue;
       }
@@ -674,8 +684,9 @@ class Grower {
       ++stats_.islands_dropped;
     }
   }
-  static constexpr double kIslandReach = 1.0;  // mean streets
-  static constexpr double kIslandKept = 1.0;   // mean streets
+  static constexpr double kIslandReach = 1.0;     // mean streets
+  static constexpr double kFarIslandReach = 5.0;  // mean streets, for a part of kIslandKept or more
+  static constexpr double kIslandKept = 1.0;      // mean streets
 
   // A node left without streets leaves the node index.
   void drop_node(std::uint32_t v) { node_tree_.remove(PointValue(BPoint(nodes_[v].p.x, nodes_[v].p.y), v)); }

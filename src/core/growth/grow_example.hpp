@@ -164,11 +164,13 @@ struct PatchGrowParams {
   bool weak_order_facing = true;
   // Islands joined (after every other pass): a part of the network that no street links to the rest
   // (the part with the most grown street, or one holding the existing network) is joined to it by
-  // the shortest legal street from one of its nodes to a node within a mean street of it. A part
-  // still apart with less street than a mean street is removed; larger ones stay (a neighbourhood
-  // beyond a void the length cap left, or beyond an obstacle). Growths of seeds 1-60 of the six
-  // examples had 86 such parts (41 of them barcelona's, most 5-400 m long and 7-27 m from the
-  // rest: pieces the cut-backs and the cap left apart); README "Islands joined".
+  // the shortest legal street from one of its nodes to a node within a mean street of it. When no
+  // such join is left, a part with a mean street or more is joined within five mean streets (a
+  // neighbourhood or a main street beyond a void the length cap left), and the near joins go on. A
+  // part still apart with less street than a mean street is removed; larger ones stay (beyond an
+  // obstacle, or farther). Growths of seeds 1-60 of the six examples had 86 such parts (41 of them
+  // barcelona's, most 5-400 m long and 7-27 m from the rest: pieces the cut-backs and the cap left
+  // apart), 10 of them left 100-401 m away, all joined now; README "Islands joined".
   bool join_islands = true;
   // With continue_across, in a city of crossings (as wide_facing): a T whose facing T (within the
   // same cone and reach) lies beyond one or two streets, so that no plain join reaches it, is joined
@@ -733,6 +735,7 @@ struct GrowStats {
   std::size_t slid_onto_grid = 0;          // slide_onto_grid: nodes slid for a join along the grid
   std::size_t joins_off_grid = 0;          // grid_joins: dead ends' joins ahead refused off the grid
   std::size_t islands_joined = 0;          // join_islands: parts of the network joined to the rest
+  std::size_t islands_joined_far = 0;      // of them, beyond a mean street (a part of a mean street or more)
   std::size_t islands_left = 0;            // and those left apart (none within reach, or no legal join)
   std::size_t islands_dropped = 0;         // and those removed (less street than a mean street)
   std::size_t settled_onto_grid = 0;       // settle_onto_grid (and weak_order_settle): nodes moved
