@@ -2112,3 +2112,32 @@ TEST(PatchDangling, IslandsAreJoinedToTheRest) {
   EXPECT_EQ(parts_of(scrapped), 1u);
   EXPECT_EQ(in_pocket(scrapped), 0.0);
 }
+
+// A part of a mean street or more that no near join reaches is joined from farther (within five
+// mean streets), once no near join is left: two neighbourhoods grown from seeds 1.1 km apart under a
+// low length cap (0.08 of the example's street length per area) stay two parts without the switch;
+// with it one street, longer than the near joins' reach of a mean street (about 100 m here), joins
+// them. The growths are otherwise the same, planar, deterministic.
+TEST(PatchDangling, NeighbourhoodsBeyondAVoidAreJoined) {
+  Fixture f;
+  GrowInput in = f.input(uneven_grid());
+  in.seeds = {{-550.0, 0.0}, {550.0, 0.0}};
+  GrowParams p = Fixture::patch_growth();
+  p.patch.length_cap = 0.08;
+  auto [off, on] = f.grow_off_on(in, &PatchGrowParams::join_islands, p);
+  EXPECT_EQ(parts_of(off), 2u);
+  EXPECT_EQ(parts_of(on), 1u);
+  EXPECT_EQ(on.stats.islands_joined, 1u);
+  EXPECT_EQ(on.stats.islands_joined_far, 1u);
+  EXPECT_EQ(on.stats.islands_left, 0u);
+  ASSERT_EQ(on.edges.size(), off.edges.size() + 1);
+  auto longest = [](const GrowResult& r) {
+    double metres = 0.0;
+    for (const GrownEdge& e : r.edges) metres = std::max(metres, std::hypot(e.b.x - e.a.x, e.b.y - e.a.y));
+    return metres;
+  };
+  EXPECT_GT(longest(on), 200.0);
+  EXPECT_LT(longest(off), 200.0);
+  EXPECT_EQ(crossings_without_node(on), 0);
+  expect_same_graph(grow_example(f.geos, in, p), on);  // (the switch on: its default)
+}
