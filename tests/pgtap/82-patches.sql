@@ -167,6 +167,22 @@ SELECT ok((SELECT count(DISTINCT g.origin) FROM grown g JOIN pt ON pt.name = g.n
 SELECT ok((SELECT count(DISTINCT g.origin) FROM grown g JOIN pt ON pt.name = g.name AND 'grow_patches:' || pt.patch_id = g.origin
             WHERE g.name = 'canberra_south_large' AND 'roundabout' = ANY (pt.tags)) >= 2,
           'roundabouts reappear: canberra''s roundabout patches are used');
+-- Selection by tags: the patch argument is a query, so the tags select in SQL. Canberra grown
+-- without its cul-de-sac and roundabout patches (which the growth above uses) grows from the others
+-- only.
+CREATE TEMP TABLE grown_selected AS
+SELECT g.* FROM region r,
+       streetgen.grow_patches('SELECT * FROM pt WHERE name = ''canberra_south_large''
+                                 AND NOT tags && ARRAY[''cul-de-sac'', ''roundabout'']', r.geom,
+                              ST_Collect(r.centre, ST_Translate(r.centre, -500, -200)), (SELECT geom FROM lake),
+                              '{"seed": 7, "max_edges": 3000}') AS g
+ WHERE r.name = 'canberra_south_large';
+SELECT ok((SELECT count(*) FROM grown_selected) >= 1000
+          AND (SELECT count(*) FROM grown_selected g JOIN pt ON pt.name = 'canberra_south_large'
+                                                         AND 'grow_patches:' || pt.patch_id = g.origin
+                WHERE pt.tags && ARRAY['cul-de-sac', 'roundabout']) = 0
+          AND (SELECT count(*) FROM grown_selected WHERE origin LIKE 'grow_patches:%') > 500,
+          'selection by tags in SQL: canberra without its cul-de-sac and roundabout patches grows 1000 edges, none from them');
 -- Refill: canberra's local phase dies out like a branching process (seed 5 from its hull's centre
 -- stopped at a third of the example's street length); the voids it left grow on from their edges.
 SELECT ok((SELECT sum(ST_Length(ST_Intersection(g.geom, ST_Buffer(r.geom, -50)))) FROM region r,
