@@ -450,15 +450,16 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           "streets connected, %zu T-junctions continued across (%zu of them after the cuts, %zu facing joins found by the wider cone or reach, %zu across %zu streets, %zu nodes slid onto the grid for joins; %zu local T's to the node or street ahead; joins "
                           "refused: %zu over the example's street length, %zu over its junctions), %zu corners avoided (%zu cut back), %zu crop dead ends "
                           "cut back, %zu dangling segments "
-                          "pruned, %zu dead ends kept, %zu islands joined to the rest (%zu of them beyond a mean street; %zu left apart, %zu "
-                          "scraps removed), %zu segments under 0.5 m dropped; "
+                          "pruned, %zu dead ends kept, %zu islands joined to the rest (%zu of them beyond a mean "
+                          "street; %zu left apart, %zu scraps removed), %zu segments under 0.5 m dropped; "
                           "example-based share %.1f %% of the edges, %.1f %% of the length",
                           stats.steps, stats.patches_placed, stats.fallback, stats.patch_candidates, stats.patch_illegal,
                           stats.patches_dropped, stats.restarts, stats.arterial_patches_placed, stats.local_seeds,
                           stats.local_seeds_used, stats.ended_on_arterial, bridges, stats.bridges_failed, stats.bent,
                           stats.too_steep, stats.guided, stats.patches_b_placed, stats.dangling_connected,
                           stats.continued_across, stats.faced_after_cuts, stats.wide_facing_joins, stats.facing_through_joins, stats.facing_through_crossed, stats.slid_onto_grid, stats.local_tees_continued, stats.local_tees_long, stats.local_tees_dense, stats.corners_avoided, stats.corners_cut, stats.crop_ends_cut, stats.dangling_pruned,
-                          stats.dead_ends_kept, stats.islands_joined, stats.islands_joined_far, stats.islands_left, stats.islands_dropped,
+                          stats.dead_ends_kept, stats.islands_joined, stats.islands_joined_far, stats.islands_left,
+                          stats.islands_dropped,
                           stats.short_segments_dropped,
                           total > 0 ? 100.0 * from_patches / total : 0.0,
                           length_total > 0 ? 100.0 * length_patches / length_total : 0.0)));

@@ -182,7 +182,8 @@ SELECT ok((SELECT count(*) FROM grown_selected) >= 1000
                                                          AND 'grow_patches:' || pt.patch_id = g.origin
                 WHERE pt.tags && ARRAY['cul-de-sac', 'roundabout']) = 0
           AND (SELECT count(*) FROM grown_selected WHERE origin LIKE 'grow_patches:%') > 500,
-          'selection by tags in SQL: canberra without its cul-de-sac and roundabout patches grows 1000 edges, none from them');
+          'selection by tags in SQL: canberra without its cul-de-sac and roundabout patches grows 1000 edges, '
+          'none from them');
 -- Refill: canberra's local phase dies out like a branching process (seed 5 from its hull's centre
 -- stopped at a third of the example's street length); the voids it left grow on from their edges.
 SELECT ok((SELECT sum(ST_Length(ST_Intersection(g.geom, ST_Buffer(r.geom, -50)))) FROM region r,

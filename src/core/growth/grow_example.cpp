@@ -603,8 +603,9 @@ class Grower {
   // the shortest legal street from one of its nodes to a node of a linked part within kIslandReach
   // mean streets (joins_cleanly: min_angle at both ends, legal, touching no other street, clear of
   // the network); rounds until no join is made, so a part joined links the parts beyond it. Then,
-  // only when no near join is left, the largest part with a mean street or more is joined within
-  // kFarIslandReach (a neighbourhood beyond a void the length cap left), and the near rounds go on.
+  // only when no near join is left, the largest part with a mean street or more that has a clean
+  // join within kFarIslandReach is joined by it (a neighbourhood beyond a void the length cap left),
+  // and the near rounds go on.
   // A part still apart with less street than a mean street is removed.
   void join_islands() {
     UnionFind parts(nodes_.size());
