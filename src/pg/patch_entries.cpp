@@ -60,7 +60,7 @@ enum GrowArg {
   kGFallbackCurvature, kGArterialFallback, kGFallbackLocalSeeds,
   // Teng & Bidarra: the first library's patches tagged initial, breadth-first bridging, cell initialisation.
   kGInitials, kGBridgeFronts, kGCellInit, kGMaxTurn, kGCellSpacing,
-  kGPromoteArterials,
+  kGPromoteArterials, kGTerminalRoom,
   kGArgs
 };
 
@@ -301,7 +301,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       "interpolate road classes", "interpolate patch edges", "interpolate max_uses", "interpolate arterials", "t",
       "blend", "blend_angle", "blend_points x", "blend_points y", "blend_sigma", "prune_dangling", "direction grid",
       "direction", "connect_dangling", "fallback_curvature", "arterial_fallback", "fallback_local_seeds", "initials",
-      "bridge_fronts", "cell_init", "max_turn", "cell_spacing", "promote_arterials"};
+      "bridge_fronts", "cell_init", "max_turn", "cell_spacing", "promote_arterials", "terminal_room"};
   for (int a = kGRegion; a < kGArgs; ++a) {
     if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && a != kGArterials && a != kGWater && a != kGDemGrid &&
         a != kGDemValues && a != kGGuide && !(a >= kGPatchIdsB && a <= kGArterialsB) && a != kGBlendX &&
@@ -373,6 +373,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
   params.patch.max_turn = PG_GETARG_FLOAT8(kGMaxTurn);
   params.patch.cell_spacing = PG_GETARG_FLOAT8(kGCellSpacing);
   params.patch.promote_arterials = PG_GETARG_BOOL(kGPromoteArterials);
+  params.patch.terminal_room = PG_GETARG_FLOAT8(kGTerminalRoom);
   {
     const char* cell_init = TextDatumGetCString(PG_GETARG_DATUM(kGCellInit));
     if (strcmp(cell_init, "seeds") == 0) {
@@ -443,7 +444,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
 
   // Phase 3.
   ereport(DEBUG1, (errmsg("grow_patches: %zu steps, %zu patches placed, %zu statistical fallback, %zu candidates, "
-                          "%zu illegal, %zu self-crossing patches dropped, %zu restarts; levels: %zu arterial patches "
+                          "%zu illegal, %zu terminal refused for the room ahead, %zu self-crossing patches dropped, %zu restarts; levels: %zu arterial patches "
                           "placed, %zu local seeds (%zu with their example patch), %zu local streets ended on arterials; "
                           "terrain: %zu bridges (%zu bridge attempts failed), %zu bent along the contour, %zu too steep; "
                           "operations: %zu warped steps, %zu patches from the interpolate library, %zu dangling "
@@ -454,7 +455,7 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           "street; %zu left apart, %zu scraps removed), %zu segments under 0.5 m dropped; "
                           "example-based share %.1f %% of the edges, %.1f %% of the length",
                           stats.steps, stats.patches_placed, stats.fallback, stats.patch_candidates, stats.patch_illegal,
-                          stats.patches_dropped, stats.restarts, stats.arterial_patches_placed, stats.local_seeds,
+                          stats.terminal_refused, stats.patches_dropped, stats.restarts, stats.arterial_patches_placed, stats.local_seeds,
                           stats.local_seeds_used, stats.ended_on_arterial, bridges, stats.bridges_failed, stats.bent,
                           stats.too_steep, stats.guided, stats.patches_b_placed, stats.dangling_connected,
                           stats.continued_across, stats.faced_after_cuts, stats.wide_facing_joins, stats.facing_through_joins, stats.facing_through_crossed, stats.slid_onto_grid, stats.local_tees_continued, stats.local_tees_long, stats.local_tees_dense, stats.corners_avoided, stats.corners_cut, stats.crop_ends_cut, stats.dangling_pruned,

@@ -3332,6 +3332,7 @@ class Grower {
     int size_class = 0;     // tercile of the mean connector length among the patches of its phase
     int style = 0;          // interpolation: 0 the first library, 1 the second (GrowInput::patches_b)
     bool initial = false;   // tagged initial (Teng & Bidarra): a straight main street and a local attachment
+    bool terminal = false;  // one connector, Teng & Bidarra's terminal patch (PatchGrowParams::terminal_room)
   };
   struct LibConnector {
     std::uint32_t patch, edge;
@@ -3579,6 +3580,7 @@ class Grower {
           lp.edges.push_back(std::move(le));
         }
         (style == 0 ? with_connectors : with_connectors_b) += !lp.connectors.empty();
+        lp.terminal = lp.connectors.size() == 1;  // extract_patches' tag terminal, by its definition
         if (lp.edges.empty()) continue;
         if (self_crossing(lp.edges)) {  // a bridge in the example: its patch cannot be placed planar
           ++stats_.patches_dropped;
@@ -4322,6 +4324,25 @@ class Grower {
     if (c.found) best = std::min(best, c.t * reach);
     return best;
   }
+  // PatchGrowParams::terminal_room: whether a terminal patch may end front v, that is whether v is
+  // no dead end or little room is left ahead of it (a street or node within terminal_room mean
+  // streets in the joins' cone, or the region's edge, an obstacle or water on the line that long).
+  // Asked once per front (terminal_room_).
+  bool terminal_allowed(std::uint32_t v) {
+    if (!(params_.patch.terminal_room > 0.0) || nodes_[v].edges.size() != 1) return true;
+    if (terminal_room_ < 0) {
+      const double saved = reach_factor_;
+      reach_factor_ = params_.patch.terminal_room / kConnectReach;  // connect_reach(): terminal_room mean streets
+      Point dir;
+      const bool node_ahead = !nodes_ahead(v, dir).empty();
+      const double reach = connect_reach();
+      reach_factor_ = saved;
+      const Point p = nodes_[v].p, far = p + reach * dir;
+      terminal_room_ = node_ahead || first_contact(p, far, v).found || !legal(p, far, false) ? 1 : 0;
+    }
+    return terminal_room_ == 1;
+  }
+  int terminal_room_ = -1;  // the current front: -1 not yet asked, 1 little room ahead, 0 room
   // Joins dead end v to a node or street ahead; returns the node it reached (UINT32_MAX: none).
   std::uint32_t connect_end(std::uint32_t v) {
     const double reach = connect_reach();
@@ -5743,6 +5764,7 @@ class Grower {
       corner_ahead_ = std::isfinite(gap_ahead(v));
       reach_factor_ = 1.0;
     }
+    terminal_room_ = -1;  // (terminal_allowed asks once per front)
     // Interpolation: the patch comes from the second style with probability t; when none of the
     // drawn style is legal, the other style is tried with its own probability (so a style with
     // weight near 0 does not leak in wherever the other's patches fail; at t = 0 or 1, one style).
@@ -5795,6 +5817,10 @@ class Grower {
           if (spread && lp.uses > 0) continue;
           if (!in_phase(lp)) continue;
           if (style >= 0 && lp.style != style) continue;
+          if (lp.terminal && !terminal_allowed(v)) {
+            ++stats_.terminal_refused;
+            continue;
+          }
           const Polyline& line = lp.edges[c.edge].line;
           double bound = best_stamp_[c.patch] == stamp_ ? std::min(best_[c.patch].d, max_distance_) : max_distance_;
           // Both start at v: the Hausdorff distance is at least the difference of their reaches.
