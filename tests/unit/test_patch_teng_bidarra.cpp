@@ -246,3 +246,112 @@ TEST(TengBidarra, BadParametersAreRejected) {
   p.patch.cell_spacing = INFINITY;
   EXPECT_NE(message(p).find("cell_spacing must be a finite number > 0"), std::string::npos);
 }
+
+namespace {
+
+// A library of one crossing (four 100 m connectors) and four terminal patches, one per heading: a
+// connector back along the front's street and two 40 m dead ends across it.
+std::vector<Patch> crossing_and_terminals() {
+  std::vector<Patch> library;
+  Patch cross;
+  cross.id = 1;
+  for (Point to : {Point{100, 0}, Point{0, 100}, Point{-100, 0}, Point{0, -100}}) {
+    cross.edges.push_back(edge({0, 0}, to, PatchEdgeRole::connector));
+  }
+  library.push_back(cross);
+  for (int k = 0; k < 4; ++k) {
+    const double a = 0.5 * kPi * k;
+    const Point back{100.0 * std::cos(a + kPi), 100.0 * std::sin(a + kPi)};
+    const Point side{40.0 * std::cos(a + 0.5 * kPi), 40.0 * std::sin(a + 0.5 * kPi)};
+    Patch t;
+    t.id = 10 + k;
+    t.edges.push_back(edge({0, 0}, back, PatchEdgeRole::connector));
+    t.edges.push_back(edge({0, 0}, side, PatchEdgeRole::dead_end));
+    t.edges.push_back(edge({0, 0}, -1.0 * side, PatchEdgeRole::dead_end));
+    library.push_back(t);
+  }
+  return library;
+}
+
+// The junctions of the terminal patches placed in a growth: the nodes where two of their dead ends
+// meet.
+std::vector<Point> terminal_junctions(const GrowResult& r) {
+  std::map<std::pair<double, double>, int> arms;
+  for (const GrownEdge& e : r.edges) {
+    if (e.example_id < 10) continue;
+    ++arms[{e.a.x, e.a.y}];
+    ++arms[{e.b.x, e.b.y}];
+  }
+  std::vector<Point> out;
+  for (const auto& [key, n] : arms) {
+    if (n >= 2) out.push_back({key.first, key.second});
+  }
+  return out;
+}
+
+}  // namespace
+
+// Teng & Bidarra's rule of use for terminal patches (one connector: they add no front): with
+// terminal_room 2, a terminal patch ends a dead-end front only where a node, a street or the
+// region's edge lies within two mean streets (200 m here) ahead of it. The seed's crossing leaves
+// four fronts with nothing ahead (the next ring of the lattice does not exist yet when they are
+// drawn): without the rule terminal patches end some of them, with it none. Further out, where the
+// lattice fills in, they are drawn again. The streets go on where there is room, so the growth is
+// longer.
+TEST(TengBidarra, TerminalPatchesOnlyWhereLittleRoomIsLeft) {
+  GeosContext geos;
+  GeomPtr region = wkt(geos, "POLYGON((-1000 -1000, 1000 -1000, 1000 1000, -1000 1000, -1000 -1000))");
+  GrowInput in;
+  in.patches = crossing_and_terminals();
+  in.region = region.get();
+  in.seeds = {{0.0, 0.0}};
+  GrowParams p;
+  p.use_patches = true;
+  p.max_edges = 2000;
+  p.fallback = false;  // patches alone: each front takes the crossing or a terminal patch
+  // A front draws the crossing and the terminal patch alike: the rules that weigh the draws by the
+  // example's own mix are off (the spread rule of a city of cul-de-sacs, which would take each of
+  // the five patches once only; the dead-end rule, which refuses terminal patches while the growth
+  // has the library's share of dead ends; a city of crossings' bonus for the crossing's streets
+  // that go on across a T or along a line).
+  p.patch.spread_order = false;
+  p.patch.front_dead_ends = false;
+  p.patch.align_stems = false;
+  p.patch.align_lines = false;
+  auto first_ring = [](const std::vector<Point>& junctions) {
+    return std::count_if(junctions.begin(), junctions.end(), [](Point q) { return std::hypot(q.x, q.y) < 101.0; });
+  };
+  long open_off = 0, open_on = 0, longer = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    p.seed = seed;
+    p.patch.terminal_room = 0.0;
+    GrowResult off = grow_example(geos, in, p);
+    p.patch.terminal_room = 2.0;
+    GrowResult on = grow_example(geos, in, p);
+    EXPECT_EQ(off.stats.terminal_refused, 0u);
+    EXPECT_GT(on.stats.terminal_refused, 0u);
+    EXPECT_GT(terminal_junctions(on).size(), 0u) << "seed " << seed << ": drawn where the lattice fills in";
+    open_off += first_ring(terminal_junctions(off));
+    open_on += first_ring(terminal_junctions(on));
+    double length_off = 0.0, length_on = 0.0;
+    for (const GrownEdge& e : off.edges) length_off += distance(e.a, e.b);
+    for (const GrownEdge& e : on.edges) length_on += distance(e.a, e.b);
+    longer += length_on > length_off;
+    EXPECT_EQ(streetgen::test::crossings_without_node(on), 0);
+    if (seed == 1) streetgen::test::expect_same_graph(grow_example(geos, in, p), on);  // deterministic
+  }
+  EXPECT_GT(open_off, 0) << "without the rule, terminal patches end streets with nothing ahead";
+  EXPECT_EQ(open_on, 0) << "with it, only where little room is left";
+  EXPECT_GE(longer, 5) << "of 6 seeds, the growth with the rule is longer";
+  // A negative or not finite room is rejected (22023 in SQL).
+  for (double bad : {-1.0, double(NAN)}) {
+    p.patch.terminal_room = bad;
+    try {
+      grow_example(geos, in, p);
+      ADD_FAILURE() << "terminal_room " << bad << " accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::invalid_argument);
+      EXPECT_NE(std::string(e.what()).find("terminal_room must be a finite number >= 0"), std::string::npos);
+    }
+  }
+}

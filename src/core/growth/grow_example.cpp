@@ -1428,6 +1428,9 @@ class Grower {
       if (!std::isfinite(pp.cell_spacing) || pp.cell_spacing <= 0.0) {
         throw_invalid_argument("cell_spacing must be a finite number > 0", "It is " + std::to_string(pp.cell_spacing) + ".");
       }
+      if (!std::isfinite(pp.terminal_room) || pp.terminal_room < 0.0) {
+        throw_invalid_argument("terminal_room must be a finite number >= 0", "It is " + std::to_string(pp.terminal_room) + ".");
+      }
       if (!(pp.max_turn >= 0.0 && pp.max_turn <= 180.0)) {
         throw_invalid_argument("max_turn must be in [0, 180] degrees", "It is " + std::to_string(pp.max_turn) + ".");
       }
