@@ -184,6 +184,31 @@ SELECT ok((SELECT count(*) FROM grown_selected) >= 1000
           AND (SELECT count(*) FROM grown_selected WHERE origin LIKE 'grow_patches:%') > 500,
           'selection by tags in SQL: canberra without its cul-de-sac and roundabout patches grows 1000 edges, '
           'none from them');
+-- Teng & Bidarra's rule of use for terminal patches (one connector, tagged terminal): with
+-- terminal_room they end a street only where little room is left ahead. Tokyo's seed 1 from its
+-- hull's centre (200,000 edges: the whole hull) places its terminal patches at open fronts
+-- without the rule (7 edges from them, 2026-12-02), none with it.
+CREATE TEMP TABLE grown_terminal AS
+SELECT room, g.* FROM region r, unnest(ARRAY[0, 2]) AS room,
+       LATERAL streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', r.geom, r.centre, NULL,
+                                      jsonb_build_object('seed', 1, 'max_edges', 200000, 'terminal_room', room)) AS g
+ WHERE r.name = 'tokyo';
+SELECT ok((SELECT count(*) FROM grown_terminal g JOIN pt ON pt.name = 'tokyo' AND 'grow_patches:' || pt.patch_id = g.origin
+                                                       AND pt.edge_index = 1
+            WHERE g.room = 0 AND 'terminal' = ANY (pt.tags)) > 0
+          AND (SELECT count(*) FROM grown_terminal g JOIN pt ON pt.name = 'tokyo' AND 'grow_patches:' || pt.patch_id = g.origin
+                                                          AND pt.edge_index = 1
+                WHERE g.room = 2 AND 'terminal' = ANY (pt.tags))
+              < (SELECT count(*) FROM grown_terminal g JOIN pt ON pt.name = 'tokyo' AND 'grow_patches:' || pt.patch_id = g.origin
+                                                            AND pt.edge_index = 1
+                  WHERE g.room = 0 AND 'terminal' = ANY (pt.tags)),
+          'terminal_room: tokyo seed 1 uses fewer terminal patches with the rule than without');
+CREATE INDEX ON grown_terminal USING gist (geom);
+ANALYZE grown_terminal;
+SELECT is((SELECT count(*) FROM grown_terminal a JOIN grown_terminal b ON a.room = 2 AND b.room = 2 AND a.id < b.id
+                                                                      AND ST_Intersects(a.geom, b.geom)
+            WHERE NOT (a.from_node IN (b.from_node, b.to_node) OR a.to_node IN (b.from_node, b.to_node))),
+          0::bigint, 'terminal_room: the growth with the rule is planar (no two edges cross or touch without a shared node)');
 -- Refill: canberra's local phase dies out like a branching process (seed 5 from its hull's centre
 -- stopped at a third of the example's street length); the voids it left grow on from their edges.
 SELECT ok((SELECT sum(ST_Length(ST_Intersection(g.geom, ST_Buffer(r.geom, -50)))) FROM region r,
@@ -336,6 +361,14 @@ SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT geom FROM ex'
                  'crop_margin must be a number >= 0', 'extract_patches: negative crop_margin (22023)');
 SELECT throws_ok($$SELECT * FROM streetgen.extract_patches('SELECT geom FROM ex', '{"levels": "yes"}')$$, '22023',
                  'levels must be true or false', 'extract_patches: levels not a boolean (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"terminal_room": -1}')$$, '22023', 'terminal_room must be a number >= 0 (mean streets)',
+                 'grow_patches: terminal_room -1 (22023)');
+SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
+                   (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
+                   '{"terminal_room": "far"}')$$, '22023', 'terminal_room must be a number >= 0 (mean streets)',
+                 'grow_patches: terminal_room not a number (22023)');
 SELECT throws_ok($$SELECT * FROM streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''',
                    (SELECT geom FROM region WHERE name = 'tokyo'), (SELECT centre FROM region WHERE name = 'tokyo'), NULL,
                    '{"levels": 1}')$$, '22023', 'levels must be true or false', 'grow_patches: levels not a boolean (22023)');
