@@ -5820,10 +5820,6 @@ class Grower {
           if (spread && lp.uses > 0) continue;
           if (!in_phase(lp)) continue;
           if (style >= 0 && lp.style != style) continue;
-          if (lp.terminal && !terminal_allowed(v)) {
-            ++stats_.terminal_refused;
-            continue;
-          }
           const Polyline& line = lp.edges[c.edge].line;
           double bound = best_stamp_[c.patch] == stamp_ ? std::min(best_[c.patch].d, max_distance_) : max_distance_;
           // Both start at v: the Hausdorff distance is at least the difference of their reaches.
@@ -5834,6 +5830,10 @@ class Grower {
           Polyline cut = substring(street, 0.0, s);
           double d = hausdorff(placed, cut, bound);
           if (d > bound || (best_stamp_[c.patch] == stamp_ && d >= best_[c.patch].d)) continue;
+          if (lp.terminal && !terminal_allowed(v)) {  // (a candidate but for the room ahead)
+            ++stats_.terminal_refused;
+            continue;
+          }
           if (best_stamp_[c.patch] != stamp_) {
             best_stamp_[c.patch] = stamp_;
             touched_.push_back(c.patch);

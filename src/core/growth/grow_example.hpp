@@ -121,8 +121,9 @@ struct PatchGrowParams {
   // median 2.77 / 2.91 -> 2.77 / 2.78 %. The 20th percentile chosen on barcelona's seeds 1-20
   // against the 15th and 25th (README "Dead ends' joins and small blocks").
   bool dangling_block_floor = true;
-  // Teng & Bidarra's rule of use for patches tagged `terminal` (one connector: they add no front,
-  // so the street they end cannot go on): at a dead-end front a terminal patch is drawn only where
+  // Teng & Bidarra's rule of use for terminal patches (one connector, as extract_patches tags them
+  // `terminal`: they add no front, so the street they end cannot go on; the tag itself is not read):
+  // at a dead-end front a terminal patch is drawn only where
   // little room is left ahead of it, that is a street or node of the growth within this many mean
   // streets ahead (the cone of the dead ends' joins) or the region's edge, an obstacle or water on
   // the straight line that long. Junction fronts (local seeds on main streets) are not ruled.
@@ -708,7 +709,7 @@ struct GrowStats {
   std::size_t patches_placed = 0;  // patch growth: fronts (and seeds) where a patch was glued
   std::size_t patch_candidates = 0;  // patches within max_distance, summed over fronts
   std::size_t patch_illegal = 0;   // drawn patches that failed a legality check
-  std::size_t terminal_refused = 0;  // PatchGrowParams::terminal_room: terminal candidates refused at fronts with room ahead
+  std::size_t terminal_refused = 0;  // PatchGrowParams::terminal_room: terminal patches' connectors within reach refused for the room ahead
   std::size_t front_crossings_refused = 0;  // PatchGrowParams::front_crossings: draws refused for a crossing at the front
   double example_crossing_share = 0.0;      // patch growth: the patch streets' crossings among their junctions
   double crossing_target = 0.0;  // continue_across: the share of crossings among junctions its joins aimed at
