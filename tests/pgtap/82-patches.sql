@@ -193,15 +193,10 @@ SELECT room, g.* FROM region r, unnest(ARRAY[0, 2]) AS room,
        LATERAL streetgen.grow_patches('SELECT * FROM pt WHERE name = ''tokyo''', r.geom, r.centre, NULL,
                                       jsonb_build_object('seed', 1, 'max_edges', 200000, 'terminal_room', room)) AS g
  WHERE r.name = 'tokyo';
-SELECT ok((SELECT count(*) FROM grown_terminal g JOIN pt ON pt.name = 'tokyo' AND 'grow_patches:' || pt.patch_id = g.origin
-                                                       AND pt.edge_index = 1
-            WHERE g.room = 0 AND 'terminal' = ANY (pt.tags)) > 0
-          AND (SELECT count(*) FROM grown_terminal g JOIN pt ON pt.name = 'tokyo' AND 'grow_patches:' || pt.patch_id = g.origin
-                                                          AND pt.edge_index = 1
-                WHERE g.room = 2 AND 'terminal' = ANY (pt.tags))
-              < (SELECT count(*) FROM grown_terminal g JOIN pt ON pt.name = 'tokyo' AND 'grow_patches:' || pt.patch_id = g.origin
-                                                            AND pt.edge_index = 1
-                  WHERE g.room = 0 AND 'terminal' = ANY (pt.tags)),
+SELECT ok((SELECT count(*) FILTER (WHERE g.room = 0) > 0 AND count(*) FILTER (WHERE g.room = 2) < count(*) FILTER (WHERE g.room = 0)
+             FROM grown_terminal g JOIN pt ON pt.name = 'tokyo' AND 'grow_patches:' || pt.patch_id = g.origin
+                                            AND pt.edge_index = 1
+            WHERE 'terminal' = ANY (pt.tags)),
           'terminal_room: tokyo seed 1 uses fewer terminal patches with the rule than without');
 CREATE INDEX ON grown_terminal USING gist (geom);
 ANALYZE grown_terminal;
