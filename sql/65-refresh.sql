@@ -587,6 +587,17 @@ $$;
 -- Rows of MODEL's tables that differ from a full recompute of its axes: none when the tables are
 -- current (the invariant the triggers keep). Geometries count as equal within 1e-6 m
 -- (Hausdorff), numbers within 1e-6. For tests, and for anyone who wants to check.
+-- How far a stored geometry lies from its full recompute, for outdated's 'differs' (a few
+-- micrometres is float noise in a context-dependent overlay; metres, a recompute that missed
+-- something): ' by <Hausdorff distance> m', empty when either is NULL.
+CREATE FUNCTION streetgen._apart(stored geometry, recomputed geometry)
+  RETURNS text
+  LANGUAGE sql IMMUTABLE PARALLEL SAFE
+  SET search_path FROM CURRENT
+  AS $$
+  SELECT coalesce(format(' by %s m', round(ST_HausdorffDistance(stored, recomputed)::numeric, 6)), '')
+$$;
+
 CREATE FUNCTION streetgen.outdated(model text, OUT kind text, OUT key text, OUT what text)
   RETURNS SETOF record
   LANGUAGE plpgsql VOLATILE
@@ -608,7 +619,8 @@ BEGIN
         OR ST_Distance(t.geom, ST_GeomFromEWKB(o.geom)) > 1e-6
     UNION ALL
     SELECT 'section', coalesce(t.axis_id, o.axis_id) || '/' || coalesce(t.part, o.part),
-           CASE WHEN t.axis_id IS NULL THEN 'missing' WHEN o.axis_id IS NULL THEN 'extra' ELSE 'differs' END
+           CASE WHEN t.axis_id IS NULL THEN 'missing' WHEN o.axis_id IS NULL THEN 'extra'
+                ELSE 'differs' || streetgen._apart(t.geom, ST_GeomFromEWKB(o.geom)) END
       FROM %1$I.section t FULL JOIN (SELECT * FROM o WHERE o.kind = 'section') o ON o.axis_id = t.axis_id AND o.part = t.part
      WHERE t.axis_id IS NULL OR o.axis_id IS NULL OR t.from_node <> o.node_id OR t.to_node <> o.to_node
         OR t.status <> o.status OR abs(t.start_border - o.start_border) > 1e-6 OR abs(t.end_border - o.end_border) > 1e-6
@@ -628,7 +640,8 @@ BEGIN
         OR (t.arc_segmentized IS NOT NULL AND ST_HausdorffDistance(t.arc_segmentized, ST_GeomFromEWKB(o.geom2)) > 1e-6)
     UNION ALL
     SELECT 'intersection', coalesce(t.node_id, o.node_id)::text,
-           CASE WHEN t.node_id IS NULL THEN 'missing' WHEN o.node_id IS NULL THEN 'extra' ELSE 'differs' END
+           CASE WHEN t.node_id IS NULL THEN 'missing' WHEN o.node_id IS NULL THEN 'extra'
+                ELSE 'differs' || streetgen._apart(t.geom, ST_GeomFromEWKB(o.geom)) END
       FROM %1$I.intersection t FULL JOIN (SELECT * FROM o WHERE o.kind = 'intersection') o ON o.node_id = t.node_id
      WHERE t.node_id IS NULL OR o.node_id IS NULL OR t.status <> o.status
         OR ST_HausdorffDistance(t.geom, ST_GeomFromEWKB(o.geom)) > 1e-6
@@ -651,7 +664,8 @@ BEGIN
     UNION ALL
     SELECT 'sidewalk', concat_ws('/', coalesce(t.axis_id, o.axis_id), coalesce(t.part, o.part), coalesce(t.node_id, o.node_id),
                                  coalesce(t.side, o.status)),
-           CASE WHEN t.side IS NULL THEN 'missing' WHEN o.status IS NULL THEN 'extra' ELSE 'differs' END
+           CASE WHEN t.side IS NULL THEN 'missing' WHEN o.status IS NULL THEN 'extra'
+                ELSE 'differs' || streetgen._apart(t.geom, ST_GeomFromEWKB(o.geom)) END
       FROM %1$I.sidewalk t FULL JOIN (SELECT * FROM o WHERE o.kind = 'sidewalk') o
         ON o.axis_id IS NOT DISTINCT FROM t.axis_id AND o.part IS NOT DISTINCT FROM t.part
        AND o.node_id IS NOT DISTINCT FROM t.node_id AND o.status = t.side
@@ -666,7 +680,8 @@ BEGIN
         OR ST_HausdorffDistance(t.geom, ST_GeomFromEWKB(o.geom)) > 1e-6
     UNION ALL
     SELECT 'block', coalesce(t.id, b.id)::text,
-           CASE WHEN t.id IS NULL THEN 'missing' WHEN b.id IS NULL THEN 'extra' ELSE 'differs' END
+           CASE WHEN t.id IS NULL THEN 'missing' WHEN b.id IS NULL THEN 'extra'
+                ELSE 'differs' || streetgen._apart(t.geom, b.geom) END
       FROM %1$I.block t FULL JOIN pg_temp._sg_blocks b ON b.id = t.id
      WHERE t.id IS NULL OR b.id IS NULL OR t.axis_ids <> b.axis_ids OR t.kind <> b.kind
         OR ST_HausdorffDistance(t.face, b.face) > 1e-6
@@ -683,7 +698,7 @@ BEGIN
 END
 $$;
 COMMENT ON FUNCTION streetgen.outdated(text) IS
-  'Rows of a model''s generated tables that differ from a full recompute (none when current): kind, key, missing/extra/differs';
+  'Rows of a model''s generated tables that differ from a full recompute (none when current): kind, key, missing/extra/differs (sections, junctions, sidewalks and blocks: differs by the Hausdorff distance between the stored and recomputed geometry, m)';
 
 -- Before any row of a statement is touched: the model's lock first. Taken only in the AFTER
 -- trigger, a DELETE had already locked the rows its cascade removes (sections, corners) when it

@@ -63,7 +63,15 @@ for _ in $(seq 150); do
   sleep 1
 done
 
-pg_prove -d "$db" -S model="$model" -S min_edits="$min_edits" "$SRC/tests/soak/check.sql" || status=1
+if ! pg_prove -d "$db" -S model="$model" -S min_edits="$min_edits" "$SRC/tests/soak/check.sql"; then
+  status=1
+  # The edits in commit order, so that a failure seen only in a CI log (its cluster is gone) can
+  # be replayed: tests/soak/replay.sql says how to load them.
+  psql -X -q -c "\\copy (SELECT * FROM soak_log ORDER BY refresh, seq) TO '$work/soak_log.csv' CSV"
+  echo "soak_log:begin ($(wc -l <"$work/soak_log.csv") edits, commit order, CSV)"
+  cat "$work/soak_log.csv"
+  echo "soak_log:end"
+fi
 
 # What the clients were told, by message (the retried deadlocks and serialization failures among them).
 tail -c +"$((mark + 1))" "$PGHOST/server.log" | grep -o 'ERROR: .*' | sed 's/[0-9]\{3,\}/N/g' | sort | uniq -c | sort -rn || true

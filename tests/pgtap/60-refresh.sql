@@ -11,6 +11,15 @@ INSERT INTO live.axis (id, geom, roadway_width, speed_kmh) OVERRIDING SYSTEM VAL
   (5, 'SRID=32631;LINESTRING(80 0, 80 80)', 6, 30);
 SELECT is((SELECT count(*) FROM live.intersection), 2::bigint, 'an INSERT builds the surfaces at once: two junctions');
 SELECT is((SELECT count(*) FROM streetgen.outdated('live')), 0::bigint, 'and they equal a full recompute');
+-- (outdated itself: a stored sidewalk moved by hand is named, with how far it lies from its
+-- recompute; moved back, the model is current again)
+CREATE TEMP TABLE moved_sidewalk AS SELECT node_id FROM live.sidewalk WHERE node_id IS NOT NULL ORDER BY node_id LIMIT 1;
+UPDATE live.sidewalk SET geom = ST_Translate(geom, 0.25, 0) WHERE node_id = (SELECT node_id FROM moved_sidewalk);
+SELECT results_eq($$SELECT kind, key, what FROM streetgen.outdated('live')$$,
+                  $$SELECT 'sidewalk', concat_ws('/', node_id, 'around'), 'differs by 0.250000 m' FROM moved_sidewalk$$,
+                  'outdated names a stored sidewalk moved by hand, 0.25 m from its recompute');
+UPDATE live.sidewalk SET geom = ST_Translate(geom, -0.25, 0) WHERE node_id = (SELECT node_id FROM moved_sidewalk);
+SELECT is((SELECT count(*) FROM streetgen.outdated('live')), 0::bigint, 'moved back: current');
 
 CREATE FUNCTION pg_temp.refreshes() RETURNS bigint LANGUAGE sql AS $$ SELECT refreshes FROM live.refresh_state $$;
 CREATE TEMP TABLE area0 AS SELECT ST_Area(i.geom) a FROM live.intersection i JOIN live.node n ON n.id = i.node_id

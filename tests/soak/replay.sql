@@ -5,6 +5,13 @@
 -- window found (re-import first):
 --   scripts/streetgen-import -m replay ../shared/data/osm/liechtenstein.osm.pbf
 --   psql -v from=1 -v every=100 -f tests/soak/replay.sql
+-- A failure seen only in a CI log (its cluster gone): run-soak.sh printed the log between
+-- soak_log:begin and soak_log:end. In a fresh database with streetgen:
+--   scripts/streetgen-import -m replay ../shared/data/osm/liechtenstein.osm.pbf
+--   psql -v model=replay -f tests/soak/setup.sql
+--   psql -c 'ALTER TABLE soak_log DISABLE TRIGGER commit_order'
+--   sed -n '/^soak_log:begin/,/^soak_log:end/{//!p}' ci.log | psql -c '\copy soak_log FROM STDIN CSV'
+--   psql -v from=1 -v every=100 -f tests/soak/replay.sql
 CREATE TEMP TABLE replay_id (soak_id bigint PRIMARY KEY, id bigint);
 
 CREATE FUNCTION pg_temp.apply(l soak_log) RETURNS void LANGUAGE plpgsql AS $$
