@@ -595,7 +595,7 @@ CREATE FUNCTION streetgen._apart(stored geometry, recomputed geometry)
   LANGUAGE sql IMMUTABLE PARALLEL SAFE
   SET search_path FROM CURRENT
   AS $$
-  SELECT coalesce(format(' by %s m', round(ST_HausdorffDistance(stored, recomputed)::numeric, 6)), '')
+  SELECT coalesce(' by ' || round(ST_HausdorffDistance(stored, recomputed)::numeric, 6) || ' m', '')
 $$;
 
 CREATE FUNCTION streetgen.outdated(model text, OUT kind text, OUT key text, OUT what text)
