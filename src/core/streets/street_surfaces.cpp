@@ -1547,15 +1547,32 @@ class SurfaceBuilder {
     // By index: the roadways, then the claims. What blocks what is found by boxes over both.
     std::vector<const GEOSGeometry*> geoms;  // a claim's while it is held, else null
     std::vector<int> layers;
+    // The roadways by key (sections by axis and part, junctions by node id), not in the
+    // engine's order: a claim's blockers are taken away in index order, and the same blockers in
+    // another order can round its sidewalk differently on the micrometre grid. The junctions come
+    // in the order the topology found their crossings, which changes with any other axis given:
+    // a full run and a local refresh put two junctions' roadways the other way round, and a junction
+    // sidewalk came out one grid step apart (a soak, after an edit 1.5 km away).
+    std::vector<const SectionResult*> sections_by_key;
     for (const SectionResult& sec : result_.sections) {
-      if (!sec.surface) continue;
-      geoms.push_back(sec.surface.get());
-      layers.push_back(axis_layer_.at(sec.axis_id));
+      if (sec.surface) sections_by_key.push_back(&sec);
     }
+    std::sort(sections_by_key.begin(), sections_by_key.end(), [](const SectionResult* a, const SectionResult* b) {
+      return std::make_pair(a->axis_id, a->part) < std::make_pair(b->axis_id, b->part);
+    });
+    std::vector<const IntersectionResult*> junctions_by_key;
     for (const IntersectionResult& ir : result_.intersections) {
-      if (!ir.surface) continue;
-      geoms.push_back(ir.surface.get());
-      layers.push_back(topo_.nodes[node_index.at(ir.node_id)].layer);
+      if (ir.surface) junctions_by_key.push_back(&ir);
+    }
+    std::sort(junctions_by_key.begin(), junctions_by_key.end(),
+              [](const IntersectionResult* a, const IntersectionResult* b) { return a->node_id < b->node_id; });
+    for (const SectionResult* sec : sections_by_key) {
+      geoms.push_back(sec->surface.get());
+      layers.push_back(axis_layer_.at(sec->axis_id));
+    }
+    for (const IntersectionResult* ir : junctions_by_key) {
+      geoms.push_back(ir->surface.get());
+      layers.push_back(topo_.nodes[node_index.at(ir->node_id)].layer);
     }
     std::size_t first_claim = geoms.size();
     std::vector<Box> boxes(first_claim);
