@@ -77,6 +77,7 @@ SELECT set_eq(
     ('streetgen._corner_override_changed()', 'trigger', 'v', false),
     ('streetgen._settings_changed()', 'trigger', 'v', false),
     ('streetgen._create_triggers(text)', 'void', 'v', false),
+    ('streetgen._apart(geometry,geometry)', 'text', 'i', false),
     ('streetgen.outdated(text)', 'SETOF record', 'v', false),
     ('streetgen._work_tables(text[])', 'void', 'v', false),
     ('streetgen._empty_work_tables()', 'void', 'v', false),
