@@ -584,9 +584,6 @@ BEGIN
 END
 $$;
 
--- Rows of MODEL's tables that differ from a full recompute of its axes: none when the tables are
--- current (the invariant the triggers keep). Geometries count as equal within 1e-6 m
--- (Hausdorff), numbers within 1e-6. For tests, and for anyone who wants to check.
 -- How far a stored geometry lies from its full recompute, for outdated's 'differs' (a few
 -- micrometres is float noise in a context-dependent overlay; metres, a recompute that missed
 -- something): ' by <Hausdorff distance> m', empty when either is NULL.
@@ -598,6 +595,9 @@ CREATE FUNCTION streetgen._apart(stored geometry, recomputed geometry)
   SELECT coalesce(' by ' || round(ST_HausdorffDistance(stored, recomputed)::numeric, 6) || ' m', '')
 $$;
 
+-- Rows of MODEL's tables that differ from a full recompute of its axes: none when the tables are
+-- current (the invariant the triggers keep). Geometries count as equal within 1e-6 m
+-- (Hausdorff), numbers within 1e-6. For tests, and for anyone who wants to check.
 CREATE FUNCTION streetgen.outdated(model text, OUT kind text, OUT key text, OUT what text)
   RETURNS SETOF record
   LANGUAGE plpgsql VOLATILE

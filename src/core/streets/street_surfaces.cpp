@@ -1549,7 +1549,8 @@ class SurfaceBuilder {
     std::vector<int> layers;
     // The roadways by key (sections by axis and part, junctions by node id), not in the
     // engine's order: a claim's blockers are taken away in index order, and the same blockers in
-    // another order can round its sidewalk differently on the micrometre grid. The junctions come
+    // another order can round its sidewalk differently on the micrometre grid. The sections follow
+    // the order the axes were given in (by id from SQL, any order from C++); the junctions come
     // in the order the topology found their crossings, which changes with any other axis given:
     // a full run and a local refresh put two junctions' roadways the other way round, and a junction
     // sidewalk came out one grid step apart (a soak, after an edit 1.5 km away).
