@@ -234,6 +234,19 @@ WITH k AS (SELECT '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|
                     FROM ends e JOIN region r USING (name) WHERE ST_Within(e.p, ST_Buffer(r.geom, -50)) GROUP BY 1, 2)
 SELECT name, max(n) FILTER (WHERE seed = -1) AS example, round(avg(n) FILTER (WHERE seed >= 0), 1) AS grown
   FROM per_seed GROUP BY name ORDER BY name;
+\echo φ against the statistical share (grow_patches, per seed): the share of the length the statistical fallback grew (origin grow_parametric, its joins included; median), the correlation between it and the relative difference of φ, the change of φ per 10 points of it (least squares), the median difference of φ on the seeds in the top quarter of that share and on the rest, and the seeds with φ past +15 % / under -15 % (of them in the top quarter)
+WITH s AS (SELECT name, seed, sum(ST_Length(geom)) FILTER (WHERE origin LIKE 'grow_parametric%') / sum(ST_Length(geom)) AS stat
+             FROM grown WHERE method = 'patches' GROUP BY 1, 2),
+     j AS (SELECT s.name, coalesce(s.stat, 0) AS stat, c.relative_difference AS phi
+             FROM s JOIN cmp c USING (name, seed) WHERE c.method = 'patches' AND c.metric = 'orientation_order'),
+     q AS (SELECT name, percentile_cont(0.75) WITHIN GROUP (ORDER BY stat) AS q3 FROM j GROUP BY name)
+SELECT j.name, count(*) AS seeds, round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY stat))::numeric, 1) AS stat_pct,
+       round(corr(stat, phi)::numeric, 2) AS correlation, round((10 * regr_slope(phi, stat))::numeric, 1) AS phi_pct_per_10_points,
+       round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY phi) FILTER (WHERE stat >= q3))::numeric, 1) AS phi_pct_top_quarter,
+       round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY phi) FILTER (WHERE stat < q3))::numeric, 1) AS phi_pct_rest,
+       count(*) FILTER (WHERE phi > 0.15) || ' (' || count(*) FILTER (WHERE phi > 0.15 AND stat >= q3) || ')' AS over,
+       count(*) FILTER (WHERE phi < -0.15) || ' (' || count(*) FILTER (WHERE phi < -0.15 AND stat >= q3) || ')' AS under
+  FROM j JOIN q USING (name) GROUP BY j.name ORDER BY j.name;
 \echo orientation order by level (grow_patches, median over seeds; degree-2 chains merged, inside the hull shrunk by 50 m): main and local streets apart, example and grown
 WITH k AS (SELECT '^((motorway|trunk|primary|secondary|tertiary)(_link)?|avenue|highway|boulevard)$' AS re),
      lv AS (SELECT r.name, s.seed, r.geom,
