@@ -27,8 +27,9 @@
 #    on (example, grown).
 #    And φ against the statistical fallback's share of the length, per seed (does the fallback
 #    order or disorder the growth?). And the orientation order of the main and the local streets
-#    apart (example, grown): which level loses the example's order. And the streets' bends: turn per km and the share of streets that
-#    bend by 10 degrees or more as a whole, the example's against the statistical fallback's.
+#    apart (example, grown): which level loses the example's order. And the streets' bends: turn
+#    per km and the share of streets that bend by 10 degrees or more as a whole, the example's
+#    against the statistical fallback's.
 #    And coverage: the share of the window farther than 100 m from every street (all of it, near
 #    the hull's edge, well inside it), and the share of the street length outside the window (the
 #    metrics are per area and do not see holes). And the blocks' shapes, the example's against the
