@@ -551,7 +551,9 @@ class Grower {
     stats_.example_dead_end_share = example_dead_end_share_;
     if (params_.use_patches && params_.patch.connect_dangling) connect_dangling();
     if (params_.use_patches && params_.patch.continue_across) continue_across();
-    if (params_.use_patches && (avoid_corners() || cul_de_sac_crop_cuts())) cut_corner_fronts();
+    const bool cuts = params_.use_patches && (avoid_corners() || cul_de_sac_crop_cuts());
+    if (cuts && params_.patch.straight_corners && params_.patch.corners_before_cuts) straighten_corners();
+    if (cuts) cut_corner_fronts();
     if (params_.use_patches && params_.patch.straight_corners) straighten_corners();
     if (params_.use_patches && (params_.patch.prune_dangling || example_without_dead_ends())) prune_dangling();
     if (params_.use_patches && params_.patch.continue_across && params_.patch.facing_after_cuts) join_facing_after_cuts();
@@ -3903,7 +3905,8 @@ class Grower {
     if (edges_[e0].level < 0 || edges_[e1].level < 0 || edges_[e0].bridge || edges_[e1].bridge) return false;
     return turn_at(other_end(e0, v), nodes_[v].p, other_end(e1, v)) > kCornerTurn;
   }
-  // PatchGrowParams::straight_corners (after the joins and the cut-backs): each corner's one street
+  // PatchGrowParams::straight_corners (after the joins and the cut-backs; with corners_before_cuts
+  // before the cut-backs too): each corner's one street
   // goes on straight to the node or street ahead (within angle_window of its heading and a mean
   // street, as the joins), and the other street, back to its junction, is dropped (never an arterial
   // one); where dropping it would turn a crossing into a T and the node ahead is a T, it is kept
