@@ -971,27 +971,6 @@ TEST(PatchDangling, CornersStraightenedOnAnOrderedExample) {
   EXPECT_EQ(culs.stats.corners_straightened + culs.stats.corners_completed, 0u);  // (349 without the gate)
 }
 
-// The interior dead ends' share of the street ends (dead ends and junctions farther than 200 m
-// inside the tests' square), as the realism metrics count it.
-double interior_dead_end_share(const GrowResult& r) {
-  std::map<std::int64_t, int> degree;
-  std::map<std::int64_t, Point> at;
-  for (const GrownEdge& e : r.edges) {
-    ++degree[e.from_node];
-    ++degree[e.to_node];
-    at[e.from_node] = e.a;
-    at[e.to_node] = e.b;
-  }
-  double dead = 0.0, ends = 0.0;
-  for (const auto& [node, d] : degree) {
-    const Point q = at[node];
-    if (d == 2 || std::abs(q.x) >= 1300.0 || std::abs(q.y) >= 1300.0) continue;
-    ends += 1.0;
-    dead += d == 1;
-  }
-  return ends > 0.0 ? dead / ends : 0.0;
-}
-
 // Corners straightened before the cut-backs too (corners_before_cuts): the cut-backs of the corner
 // fronts stop at the example's share of dead ends among the street ends, and the T's a
 // straightening made after them lowered the output's share under the example's (quito -7.7 %,
