@@ -3906,11 +3906,11 @@ class Grower {
     return turn_at(other_end(e0, v), nodes_[v].p, other_end(e1, v)) > kCornerTurn;
   }
   // PatchGrowParams::straight_corners (after the joins and the cut-backs; with corners_before_cuts
-  // before the cut-backs too): each corner's one street
-  // goes on straight to the node or street ahead (within angle_window of its heading and a mean
-  // street, as the joins), and the other street, back to its junction, is dropped (never an arterial
-  // one); where dropping it would turn a crossing into a T and the node ahead is a T, it is kept
-  // instead (the corner becomes a T, the T ahead a crossing). Not where the dropped street's
+  // before the cut-backs too): each corner's one street goes on straight to the node or street
+  // ahead (within angle_window of its heading and a mean street, as the joins), and the other
+  // street, back to its junction, is dropped (never an arterial one); where dropping it would turn
+  // a crossing into a T and the node ahead is a T, it is kept instead (the corner becomes a T, the
+  // T ahead a crossing). Not where the dropped street's
   // junction would become a corner, but in the second round with corner_cascade, which then
   // straightens that corner in its turn; never where a dead end would come or go (tokyo keeps a handful),
   // nor, for a change that lowers the network's share of crossings among its junctions (inside the
