@@ -60,7 +60,7 @@ enum GrowArg {
   kGFallbackCurvature, kGArterialFallback, kGFallbackLocalSeeds,
   // Teng & Bidarra: the first library's patches tagged initial, breadth-first bridging, cell initialisation.
   kGInitials, kGBridgeFronts, kGCellInit, kGMaxTurn, kGCellSpacing,
-  kGPromoteArterials, kGTerminalRoom,
+  kGPromoteArterials, kGTerminalRoom, kGRoundabouts,
   kGArgs
 };
 
@@ -71,7 +71,8 @@ struct EdgeArg {
   const char* road_class;
   int max_uses;
   bool arterial;
-  bool initial;  // the patch is tagged initial
+  bool initial;     // the patch is tagged initial
+  bool roundabout;  // the patch is tagged roundabout
   pg::ByteView geom;
 };
 struct LibraryArg {
@@ -81,7 +82,7 @@ struct LibraryArg {
 };
 
 LibraryArg read_library(FunctionCallInfo fcinfo, int a_ids, int a_roles, int a_classes, int a_geoms, int a_uses,
-                        int a_arterials, const char* what, int a_initials = -1) {
+                        int a_arterials, const char* what, int a_initials = -1, int a_roundabouts = -1) {
   pg::ArrayArg pids = pg::array_arg(fcinfo, a_ids, INT8OID, "patch ids");
   pg::ArrayArg roles = pg::array_arg(fcinfo, a_roles, TEXTOID, "roles");
   pg::ArrayArg classes = pg::array_arg(fcinfo, a_classes, TEXTOID, "road classes");
@@ -90,12 +91,15 @@ LibraryArg read_library(FunctionCallInfo fcinfo, int a_ids, int a_roles, int a_c
   pg::ArrayArg arterials = pg::array_arg(fcinfo, a_arterials, BOOLOID, "arterials");
   pg::ArrayArg initials{};
   if (a_initials >= 0) initials = pg::array_arg(fcinfo, a_initials, BOOLOID, "initials");
+  pg::ArrayArg roundabouts{};
+  if (a_roundabouts >= 0) roundabouts = pg::array_arg(fcinfo, a_roundabouts, BOOLOID, "roundabouts");
   pg::require_same_length(geoms, "patch edges", pids, "patch ids");
   pg::require_same_length(geoms, "patch edges", roles, "roles");
   if (classes.count != 0) pg::require_same_length(geoms, "patch edges", classes, "road classes");
   if (uses.count != 0) pg::require_same_length(geoms, "patch edges", uses, "max_uses");
   if (arterials.count != 0) pg::require_same_length(geoms, "patch edges", arterials, "arterials");
   if (initials.count != 0) pg::require_same_length(geoms, "patch edges", initials, "initials");
+  if (roundabouts.count != 0) pg::require_same_length(geoms, "patch edges", roundabouts, "roundabouts");
   LibraryArg lib;
   lib.what = what;
   lib.count = geoms.count;
@@ -138,6 +142,7 @@ LibraryArg read_library(FunctionCallInfo fcinfo, int a_ids, int a_roles, int a_c
     }
     e.arterial = arterials.count != 0 && !arterials.nulls[i] && DatumGetBool(arterials.values[i]);
     e.initial = initials.count != 0 && !initials.nulls[i] && DatumGetBool(initials.values[i]);
+    e.roundabout = roundabouts.count != 0 && !roundabouts.nulls[i] && DatumGetBool(roundabouts.values[i]);
     e.geom = pg::byte_view(geoms.values[i]);
   }
   return lib;
@@ -163,7 +168,8 @@ void build_patches(core::GeosContext& geos, const LibraryArg& lib, std::vector<c
     }
     core::Patch& patch = out[it->second];
     patch.max_uses = std::max(patch.max_uses, e.max_uses);
-    for (const char* tag : {e.arterial ? "arterial" : nullptr, e.initial ? "initial" : nullptr}) {
+    for (const char* tag : {e.arterial ? "arterial" : nullptr, e.initial ? "initial" : nullptr,
+                            e.roundabout ? "roundabout" : nullptr}) {
       if (tag != nullptr && std::find(patch.tags.begin(), patch.tags.end(), tag) == patch.tags.end()) {
         patch.tags.emplace_back(tag);
       }
@@ -301,15 +307,17 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
       "interpolate road classes", "interpolate patch edges", "interpolate max_uses", "interpolate arterials", "t",
       "blend", "blend_angle", "blend_points x", "blend_points y", "blend_sigma", "prune_dangling", "direction grid",
       "direction", "connect_dangling", "fallback_curvature", "arterial_fallback", "fallback_local_seeds", "initials",
-      "bridge_fronts", "cell_init", "max_turn", "cell_spacing", "promote_arterials", "terminal_room"};
+      "bridge_fronts", "cell_init", "max_turn", "cell_spacing", "promote_arterials", "terminal_room", "roundabouts"};
   for (int a = kGRegion; a < kGArgs; ++a) {
     if (a != kGSeedsX && a != kGSeedsY && a != kGObstacles && a != kGArterials && a != kGWater && a != kGDemGrid &&
         a != kGDemValues && a != kGGuide && !(a >= kGPatchIdsB && a <= kGArterialsB) && a != kGBlendX &&
-        a != kGBlendY && a != kGDirectionGrid && a != kGDirectionValues && a != kGInitials && PG_ARGISNULL(a)) {
+        a != kGBlendY && a != kGDirectionGrid && a != kGDirectionValues && a != kGInitials && a != kGRoundabouts &&
+        PG_ARGISNULL(a)) {
       pg::raise_null_argument(names[a]);
     }
   }
-  LibraryArg lib = read_library(fcinfo, kGPatchIds, kGRoles, kGClasses, kGGeoms, kGMaxUses, kGArterials, "", kGInitials);
+  LibraryArg lib = read_library(fcinfo, kGPatchIds, kGRoles, kGClasses, kGGeoms, kGMaxUses, kGArterials, "", kGInitials,
+                                kGRoundabouts);
   LibraryArg lib_b = read_library(fcinfo, kGPatchIdsB, kGRolesB, kGClassesB, kGGeomsB, kGMaxUsesB, kGArterialsB,
                                   "interpolate ");
   pg::ArrayArg blend_xs = pg::array_arg(fcinfo, kGBlendX, FLOAT8OID, "blend_points x");

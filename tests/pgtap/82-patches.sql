@@ -198,6 +198,21 @@ SELECT ok((SELECT count(*) FILTER (WHERE g.room = 0) > 0 AND count(*) FILTER (WH
                                             AND pt.edge_index = 1
             WHERE 'terminal' = ANY (pt.tags)),
           'terminal_room: tokyo seed 1 uses fewer terminal patches with the rule than without');
+-- The first roundabout: canberra's seed 11 from its hull's centre placed no roundabout patch when
+-- the level rule refused, in the local phase, its roundabout patches on main streets (2026-12-03); the
+-- rule spares them while the growth has none. The same rows without the tag roundabout grow as before.
+CREATE TEMP TABLE grown_roundabout AS
+SELECT tagged, g.* FROM region r, unnest(ARRAY[true, false]) AS tagged,
+       LATERAL streetgen.grow_patches(format('SELECT patch_id, edge_index, role, road_class, max_uses, geom,
+                                                     CASE WHEN %L THEN tags ELSE array_remove(tags, ''roundabout'') END AS tags
+                                                FROM pt WHERE name = ''canberra_south_large''', tagged),
+                                      r.geom, r.centre, NULL, '{"seed": 11, "max_edges": 200000}') AS g
+ WHERE r.name = 'canberra_south_large';
+SELECT is((SELECT array_agg(DISTINCT g.tagged ORDER BY g.tagged)
+             FROM grown_roundabout g JOIN pt ON pt.name = 'canberra_south_large' AND 'grow_patches:' || pt.patch_id = g.origin
+            WHERE 'roundabout' = ANY (pt.tags)),
+          ARRAY[true],
+          'the first roundabout: canberra seed 11 places a roundabout patch in the local phase, none without the tag');
 CREATE INDEX ON grown_terminal USING gist (geom);
 ANALYZE grown_terminal;
 SELECT is((SELECT count(*) FROM grown_terminal a JOIN grown_terminal b ON a.room = 2 AND b.room = 2 AND a.id < b.id

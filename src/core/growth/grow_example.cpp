@@ -3338,6 +3338,7 @@ class Grower {
     int style = 0;          // interpolation: 0 the first library, 1 the second (GrowInput::patches_b)
     bool initial = false;   // tagged initial (Teng & Bidarra): a straight main street and a local attachment
     bool terminal = false;  // one connector, Teng & Bidarra's terminal patch (PatchGrowParams::terminal_room)
+    bool roundabout = false;  // tagged roundabout (PatchGrowParams::first_roundabout_in_local_phase)
   };
   struct LibConnector {
     std::uint32_t patch, edge;
@@ -3567,6 +3568,7 @@ class Grower {
         lp.style = style;
         lp.arterial = params_.patch.levels && std::find(p.tags.begin(), p.tags.end(), "arterial") != p.tags.end();
         lp.initial = std::find(p.tags.begin(), p.tags.end(), "initial") != p.tags.end();
+        lp.roundabout = std::find(p.tags.begin(), p.tags.end(), "roundabout") != p.tags.end();
         for (const PatchEdge& e : p.edges) {
           if (e.line.size() < 2) continue;
           if (e.role == PatchEdgeRole::isolated) {  // never placed; counted in the dead-end budget
@@ -6072,6 +6074,7 @@ class Grower {
     return params_.patch.size_redraw && !(hierarchy_ && phase_arterial_) && !cul_de_sac_city(example_dead_end_share_);
   }
   int refusal_ = kRefNone;
+  std::size_t roundabouts_placed_ = 0;  // placements of patches tagged roundabout
   struct BestPair {
     double d;
     std::uint32_t edge;
@@ -6424,8 +6427,11 @@ class Grower {
       }
     }
     // Levels: the local phase makes local streets only; a local patch whose arterial streets do
-    // not double the arterials already there is not placed (it belongs on an arterial).
-    if (hierarchy_ && !phase_arterial_) {
+    // not double the arterials already there is not placed (it belongs on an arterial). But for
+    // the growth's first roundabout (PatchGrowParams::first_roundabout_in_local_phase).
+    const bool first_roundabout =
+        params_.patch.first_roundabout_in_local_phase && library_[j].roundabout && roundabouts_placed_ == 0;
+    if (hierarchy_ && !phase_arterial_ && !first_roundabout) {
       for (const Planned& pl : plan) {
         if (level_is_main(pl.level)) {
           ++stats_.patch_illegal;
@@ -6758,6 +6764,7 @@ class Grower {
       }
     }
     ++library_[j].uses;
+    roundabouts_placed_ += lp.roundabout;
     ++stats_.patches_placed;
     stats_.patches_b_placed += lp.style == 1;
     stats_.arterial_patches_placed += seeds_local;
