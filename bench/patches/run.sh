@@ -182,14 +182,23 @@ SELECT method, round((100 * percentile_cont(0.5) WITHIN GROUP (ORDER BY score)):
        round((100 * max(score))::numeric, 1) AS worst_pair_pct
   FROM cmp WHERE metric = 'median_abs_relative_difference' GROUP BY method;
 \if :structures
-\echo structures: patches tagged roundabout / cul-de-sac in the example, and how often grow_patches used them
-SELECT p.name, count(DISTINCT p.patch_id) FILTER (WHERE 'roundabout' = ANY (p.tags)) AS ex_roundabout_patches,
-       (SELECT count(DISTINCT (g.seed, g.origin)) FROM grown g JOIN patch q ON g.origin = 'grow_patches:' || q.patch_id
-         AND q.name = g.name WHERE g.method = 'patches' AND g.name = p.name AND 'roundabout' = ANY (q.tags)) AS roundabout_uses,
-       count(DISTINCT p.patch_id) FILTER (WHERE 'cul-de-sac' = ANY (p.tags)) AS ex_cul_de_sac_patches,
-       (SELECT count(DISTINCT (g.seed, g.origin)) FROM grown g JOIN patch q ON g.origin = 'grow_patches:' || q.patch_id
-         AND q.name = g.name WHERE g.method = 'patches' AND g.name = p.name AND 'cul-de-sac' = ANY (q.tags)) AS cul_de_sac_uses
-  FROM patch p GROUP BY p.name ORDER BY p.name;
+\echo structures: patches tagged roundabout / cul-de-sac in the example, how often grow_patches used them (distinct patches a growth, summed over the seeds), and on how many of the seeds none (the goal: a growth has them when its example has them)
+WITH tagged AS (SELECT DISTINCT name, patch_id, 'roundabout' = ANY (tags) AS roundabout, 'cul-de-sac' = ANY (tags) AS cul_de_sac
+                  FROM patch),
+     example AS (SELECT name, count(*) FILTER (WHERE roundabout) AS roundabouts, count(*) FILTER (WHERE cul_de_sac) AS cul_de_sacs
+                   FROM tagged GROUP BY name),
+     per_seed AS (
+       SELECT s.name, s.seed, count(DISTINCT g.origin) FILTER (WHERE t.roundabout) AS roundabouts,
+              count(DISTINCT g.origin) FILTER (WHERE t.cul_de_sac) AS cul_de_sacs
+         FROM (SELECT DISTINCT name, seed FROM timing WHERE method = 'patches') s
+              LEFT JOIN grown g ON g.method = 'patches' AND g.name = s.name AND g.seed = s.seed
+              LEFT JOIN tagged t ON t.name = g.name AND g.origin = 'grow_patches:' || t.patch_id
+        GROUP BY s.name, s.seed)
+SELECT e.name, e.roundabouts AS ex_roundabout_patches, sum(p.roundabouts) AS roundabout_uses,
+       count(*) FILTER (WHERE p.roundabouts = 0) AS seeds_without_roundabout,
+       e.cul_de_sacs AS ex_cul_de_sac_patches, sum(p.cul_de_sacs) AS cul_de_sac_uses,
+       count(*) FILTER (WHERE p.cul_de_sacs = 0) AS seeds_without_cul_de_sac, count(*) AS seeds
+  FROM example e JOIN per_seed p USING (name) GROUP BY e.name, e.roundabouts, e.cul_de_sacs ORDER BY e.name;
 \endif
 \echo where the density comes from (grow_patches, median over seeds): share of the length on main streets (example, grown), mean connector length of the library and of the patches used (weighted by their uses: edges placed over the segments of the patch), junctions (degree >= 3, inside the hull shrunk by 50 m, not simplified) with a statistical street (fallback or join) among their streets
 WITH conn AS (SELECT name, patch_id, avg(ST_Length(geom)) FILTER (WHERE role = 'connector') AS len,
