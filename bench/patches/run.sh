@@ -8,7 +8,7 @@
 #   NAMES='tokyo new-york' SPEED=0 bash bench/patches/run.sh         some examples, no speed part
 #   OUT=/tmp/pics bash bench/patches/run.sh   where the PNGs go (default: build/bench-patches)
 #   BASELINE=0 bash bench/patches/run.sh      grow_patches only (no grow_example baseline: half the time)
-#   STRUCTURES=0 bash bench/patches/run.sh    without the roundabout / cul-de-sac uses (about 7 of 9 minutes)
+#   STRUCTURES=0 bash bench/patches/run.sh    without the roundabout / cul-de-sac uses
 #   SIDES='1200 2600' bash bench/patches/run.sh   the speed part's square sides (m)
 #   DEBUG1=1 bash bench/patches/run.sh        grow_patches' DEBUG1 counts (arterial fronts, fallback, ...) into $OUT/debug1.log
 #   TILES='200 400' bash bench/patches/run.sh  tile_noise.py's tile sides (m; default 250 500)
