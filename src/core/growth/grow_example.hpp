@@ -305,12 +305,12 @@ struct PatchGrowParams {
   bool corners_before_cuts = true;
   // The level rule (the local phase places no patch whose main streets double none there) spares a
   // patch tagged roundabout while the growth has none: a roundabout on main streets in the example
-  // then comes in the local phase with them. The arterial phase starts from few fronts and most of
-  // its roundabout draws are refused (clearance, angle, the region), so 9 of canberra's 120 growths
-  // (seeds 1-120, its hull) had no roundabout where its example has nine; with it none, its whole
-  // realism goal on 25.0 / 33.3 -> 33.3 / 35.0 % of seeds 1-60 / 61-120. Barcelona's growths have a
-  // roundabout early and grow as before; quito's and strasbourg's are refused for clearance (README
-  // "The first roundabout").
+  // then comes in the local phase with them. The arterial phase starts from few fronts and its few
+  // roundabout draws were refused (junction mix, clearance, the region), so 9 of canberra's 120
+  // growths (seeds 1-120, its hull) had no roundabout where its example has nine; with it none, its
+  // whole realism goal on 25.0 / 33.3 -> 33.3 / 35.0 % of seeds 1-60 / 61-120. Barcelona's growths
+  // have a roundabout early (3 of 120 differ); quito's and strasbourg's draws are refused for
+  // clearance (README "The first roundabout").
   bool first_roundabout_in_local_phase = true;
   // Corners of a weakly ordered example (with straight_corners): straightened also where the
   // example's φ is at least 0.05 (barcelona 0.28, strasbourg 0.19, quito 0.073), not only 0.6
