@@ -610,3 +610,68 @@ TEST(GrowPatches, ArterialOwnAnglesPlaceADualCarriageway) {
   }
   EXPECT_EQ(bad, 0u);
 }
+
+// PatchGrowParams::roundabout_spokes_dropped: the library's only patch is the fixture's roundabout
+// (a ring of radius 20 m, spokes out to the next junctions); the seed ends a street that comes
+// into a square of existing streets, 50 m from the seed on three sides, open on the fourth. The
+// spokes to the closed sides reach past them, so the whole patch is refused; without them the
+// ring fits, joined to the seed's street and by its spoke through the open side. (With it, the
+// growth goes on past the open side and elsewhere in the region, with later roundabouts whole.)
+TEST(GrowPatches, FirstRoundaboutLeavesOutTheSpokesThatComeTooNear) {
+  PatchFixture f;
+  GrowInput in;
+  for (const Patch& patch : extract_patches(f.geos, grid_with_roundabout(true), PatchParams{}).patches) {
+    if (has(patch.tags, "roundabout")) in.patches.push_back(patch);
+  }
+  ASSERT_EQ(in.patches.size(), 1u);
+  in.region = f.region.get();
+  const double h = 50.0;
+  in.existing = {{{-h, h}, {-h, -h}, {h, -h}, {h, h}}, {{0.0, -h}, {0.0, 0.0}}};
+  in.seeds = {{0.0, 0.0}};
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 1;
+  p.max_edges = 200;
+  p.fallback = false;
+  auto inside = [&](Point q) { return std::abs(q.x) < h && std::abs(q.y) < h; };
+  for (bool drop : {false, true}) {
+    p.patch.roundabout_spokes_dropped = drop;
+    GrowResult r = grow_example(f.geos, in, p);
+    if (!drop) {
+      EXPECT_EQ(r.stats.patches_placed, 0u);
+      EXPECT_EQ(r.stats.roundabout_spokes_dropped, 0u);
+      continue;
+    }
+    ASSERT_GE(r.stats.patches_placed, 1u);
+    EXPECT_GE(r.stats.roundabout_spokes_dropped, 2u);
+    // Inside the square: the ring, closed, joined to the seed's street at the seed, no street
+    // hanging from it; one street leaves it, through the open side.
+    std::map<std::int64_t, int> degree;
+    bool at_seed = false;
+    double ring = 0.0;
+    int leaving = 0;
+    for (const GrownEdge& e : r.edges) {
+      if (inside(e.a) != inside(e.b)) {
+        ++leaving;
+        EXPECT_GT(std::max(e.a.y, e.b.y), h) << e.a.x << " " << e.a.y << " " << e.b.x << " " << e.b.y;
+        EXPECT_LT(std::max(std::abs(e.a.x), std::abs(e.b.x)), h);
+        continue;
+      }
+      if (!inside(e.a)) continue;
+      ++degree[e.from_node];
+      ++degree[e.to_node];
+      ring += distance(e.a, e.b);
+      at_seed = at_seed || distance(e.a, Point{0.0, 0.0}) < 1e-6 || distance(e.b, Point{0.0, 0.0}) < 1e-6;
+    }
+    EXPECT_EQ(leaving, 1);
+    EXPECT_TRUE(at_seed);
+    EXPECT_NEAR(ring, 2.0 * kPi * 20.0, 2.0);
+    int branching = 0;
+    for (const auto& [node, d] : degree) {
+      EXPECT_GE(d, 2) << node;
+      branching += d > 2;
+    }
+    EXPECT_LE(branching, 1);  // where the spoke through the open side leaves the ring, if inside
+    EXPECT_EQ(streetgen::test::crossings_without_node(r), 0);
+  }
+}

@@ -6552,13 +6552,54 @@ class Grower {
     if (new_edges_ + segments > params_.max_edges) return refuse(kRefMaxEdges);
     // New streets keep the clearance from the network that the example's streets keep from each
     // other (away from the nodes they share with it).
-    for (const Planned& pl : plan) {
+    auto clear = [&](const Planned& pl) {
       for (std::size_t k = 0; k + 1 < pl.line.size(); ++k) {
         const std::uint32_t on = k + 2 == pl.line.size() ? pl.on_edge : UINT32_MAX;
-        if (!clear_of_network(pl.line[k], pl.line[k + 1], clearance_, v, pl.a, pl.b, on)) {
-          ++stats_.patch_illegal;
-          return refuse(kRefClearance);
+        if (!clear_of_network(pl.line[k], pl.line[k + 1], clearance_, v, pl.a, pl.b, on)) return false;
+      }
+      return true;
+    };
+    // PatchGrowParams::roundabout_spokes_dropped: the growth's first roundabout leaves out the
+    // spokes (connectors, dead ends) that come too near the network, and then the inner streets
+    // left hanging by that, instead of being refused; its ring must still be clear.
+    std::size_t spokes_dropped = 0;
+    if (params_.patch.roundabout_spokes_dropped && library_[j].roundabout && roundabouts_placed_ == 0) {
+      std::map<std::int64_t, int> degree_before;
+      for (const Planned& pl : plan) {
+        ++degree_before[pl.a];
+        ++degree_before[pl.b];
+      }
+      const std::size_t planned = plan.size();
+      plan.erase(std::remove_if(plan.begin(), plan.end(),
+                                [&](const Planned& pl) { return lp.edges[pl.edge].role != PatchEdgeRole::inner && !clear(pl); }),
+                 plan.end());
+      for (bool pruned = plan.size() < planned; pruned;) {
+        std::map<std::int64_t, int> degree;
+        for (const Planned& pl : plan) {
+          ++degree[pl.a];
+          ++degree[pl.b];
         }
+        auto hanging = [&](std::int64_t id) { return id < 0 && degree[id] == 1 && degree_before[id] > 1; };
+        const std::size_t before = plan.size();
+        plan.erase(std::remove_if(plan.begin(), plan.end(), [&](const Planned& pl) { return hanging(pl.a) || hanging(pl.b); }),
+                   plan.end());
+        pruned = plan.size() < before;
+      }
+      // Still joined to the network, and by a street besides the front's: a ring on one street is
+      // a turning loop, not a roundabout (on quito that refusal met the goal on 2 more seeds).
+      const bool attached = std::any_of(plan.begin(), plan.end(), [](const Planned& pl) { return pl.a >= 0 || pl.b >= 0; });
+      const bool spoke_left =
+          std::any_of(plan.begin(), plan.end(), [&](const Planned& pl) { return lp.edges[pl.edge].role != PatchEdgeRole::inner; });
+      if (!attached || !spoke_left) {
+        ++stats_.patch_illegal;
+        return refuse(kRefClearance);
+      }
+      spokes_dropped = planned - plan.size();
+    }
+    for (const Planned& pl : plan) {
+      if (!clear(pl)) {
+        ++stats_.patch_illegal;
+        return refuse(kRefClearance);
       }
     }
     // Angles and degrees at existing nodes.
@@ -6765,6 +6806,7 @@ class Grower {
     }
     ++library_[j].uses;
     roundabouts_placed_ += lp.roundabout;
+    stats_.roundabout_spokes_dropped += spokes_dropped;
     ++stats_.patches_placed;
     stats_.patches_b_placed += lp.style == 1;
     stats_.arterial_patches_placed += seeds_local;
