@@ -584,8 +584,10 @@ Datum _streetgen_grow_patches(PG_FUNCTION_ARGS) {
                           "street across it, %zu such ends placed",
                           stats.stem_fronts, stats.stems_continued, stats.wide_redundant_dropped, stats.line_fronts,
                           stats.line_ends_placed)));
-  ereport(DEBUG1, (errmsg("grow_patches: roundabouts: the first placed without %zu of its streets (spokes too near the network, inner streets left hanging)",
-                          stats.roundabout_spokes_dropped)));
+  ereport(DEBUG1, (errmsg("grow_patches: roundabouts: %zu placed; the first %.0f m ahead of its "
+                          "front (0: at it), without %zu of its streets (spokes too near the network, inner streets "
+                          "left hanging)",
+                          stats.roundabouts_placed, stats.roundabout_ahead, stats.roundabout_spokes_dropped)));
   ereport(DEBUG1, (errmsg("grow_patches: spread order: %zu fronts drew without the patches already used, ten times "
                           "flatter (the output more ordered than its example)",
                           stats.spread_fronts)));

@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/growth/grow_example.hpp"
 #include "core/growth/patches.hpp"
+#include "core/streets/polyline.hpp"
 #include "patch_fixtures.hpp"
 #include "test_support.hpp"
 
@@ -633,6 +634,7 @@ TEST(GrowPatches, FirstRoundaboutLeavesOutTheSpokesThatComeTooNear) {
   p.seed = 1;
   p.max_edges = 200;
   p.fallback = false;
+  p.patch.roundabout_shift = false;  // (with it, the patch refused at the seed is placed ahead of it instead)
   auto inside = [&](Point q) { return std::abs(q.x) < h && std::abs(q.y) < h; };
   for (bool drop : {false, true}) {
     p.patch.roundabout_spokes_dropped = drop;
@@ -672,6 +674,64 @@ TEST(GrowPatches, FirstRoundaboutLeavesOutTheSpokesThatComeTooNear) {
       branching += d > 2;
     }
     EXPECT_LE(branching, 1);  // where the spoke through the open side leaves the ring, if inside
+    EXPECT_EQ(streetgen::test::crossings_without_node(r), 0);
+  }
+}
+
+// PatchGrowParams::roundabout_shift: the same roundabout patch, grown from a street ending between
+// two existing streets 23 m to either side, which run on 30 m past the seed. At the seed its ring
+// (20 m across each way) would come 3 m from them, under the clearance (5 m): refused. Tried 40 m
+// ahead, it fits: the front's street goes straight on to it, and the whole ring is there, clear of
+// the two streets.
+TEST(GrowPatches, FirstRoundaboutIsTriedAheadOfItsFront) {
+  PatchFixture f;
+  GrowInput in;
+  for (const Patch& patch : extract_patches(f.geos, grid_with_roundabout(true), PatchParams{}).patches) {
+    if (has(patch.tags, "roundabout")) in.patches.push_back(patch);
+  }
+  ASSERT_EQ(in.patches.size(), 1u);
+  in.region = f.region.get();
+  const double side = 23.0;
+  in.existing = {{{-side, -50.0}, {-side, 30.0}}, {{side, -50.0}, {side, 30.0}}, {{0.0, -50.0}, {0.0, 0.0}}};
+  in.seeds = {{0.0, 0.0}};
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 1;
+  p.max_edges = 200;
+  p.fallback = false;
+  p.patch.clearance = 5.0;
+  for (bool shift : {false, true}) {
+    p.patch.roundabout_shift = shift;
+    GrowResult r = grow_example(f.geos, in, p);
+    if (!shift) {
+      EXPECT_EQ(r.stats.roundabouts_placed, 0u);
+      EXPECT_EQ(r.stats.roundabout_ahead, 0.0);
+      continue;
+    }
+    ASSERT_GE(r.stats.roundabouts_placed, 1u);
+    EXPECT_EQ(r.stats.roundabout_ahead, 40.0);
+    const Point centre{0.0, 60.0};  // the ring's centre, 40 m ahead of the seed and its radius on
+    double ring = 0.0;
+    bool joined = false;
+    for (const GrownEdge& e : r.edges) {
+      joined = joined || (distance(e.a, Point{0.0, 0.0}) < 1e-6 && distance(e.b, Point{0.0, 40.0}) < 1e-6) ||
+               (distance(e.b, Point{0.0, 0.0}) < 1e-6 && distance(e.a, Point{0.0, 40.0}) < 1e-6);
+      if (std::abs(distance(e.a, centre) - 20.0) < 0.5 && std::abs(distance(e.b, centre) - 20.0) < 0.5) {
+        ring += distance(e.a, e.b);
+      }
+      // Nothing new within the clearance of the two streets beside the seed (they are not crossed,
+      // so the nearest points are segment ends).
+      for (double x : {-side, side}) {
+        const Point s0{x, -50.0}, s1{x, 30.0};
+        if (distance(e.a, s0) < 1e-6 && distance(e.b, s1) < 1e-6) continue;  // the street itself
+        if (distance(e.a, s1) < 1e-6 && distance(e.b, s0) < 1e-6) continue;
+        const double gap = std::min({point_segment_distance(s1, e.a, e.b), point_segment_distance(e.a, s0, s1),
+                                     point_segment_distance(e.b, s0, s1)});
+        EXPECT_GE(gap, 5.0) << e.a.x << " " << e.a.y << " " << e.b.x << " " << e.b.y;
+      }
+    }
+    EXPECT_TRUE(joined);
+    EXPECT_NEAR(ring, 2.0 * kPi * 20.0, 2.0);
     EXPECT_EQ(streetgen::test::crossings_without_node(r), 0);
   }
 }

@@ -5910,7 +5910,8 @@ class Grower {
       const LibPatch& lp = library_[j];
       ++stats_.size_tried[lp.size_class];
       refusal_ = kRefNone;
-      if (place_patch(v, j, lp.edges[best_[j].edge].line[0], best_[j].edge)) {
+      if (place_patch(v, j, lp.edges[best_[j].edge].line[0], best_[j].edge) ||
+          place_first_roundabout_ahead(v, j, best_[j].edge)) {
         ++stats_.size_placed[lp.size_class];
         if (align) {
           stats_.stems_continued += static_cast<std::size_t>(best_[j].stems);
@@ -6236,6 +6237,35 @@ class Grower {
     slide_here_ = false;
     return ok;
   }
+  // PatchGrowParams::roundabout_shift: the growth's first roundabout, refused for clearance at front
+  // v, placed 40, 80 or 120 m ahead, where the front's street would go on (the opposite way from its
+  // connector `edge`, laid on that street), joined to v by a straight street. A refused try leaves
+  // the draw as it was: refused for clearance, the front's flags as before.
+  bool place_first_roundabout_ahead(std::uint32_t v, std::uint32_t j, std::uint32_t edge) {
+    const LibPatch& lp = library_[j];
+    if (!params_.patch.roundabout_shift || !lp.roundabout || roundabouts_placed_ > 0 || refusal_ != kRefClearance) {
+      return false;
+    }
+    const Polyline& connector = lp.edges[edge].line;
+    const Point p = nodes_[v].p;
+    const Point back = unit(warped(connector[1], connector[0], p) - p);
+    const bool corner = corner_refused_, seam = seam_hit_, dead_end = front_dead_end_hit_;
+    for (double ahead : kRoundaboutShifts) {
+      anchor_shift_ = -ahead * back;
+      refusal_ = kRefNone;
+      const bool placed = place_patch(v, j, connector[0], edge);
+      anchor_shift_ = Point{0.0, 0.0};
+      if (placed) {
+        stats_.roundabout_ahead = ahead;
+        return true;
+      }
+    }
+    corner_refused_ = corner;
+    seam_hit_ = seam;
+    front_dead_end_hit_ = dead_end;
+    refusal_ = kRefClearance;
+    return false;
+  }
   // Seams (PatchGrowParams::seam_turn, seam_slide): where the example is ordered (φ at least
   // kSeamOrder), or with weak_order_seams weakly ordered (at least kWeakSeamOrder, not a city of
   // cul-de-sacs), and while the output is less ordered than it.
@@ -6279,6 +6309,10 @@ class Grower {
   static constexpr double kGridTurn = 15.0 * kPi / 180.0;  // a statistical street this far off the grid turns onto it
   static constexpr double kOnGrid = 0.5 * kPi / 180.0;     // (counted as turned only when more off than this)
   bool slide_here_ = false;
+  // PatchGrowParams::roundabout_shift: the patch placed this far from its front (place_patch_at), and
+  // how far ahead it is tried.
+  Point anchor_shift_{0.0, 0.0};
+  static constexpr double kRoundaboutShifts[] = {40.0, 80.0, 120.0};
   std::vector<std::pair<std::uint32_t, Point>> slid_;  // dead ends slid by the patch being placed, where they were
   double seam_limit_ = 0.0;  // degrees: seam_turn at this draw (0: off)
   bool seam_hit_ = false;    // a draw was refused for its seam
@@ -6324,7 +6358,9 @@ class Grower {
   }
   bool place_patch_at(std::uint32_t v, std::uint32_t j, Point anchor, std::uint32_t skip, bool local_only) {
     const LibPatch& lp = library_[j];
-    const Point at_v = nodes_[v].p;
+    // (roundabout_shift: the patch's junction at the front lands ahead of it, a new vertex)
+    const bool shifted = norm(anchor_shift_) > 0.0;
+    const Point at_v = nodes_[v].p + anchor_shift_;
     // Patch vertices (edge ends): an existing node (>= 0), or a new one (-(index into fresh) - 1).
     std::unordered_map<MillimetreKey, std::int64_t, MillimetreKeyHash> vertex;
     std::vector<Point> fresh;
@@ -6336,8 +6372,11 @@ class Grower {
       if (it != vertex.end()) return it->second;
       std::int64_t id;
       Point at = warped(q, anchor, at_v);
-      if (key == anchor_key) {
+      if (key == anchor_key && !shifted) {
         id = v;
+      } else if (key == anchor_key) {
+        fresh.push_back(at);
+        id = -static_cast<std::int64_t>(fresh.size());
       } else {
         // (Several vertices of the patch may merge into one node, folding a dual carriageway's
         // junctions into one: the planarity check below follows every moved end.)
@@ -6379,6 +6418,11 @@ class Grower {
       bool steep_end = false;     // clipped where the slope got too steep
     };
     std::vector<Planned> plan;
+    if (shifted) {  // the front's street goes on to the patch's junction: the connector laid on it, drawn longer
+      const std::int64_t junction = vertex_of(anchor);
+      plan.push_back(Planned{{nodes_[v].p, at_v}, static_cast<std::int64_t>(v), junction, lp.edges[skip].level, false, false,
+                             nodes_[v].p, at_v, skip});
+    }
     auto pos = [&](std::int64_t id) {
       return id >= 0 ? nodes_[static_cast<std::uint32_t>(id)].p : fresh[static_cast<std::size_t>(-id - 1)];
     };
@@ -6806,6 +6850,7 @@ class Grower {
     }
     ++library_[j].uses;
     roundabouts_placed_ += lp.roundabout;
+    stats_.roundabouts_placed = roundabouts_placed_;
     stats_.roundabout_spokes_dropped += spokes_dropped;
     ++stats_.patches_placed;
     stats_.patches_b_placed += lp.style == 1;
