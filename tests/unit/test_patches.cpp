@@ -612,6 +612,27 @@ TEST(GrowPatches, ArterialOwnAnglesPlaceADualCarriageway) {
   EXPECT_EQ(bad, 0u);
 }
 
+// The roundabout tests' library: the fixture's roundabout patch alone (a ring of radius 20 m,
+// spokes out to the next junctions), grown in the fixture's region without the fallback.
+namespace {
+GrowInput roundabout_only(PatchFixture& f) {
+  GrowInput in;
+  for (const Patch& patch : extract_patches(f.geos, grid_with_roundabout(true), PatchParams{}).patches) {
+    if (has(patch.tags, "roundabout")) in.patches.push_back(patch);
+  }
+  in.region = f.region.get();
+  return in;
+}
+GrowParams roundabout_only_params() {
+  GrowParams p;
+  p.use_patches = true;
+  p.seed = 1;
+  p.max_edges = 200;
+  p.fallback = false;
+  return p;
+}
+}  // namespace
+
 // PatchGrowParams::roundabout_spokes_dropped: the library's only patch is the fixture's roundabout
 // (a ring of radius 20 m, spokes out to the next junctions); the seed ends a street that comes
 // into a square of existing streets, 50 m from the seed on three sides, open on the fourth. The
@@ -620,20 +641,12 @@ TEST(GrowPatches, ArterialOwnAnglesPlaceADualCarriageway) {
 // growth goes on past the open side and elsewhere in the region, with later roundabouts whole.)
 TEST(GrowPatches, FirstRoundaboutLeavesOutTheSpokesThatComeTooNear) {
   PatchFixture f;
-  GrowInput in;
-  for (const Patch& patch : extract_patches(f.geos, grid_with_roundabout(true), PatchParams{}).patches) {
-    if (has(patch.tags, "roundabout")) in.patches.push_back(patch);
-  }
+  GrowInput in = roundabout_only(f);
   ASSERT_EQ(in.patches.size(), 1u);
-  in.region = f.region.get();
   const double h = 50.0;
   in.existing = {{{-h, h}, {-h, -h}, {h, -h}, {h, h}}, {{0.0, -h}, {0.0, 0.0}}};
   in.seeds = {{0.0, 0.0}};
-  GrowParams p;
-  p.use_patches = true;
-  p.seed = 1;
-  p.max_edges = 200;
-  p.fallback = false;
+  GrowParams p = roundabout_only_params();
   p.patch.roundabout_shift = false;  // (with it, the patch refused at the seed is placed ahead of it instead)
   auto inside = [&](Point q) { return std::abs(q.x) < h && std::abs(q.y) < h; };
   for (bool drop : {false, true}) {
@@ -685,20 +698,12 @@ TEST(GrowPatches, FirstRoundaboutLeavesOutTheSpokesThatComeTooNear) {
 // the two streets.
 TEST(GrowPatches, FirstRoundaboutIsTriedAheadOfItsFront) {
   PatchFixture f;
-  GrowInput in;
-  for (const Patch& patch : extract_patches(f.geos, grid_with_roundabout(true), PatchParams{}).patches) {
-    if (has(patch.tags, "roundabout")) in.patches.push_back(patch);
-  }
+  GrowInput in = roundabout_only(f);
   ASSERT_EQ(in.patches.size(), 1u);
-  in.region = f.region.get();
   const double side = 23.0;
   in.existing = {{{-side, -50.0}, {-side, 30.0}}, {{side, -50.0}, {side, 30.0}}, {{0.0, -50.0}, {0.0, 0.0}}};
   in.seeds = {{0.0, 0.0}};
-  GrowParams p;
-  p.use_patches = true;
-  p.seed = 1;
-  p.max_edges = 200;
-  p.fallback = false;
+  GrowParams p = roundabout_only_params();
   p.patch.clearance = 5.0;
   for (bool shift : {false, true}) {
     p.patch.roundabout_shift = shift;
