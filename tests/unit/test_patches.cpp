@@ -740,3 +740,44 @@ TEST(GrowPatches, FirstRoundaboutIsTriedAheadOfItsFront) {
     EXPECT_EQ(streetgen::test::crossings_without_node(r), 0);
   }
 }
+
+// PatchGrowParams::roundabout_ring_kept: the same roundabout patch, grown from a street ending at
+// the seed, beside a street already there that ends 10 m east of where the ring's east vertex
+// falls (20 m east of the ring's centre, 20 m ahead of the seed), within snap (15 m). Merged into
+// that node, the vertex bends two arcs of the ring out to it, and the patch is refused (no other
+// front: nothing is placed). Kept, the ring is placed whole and round, clear of that street, and
+// its east spoke, which would touch the street's end, is left out.
+TEST(GrowPatches, FirstRoundaboutKeepsItsRingWhole) {
+  PatchFixture f;
+  GrowInput in = roundabout_only(f);
+  ASSERT_EQ(in.patches.size(), 1u);
+  const Point east_end{30.0, 20.0}, east_far{30.0, 100.0};
+  in.existing = {{{0.0, -50.0}, {0.0, 0.0}}, {east_end, east_far}};
+  in.seeds = {{0.0, 0.0}};
+  GrowParams p = roundabout_only_params();
+  p.patch.clearance = 5.0;
+  p.snap = 15.0;
+  const Point centre{0.0, 20.0};
+  for (bool kept : {false, true}) {
+    p.patch.roundabout_ring_kept = kept;
+    GrowResult r = grow_example(f.geos, in, p);
+    if (!kept) {
+      EXPECT_EQ(r.stats.roundabouts_placed, 0u);
+      continue;
+    }
+    ASSERT_GE(r.stats.roundabouts_placed, 1u);
+    double ring = 0.0;
+    for (const GrownEdge& e : r.edges) {
+      if (std::abs(distance(e.a, centre) - 20.0) < 0.5 && std::abs(distance(e.b, centre) - 20.0) < 0.5) {
+        ring += distance(e.a, e.b);
+      }
+      if (distance(e.a, east_end) < 1e-6 && distance(e.b, east_far) < 1e-6) continue;  // the street itself
+      if (distance(e.b, east_end) < 1e-6 && distance(e.a, east_far) < 1e-6) continue;
+      const double gap = std::min({point_segment_distance(east_end, e.a, e.b), point_segment_distance(e.a, east_end, east_far),
+                                   point_segment_distance(e.b, east_end, east_far)});
+      EXPECT_GE(gap, 5.0) << e.a.x << " " << e.a.y << " " << e.b.x << " " << e.b.y;
+    }
+    EXPECT_NEAR(ring, 2.0 * kPi * 20.0, 2.0);
+    EXPECT_EQ(streetgen::test::crossings_without_node(r), 0);
+  }
+}

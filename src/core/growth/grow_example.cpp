@@ -3339,6 +3339,7 @@ class Grower {
     bool initial = false;   // tagged initial (Teng & Bidarra): a straight main street and a local attachment
     bool terminal = false;  // one connector, Teng & Bidarra's terminal patch (PatchGrowParams::terminal_room)
     bool roundabout = false;  // tagged roundabout (PatchGrowParams::first_roundabout_in_local_phase)
+    std::vector<MillimetreKey> ring;  // tagged roundabout: its ring's vertices (ring_vertices)
   };
   struct LibConnector {
     std::uint32_t patch, edge;
@@ -3544,6 +3545,40 @@ class Grower {
     return in_budget_[v];
   }
 
+  // The vertices of a roundabout patch's ring: the ends of its inner streets left when those with a
+  // free end are peeled off, one after another (the 2-core of the inner streets). Edge tags do not
+  // reach the growth (only the patch's), so the ring is found again here.
+  static std::vector<MillimetreKey> ring_vertices(const std::vector<LibEdge>& edges) {
+    std::unordered_map<MillimetreKey, int, MillimetreKeyHash> degree;
+    std::vector<char> alive(edges.size(), 0);
+    for (std::size_t k = 0; k < edges.size(); ++k) {
+      if (edges[k].role != PatchEdgeRole::inner) continue;
+      alive[k] = 1;
+      ++degree[millimetre_key(edges[k].line.front())];
+      ++degree[millimetre_key(edges[k].line.back())];
+    }
+    for (bool peeled = true; peeled;) {
+      peeled = false;
+      for (std::size_t k = 0; k < edges.size(); ++k) {
+        if (!alive[k]) continue;
+        const MillimetreKey a = millimetre_key(edges[k].line.front()), b = millimetre_key(edges[k].line.back());
+        if (degree[a] < 2 || degree[b] < 2) {
+          alive[k] = 0;
+          --degree[a];
+          --degree[b];
+          peeled = true;
+        }
+      }
+    }
+    std::vector<MillimetreKey> ring;
+    for (std::size_t k = 0; k < edges.size(); ++k) {
+      if (!alive[k]) continue;
+      ring.push_back(millimetre_key(edges[k].line.front()));
+      ring.push_back(millimetre_key(edges[k].line.back()));
+    }
+    return ring;
+  }
+
   void build_library(const std::vector<Patch>& patches, const std::vector<Patch>& patches_b) {
     if (patches.empty()) {
       throw_invalid_argument("patches has no rows", "The patch query returned no patch edge.",
@@ -3589,6 +3624,7 @@ class Grower {
         (style == 0 ? with_connectors : with_connectors_b) += !lp.connectors.empty();
         lp.terminal = lp.connectors.size() == 1;  // extract_patches' tag terminal, by its definition
         if (lp.edges.empty()) continue;
+        if (lp.roundabout) lp.ring = ring_vertices(lp.edges);
         if (self_crossing(lp.edges)) {  // a bridge in the example: its patch cannot be placed planar
           ++stats_.patches_dropped;
           continue;
@@ -6366,6 +6402,10 @@ class Grower {
     std::vector<Point> fresh;
     const MillimetreKey anchor_key = millimetre_key(anchor);
     std::vector<std::uint32_t> merged_here;  // nodes merged into so far (a node slides only at its first)
+    // PatchGrowParams::roundabout_ring_kept: the first roundabout's ring vertices stay where the
+    // patch puts them, new nodes, so its ring is not bent onto nodes nearby (a ring street that
+    // doubles a street already there is still left out below).
+    const bool keep_ring = params_.patch.roundabout_ring_kept && lp.roundabout && roundabouts_placed_ == 0;
     auto vertex_of = [&](Point q) -> std::int64_t {
       const MillimetreKey key = millimetre_key(q);
       auto it = vertex.find(key);
@@ -6374,7 +6414,7 @@ class Grower {
       Point at = warped(q, anchor, at_v);
       if (key == anchor_key && !shifted) {
         id = v;
-      } else if (key == anchor_key) {
+      } else if (key == anchor_key || (keep_ring && std::find(lp.ring.begin(), lp.ring.end(), key) != lp.ring.end())) {
         fresh.push_back(at);
         id = -static_cast<std::int64_t>(fresh.size());
       } else {
