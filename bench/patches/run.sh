@@ -18,7 +18,9 @@
 #    compare each with the example by compare_networks, inside the hull shrunk by 50 m, degree-2
 #    chains merged (as bench/growth/run.sh): the eight headline metrics and their median per
 #    pair (the issue's per-pair median), the 4-way and dead-end shares in percentage points, and
-#    whether roundabouts (patches tagged roundabout) and cul-de-sacs were used. Patches are
+#    whether roundabouts (patches tagged roundabout) and cul-de-sacs were used, and the rings
+#    read from the geometry (compact faces bounded by roundabout streets), the example's and a
+#    growth's: a patch used is not a ring placed. Patches are
 #    extracted with extract_patches' defaults (levels: arterial patches grow first), or with
 #    EXTRACT_PARAMS (e.g. EXTRACT_PARAMS='{"levels": false}' for one level).
 #    Then where the density comes from: the main streets' share of the length (example, grown),
@@ -199,6 +201,36 @@ SELECT e.name, e.roundabouts AS ex_roundabout_patches, sum(p.roundabouts) AS rou
        e.cul_de_sacs AS ex_cul_de_sac_patches, sum(p.cul_de_sacs) AS cul_de_sac_uses,
        count(*) FILTER (WHERE p.cul_de_sacs = 0) AS seeds_without_cul_de_sac, count(*) AS seeds
   FROM example e JOIN per_seed p USING (name) GROUP BY e.name, e.roundabouts, e.cul_de_sacs ORDER BY e.name;
+\echo rings: roundabouts read from the geometry, the same way on the example and on grow_patches growths. A ring is a bounded face of the network (ST_Polygonize), compact (4 pi area / perimeter^2 >= 0.7) and under 200 m across (area < pi 100^2), whose boundary lies at least half on roundabout streets: the edges of the example flagged roundabout, the streets of a growth from patches tagged roundabout. A patch used is not a ring placed: its ring may be left open or bent where its vertices merged into streets already there. A growth counts its roundabout patches spokes too, so a block bounded half by them counts: an upper bound on its rings.
+WITH flagged AS MATERIALIZED (SELECT 'example'::text AS method, name, 0 AS seed, geom FROM example WHERE roundabout
+                 UNION ALL
+                 SELECT g.method, g.name, g.seed, g.geom FROM grown g
+                   JOIN (SELECT DISTINCT name, 'grow_patches:' || patch_id AS origin FROM patch WHERE 'roundabout' = ANY (tags)) t
+                     USING (name, origin)
+                  WHERE g.method = 'patches'),
+     networks AS (SELECT 'example'::text AS method, name, 0 AS seed FROM region
+                  UNION ALL
+                  SELECT DISTINCT method, name, seed FROM timing WHERE method = 'patches'),
+     faces AS MATERIALIZED (SELECT n.method, n.name, n.seed, f.geom AS face
+                 FROM networks n,
+                      LATERAL (SELECT ST_Polygonize(x.geom) AS geom FROM example x WHERE n.method = 'example' AND x.name = n.name
+                               UNION ALL
+                               SELECT ST_Polygonize(g.geom) FROM grown g
+                                WHERE n.method = 'patches' AND g.method = 'patches' AND g.name = n.name AND g.seed = n.seed) AS p,
+                      LATERAL ST_Dump(p.geom) AS f
+                WHERE ST_Area(f.geom) < pi() * 100 ^ 2 AND 4 * pi() * ST_Area(f.geom) / ST_Perimeter(f.geom) ^ 2 >= 0.7),
+     on_face AS (SELECT f.method, f.name, f.seed, f.face,
+                        sum(ST_Length(ST_Intersection(r.geom, ST_Buffer(ST_ExteriorRing(f.face), 0.5)))) AS length
+                   FROM faces f JOIN flagged r
+                     ON r.method = f.method AND r.name = f.name AND r.seed = f.seed AND r.geom && ST_Expand(f.face, 1)
+                  GROUP BY 1, 2, 3, 4),
+     rings AS (SELECT method, name, seed, count(*) AS rings FROM on_face WHERE length >= 0.5 * ST_Perimeter(face) GROUP BY 1, 2, 3),
+     per_network AS (SELECT n.method, n.name, n.seed, coalesce(r.rings, 0) AS rings FROM networks n LEFT JOIN rings r USING (method, name, seed))
+SELECT name, max(rings) FILTER (WHERE method = 'example') AS example_rings,
+       round(avg(rings) FILTER (WHERE method = 'patches'), 2) AS rings_a_growth,
+       count(*) FILTER (WHERE method = 'patches' AND rings = 0) AS seeds_without_ring,
+       count(*) FILTER (WHERE method = 'patches') AS seeds
+  FROM per_network GROUP BY name ORDER BY name;
 \endif
 \echo where the density comes from (grow_patches, median over seeds): share of the length on main streets (example, grown), mean connector length of the library and of the patches used (weighted by their uses: edges placed over the segments of the patch), junctions (degree >= 3, inside the hull shrunk by 50 m, not simplified) with a statistical street (fallback or join) among their streets
 WITH conn AS (SELECT name, patch_id, avg(ST_Length(geom)) FILTER (WHERE role = 'connector') AS len,
