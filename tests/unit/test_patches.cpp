@@ -745,7 +745,8 @@ TEST(GrowPatches, FirstRoundaboutIsTriedAheadOfItsFront) {
 // the seed, beside a street already there that ends 10 m east of where the ring's east vertex
 // falls (20 m east of the ring's centre, 20 m ahead of the seed), within snap (15 m). Merged into
 // that node, the vertex bends two arcs of the ring out to it, and the patch is refused (no other
-// front: nothing is placed). Kept, the ring is placed whole and round, clear of that street, and
+// front: nothing is placed; with that street far away it is placed either way). Kept, the ring is
+// placed whole and round, clear of that street, and
 // its east spoke, which would touch the street's end, is left out.
 TEST(GrowPatches, FirstRoundaboutKeepsItsRingWhole) {
   PatchFixture f;

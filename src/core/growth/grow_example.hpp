@@ -335,7 +335,7 @@ struct PatchGrowParams {
   // ring or closed it on a street already there, and the doubled ring streets were left out: read
   // from the geometry (a compact face, at most 200 m across, bounded at least half by roundabout
   // streets; bench/patches/run.sh "rings"), 135 of the 480 growths of barcelona, canberra, quito
-  // and strasbourg (seeds 1-120) had no ring though they used a roundabout patch. With the ring
+  // and strasbourg (seeds 1-120) had no ring, 121 of them with a roundabout patch used. With the ring
   // kept, its clearance and crossings are checked as placed: 97 (quito 36 -> 25, strasbourg 43 ->
   // 27, canberra 50 -> 41, barcelona 6 -> 4); the whole realism goal quito 47.5 -> 52.5 %,
   // strasbourg 30.8 -> 34.2 %, barcelona 80.0 -> 77.5 %, canberra 37.5 -> 34.2 % (README "Rings
